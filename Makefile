@@ -1,0 +1,34 @@
+# usvtool: `make report` (main job on the bundled charts) and `make test`.
+# Both create .venv and install the project on first use; the stamp makes later runs quick.
+PYTHON ?= python3
+VENV := .venv
+BIN := $(VENV)/bin
+STAMP := $(VENV)/.installed
+USV := $(BIN)/usvtool
+BUILD := build
+
+.PHONY: test report charts lint bench clean
+
+$(STAMP): pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e '.[test]'
+	touch $(STAMP)
+
+test: $(STAMP)
+	$(BIN)/python -m pytest
+
+lint: $(STAMP)
+	$(BIN)/ruff check .
+
+charts: $(STAMP)
+	$(MAKE) -f pipelines/charts.mk BIN=$(abspath $(BIN))
+
+report: charts
+	$(MAKE) -f pipelines/report.mk BIN=$(abspath $(BIN))
+
+bench: $(STAMP)
+	$(BIN)/python benchmarks/bench_preprocess.py
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,3 @@
+"""usvtool: USV path planning on real nautical charts."""
+
+__version__ = "0.1.0"

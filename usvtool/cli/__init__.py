@@ -1,0 +1,77 @@
+"""The ``usvtool`` command group.
+
+Subcommands live one per module and are imported only when invoked, so ``usvtool --help`` and
+quick commands do not pay for heavy imports. Library errors (:class:`usvtool.errors.UsvError`)
+become one-line messages with exit status 1; usage errors exit 2 (click's convention).
+"""
+
+from __future__ import annotations
+
+import importlib
+import logging
+import sys
+
+import click
+
+from usvtool import __version__
+from usvtool.errors import UsvError
+
+SUBCOMMANDS = {
+    "preprocess": ("usvtool.cli.preprocess", "Turn a chart into a navigation grid GeoTIFF."),
+    "render": ("usvtool.cli.render", "Draw an S-57 cell as an S-52 coloured chart image."),
+    "plan": ("usvtool.cli.plan", "Plan a global route on a navigation grid."),
+    "functions": ("usvtool.cli.functions", "Run the optimizers on benchmark functions F1-F10."),
+}
+
+
+class LazyGroup(click.Group):
+    """A group whose subcommands are imported on first use."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(SUBCOMMANDS)
+
+    def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
+        if name not in SUBCOMMANDS:
+            return None
+        module = importlib.import_module(SUBCOMMANDS[name][0])
+        return getattr(module, name)
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        rows = [(name, SUBCOMMANDS[name][1]) for name in self.list_commands(ctx)]
+        with formatter.section("Commands"):
+            formatter.write_dl(rows)
+
+    def invoke(self, ctx: click.Context):
+        try:
+            return super().invoke(ctx)
+        except UsvError as exc:
+            raise click.ClickException(str(exc)) from None
+        except (click.ClickException, click.exceptions.Exit, click.Abort):
+            raise
+        except Exception as exc:  # a bug: one line unless -v asks for the traceback
+            if ctx.obj and ctx.obj.get("verbose", 0) > 0:
+                raise
+            raise click.ClickException(
+                f"internal error: {type(exc).__name__}: {exc} (run with -v for the traceback)"
+            ) from None
+
+
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
+@click.option("-v", "--verbose", count=True, help="More messages on stderr (tracebacks too).")
+@click.option("-q", "--quiet", count=True, help="Fewer messages on stderr.")
+@click.version_option(__version__, prog_name="usvtool")
+@click.pass_context
+def cli(ctx: click.Context, verbose: int, quiet: int) -> None:
+    """USV path planning on real nautical charts.
+
+    Every command prints one JSON summary on stdout; messages go to stderr.
+    """
+    level = logging.WARNING - 10 * (verbose - quiet)
+    logging.basicConfig(
+        stream=sys.stderr, level=max(logging.DEBUG, level), format="usvtool: %(message)s"
+    )
+    ctx.obj = {"verbose": verbose}
+
+
+def main() -> None:
+    cli(prog_name="usvtool")

@@ -1,0 +1,63 @@
+"""Shared click options and output helpers for the subcommands."""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+
+import click
+
+seed_option = click.option(
+    "--seed", type=int, default=0, show_default=True, help="Seed of the random generator."
+)
+
+
+def output_option(help: str):
+    return click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help=help)
+
+
+class PositiveFloat(click.ParamType):
+    """A finite float > 0 (rejects zero, negatives, NaN and infinity)."""
+
+    name = "positive number"
+
+    def convert(self, value, param, ctx):
+        try:
+            x = float(value)
+        except (TypeError, ValueError):
+            self.fail(f"{value!r} is not a number", param, ctx)
+        if not math.isfinite(x) or x <= 0:
+            self.fail(f"{value!r} must be a finite number > 0", param, ctx)
+        return x
+
+
+class NonNegativeFloat(click.ParamType):
+    """A finite float >= 0."""
+
+    name = "number >= 0"
+
+    def convert(self, value, param, ctx):
+        try:
+            x = float(value)
+        except (TypeError, ValueError):
+            self.fail(f"{value!r} is not a number", param, ctx)
+        if not math.isfinite(x) or x < 0:
+            self.fail(f"{value!r} must be a finite number >= 0", param, ctx)
+        return x
+
+
+POSITIVE = PositiveFloat()
+NON_NEGATIVE = NonNegativeFloat()
+
+
+def emit(summary: dict) -> None:
+    """Print the command's summary JSON on stdout."""
+    json.dump(summary, sys.stdout, indent=2, default=_jsonable)
+    sys.stdout.write("\n")
+
+
+def _jsonable(value):
+    if hasattr(value, "tolist"):
+        return value.tolist()
+    return str(value)
