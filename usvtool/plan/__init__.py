@@ -1,0 +1,1 @@
+"""Global path planning: the path problem, optimizers, exact planners, benchmark functions."""
