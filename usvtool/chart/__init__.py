@@ -1,0 +1,1 @@
+"""Chart inputs, S-52 rendering, segmentation, gridding and swelling."""
