@@ -1,0 +1,89 @@
+"""``usvtool preprocess``: a chart to a navigation grid GeoTIFF (+ preview PNG)."""
+
+from __future__ import annotations
+
+import logging
+
+import click
+
+from usvtool.cli.options import NON_NEGATIVE, POSITIVE, emit, output_option, seed_option
+
+log = logging.getLogger(__name__)
+
+
+class Colour(click.ParamType):
+    name = "R,G,B"
+
+    def convert(self, value, param, ctx):
+        try:
+            rgb = tuple(int(v) for v in str(value).split(","))
+        except ValueError:
+            rgb = ()
+        if len(rgb) != 3 or not all(0 <= v <= 255 for v in rgb):
+            self.fail(f"{value!r} is not R,G,B with values 0..255", param, ctx)
+        return rgb
+
+
+@click.command()
+@click.argument("chart", type=click.Path(dir_okay=False))
+@output_option("Output grid GeoTIFF.")
+@click.option("--preview", type=click.Path(dir_okay=False), help="Also write a preview PNG.")
+@click.option("--ship-length", type=POSITIVE, default=2.5, show_default=True,
+              help="Ship length in metres (cell = 1.5 x ship length).")
+@click.option("--cell-size", type=POSITIVE, help="Cell size in metres (overrides the rule).")
+@click.option("--margin", type=NON_NEGATIVE,
+              help="Safety margin in metres around obstacles [default: 0.5 cell].")
+@click.option("--resolution", type=POSITIVE, help="Metres per pixel of a plain chart image.")
+@click.option("--bounds", type=float, nargs=4, metavar="L B R T",
+              help="Extent of a GeoJSON obstacle map (default: its bbox or its obstacles').")
+@click.option("--clusters", type=click.IntRange(2, 32), default=8, show_default=True,
+              help="Fuzzy C-means clusters of chart colours.")
+@click.option("--land-colour", "land_colours", type=Colour(), multiple=True,
+              help="A land colour of this chart (repeatable).")
+@click.option("--channel", type=click.Choice(["membership", "chromatic", "grey"]),
+              default="membership", show_default=True, help="What Otsu binarises.")
+@click.option("--threshold", type=click.FloatRange(0, 255),
+              help="Fixed threshold 0..255 instead of Otsu's (the paper: 100).")
+@click.option("--min-area", type=click.IntRange(1), default=16, show_default=True,
+              help="Land specks and water holes smaller than this many pixels are clutter.")
+@click.option("--occupancy", type=click.FloatRange(0, 1, max_open=True), default=0.0,
+              show_default=True, help="Obstacle share of a cell above which it blocks.")
+@click.option("--min-depth", type=float,
+              help="S-57: depth areas shallower than this (m) are obstacles [default: 1.5].")
+@click.option("--hazard-radius", type=NON_NEGATIVE, default=10.0, show_default=True,
+              help="S-57: buffer (m) around rocks, wrecks and obstructions.")
+@seed_option
+def preprocess(chart, output, preview, ship_length, cell_size, margin, resolution, bounds,
+               clusters, land_colours, channel, threshold, min_area, occupancy, min_depth,
+               hazard_radius, seed):
+    """Turn CHART (image, GeoTIFF, BSB/KAP, S-57 cell or GeoJSON) into a navigation grid.
+
+    Fuzzy C-means colour clustering, Otsu binarisation, clutter removal, gridding at
+    1.5 x ship length and obstacle swelling, as in the ISSA paper (section 3).
+    """
+    from usvtool.atomic import check_output_path
+    from usvtool.chart.preprocess import Options
+    from usvtool.chart.preprocess import preprocess as run
+    from usvtool.grid import write_grid
+
+    check_output_path(output)
+    if preview:
+        check_output_path(preview, "--preview")
+    opts = Options(
+        ship_length=ship_length, cell_size=cell_size, margin=margin, resolution=resolution,
+        bounds=tuple(bounds) if bounds else None, clusters=clusters,
+        land_colours=list(land_colours), channel=channel, threshold=threshold,
+        min_area=min_area, occupancy=occupancy, min_depth=min_depth,
+        hazard_radius=hazard_radius, seed=seed,
+    )
+    result = run(chart, opts)
+    write_grid(output, result.grid)
+    summary = dict(result.summary, output=output)
+    if preview:
+        from usvtool.chart.preview import render_preview, write_png
+
+        write_png(preview, render_preview(result.grid, result.chart))
+        summary["preview"] = preview
+    log.info("%s: %d x %d cells of %g m", output, result.grid.width, result.grid.height,
+             result.grid.cell_size)
+    emit(summary)
