@@ -22,10 +22,10 @@ lint: $(STAMP)
 	$(BIN)/ruff check .
 
 charts: $(STAMP)
-	$(MAKE) -f pipelines/charts.mk BIN=$(abspath $(BIN))
+	$(MAKE) -f pipelines/charts.mk BIN=$(abspath $(BIN)) all
 
 report: charts
-	$(MAKE) -f pipelines/report.mk BIN=$(abspath $(BIN))
+	$(MAKE) -f pipelines/report.mk BIN=$(abspath $(BIN)) report
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_preprocess.py

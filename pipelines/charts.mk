@@ -1,0 +1,24 @@
+# Preprocess every bundled chart into build/grids/ (grid GeoTIFF + preview PNG).
+# Called from the top Makefile with BIN set to the virtualenv's bin directory.
+BIN ?= .venv/bin
+USV := $(BIN)/usvtool -q
+OUT := build/grids
+
+GRIDS := env1 env2 grid20 grid50 us5ma12m head_of_passes
+all: $(GRIDS:%=$(OUT)/%.tif)
+
+$(OUT):
+	mkdir -p $@
+
+# synthetic maps: 1 m cells; env maps keep a 3 m margin, the grid maps are used as drawn
+$(OUT)/env%.tif: charts/env%.geojson | $(OUT)
+	$(USV) preprocess $< -o $@ --preview $(@:.tif=.png) --cell-size 1 --margin 3 > $(@:.tif=.json)
+$(OUT)/grid%.tif: charts/grid%.geojson | $(OUT)
+	$(USV) preprocess $< -o $@ --preview $(@:.tif=.png) --cell-size 1 --margin 0 \
+		--occupancy 0.5 > $(@:.tif=.json)
+# NOAA ENC cell (vector, Boston Harbor): 10 m cells
+$(OUT)/us5ma12m.tif: charts/noaa/US5MA12M.000 | $(OUT)
+	$(USV) preprocess $< -o $@ --preview $(@:.tif=.png) --cell-size 10 > $(@:.tif=.json)
+# NOAA raster chart (BSB/KAP, Head of Passes): the paper's rule, 1.5 x ship length
+$(OUT)/head_of_passes.tif: charts/noaa/11361_4.KAP | $(OUT)
+	$(USV) preprocess $< -o $@ --preview $(@:.tif=.png) > $(@:.tif=.json)
