@@ -7,10 +7,11 @@ The image is in the UTM zone of the cell's centre and covers the bounds of its c
 2. depth areas (DEPARE, then DRGARE), shaded by ``DRVAL1`` against the shallow, safety and deep
    contours (DEPIT, DEPVS, DEPMS, DEPMD, DEPDW);
 3. land polygons (LANDA);
-4. NODTA again outside the coverage;
-5. depth contours (DEPCNT), one pixel wide, grey (DEPCN);
-6. soundings, black digits, shallowest first, each skipped if it would overlap one already drawn;
-7. coastline (COALNE), one pixel wide (CSTLN).
+4. depth contours (DEPCNT), one pixel wide, grey (DEPCN);
+5. soundings, black digits, shallowest first, each skipped if it would overlap one already drawn
+   or leave the coverage;
+6. coastline (COALNE), one pixel wide (CSTLN);
+7. NODTA again on every pixel whose centre is outside the coverage.
 
 Areas are rasterised on pixel centres and nothing is antialiased, so the LANDA pixels are exactly
 the land truth minus the pixels covered by the lines and digits drawn over them.
@@ -99,11 +100,12 @@ def render_cell(
     shapes = [*zip(project(cell.depth_areas), depth_index.tolist(), strict=True)]
     shapes += [(g, INDEX["LANDA"]) for g in land]
     index = _burn(frame, shapes, fill=INDEX["NODTA"])
-    index[~coverage] = INDEX["NODTA"]
     _burn(frame, project(cell.contours), out=index, value=INDEX["DEPCN"])
     if soundings and len(cell.soundings):
-        _draw_soundings(index, frame, project(cell.soundings), cell.sounding_depths, cell.scale)
+        points = project(cell.soundings)
+        _draw_soundings(index, ~coverage, frame, points, cell.sounding_depths, cell.scale)
     _burn(frame, project(cell.coastline), out=index, value=INDEX["CSTLN"])
+    index[~coverage] = INDEX["NODTA"]
 
     truth = _burn(frame, land, fill=TRUTH_WATER, value=TRUTH_LAND)
     truth[~coverage] = TRUTH_NODATA
@@ -131,18 +133,19 @@ def sounding_text(depth: float) -> str:
     return f"{depth:.0f}"
 
 
-def _draw_soundings(index, frame: Frame, points, depths, scale: int) -> None:
-    """Draw depth digits centred on the points, shallowest first, skipping overlaps."""
+def _draw_soundings(index, taken, frame: Frame, points, depths, scale: int) -> None:
+    """Draw depth digits centred on the points, shallowest first, wholly off ``taken`` pixels.
+
+    ``taken`` (the outside of the coverage) is updated with the boxes of the digits drawn.
+    """
     import cv2
     import shapely
 
     font = cv2.FONT_HERSHEY_PLAIN
     height_px = max(MIN_TEXT_PX, round(TEXT_MM / 1000 * (scale or 25_000) / frame.resolution))
     font_scale = height_px / cv2.getTextSize("0", font, 1.0, 1)[0][1]
-    inverse = ~frame.transform
     xy = shapely.get_coordinates(points)
-    cols, rows = inverse * (xy[:, 0], xy[:, 1])
-    taken = np.zeros(index.shape, dtype=bool)
+    cols, rows = ~frame.transform @ (xy[:, 0], xy[:, 1])
     ink = np.zeros(index.shape, dtype=np.uint8)  # OpenCV 5 antialiases text whatever lineType
     for i in np.argsort(depths, kind="stable"):
         text = sounding_text(float(depths[i]))
