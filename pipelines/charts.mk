@@ -14,7 +14,7 @@ $(OUT):
 $(OUT)/env%.tif: charts/env%.geojson | $(OUT)
 	$(USV) preprocess $< -o $@ --preview $(@:.tif=.png) --cell-size 1 --margin 3 > $(@:.tif=.json)
 $(OUT)/grid%.tif: charts/grid%.geojson | $(OUT)
-	$(USV) preprocess $< -o $@ --preview $(@:.tif=.png) --cell-size 1 --margin 0 \
+	$(USV) preprocess $< -o $@ --preview $(@:.tif=.png) --cell-size 1 --no-swell \
 		--occupancy 0.5 > $(@:.tif=.json)
 # NOAA ENC cell (vector, Boston Harbor): 10 m cells
 $(OUT)/us5ma12m.tif: charts/noaa/US5MA12M.000 | $(OUT)

@@ -11,13 +11,14 @@ cell; keep 0.5 cell of safety distance) is ``margin = 0.5 * cell``: exactly the 
 neighbours. The gap between two unit squares whose centres are ``(dx, dy)`` cells apart is
 ``|(max(|dx| - 1, 0), max(|dy| - 1, 0))|``, which is the Euclidean distance from a centre to the
 3 x 3 dilation of the other cell. So the exact gap to the nearest obstacle is the Euclidean
-distance transform of the complement of the 3 x 3 dilated obstacle mask (scipy, exact EDT).
+distance transform of the complement of the 3 x 3 dilated obstacle mask (OpenCV's
+``DIST_MASK_PRECISE``, an exact EDT, several times faster than scipy's on large grids).
 """
 
 from __future__ import annotations
 
+import cv2
 import numpy as np
-from scipy import ndimage
 
 from usvtool.chart.georef import Frame, frame_for_bounds
 from usvtool.grid import MARGIN, NAVIGABLE, OBSTACLE
@@ -88,7 +89,7 @@ def swell(obstacle: np.ndarray, cell_size: float, margin: float) -> np.ndarray:
     cells = np.where(obstacle, OBSTACLE, NAVIGABLE).astype(np.uint8)
     if margin <= 0 or not obstacle.any():
         return cells
-    near = ndimage.binary_dilation(obstacle, structure=np.ones((3, 3), bool))
-    gap = ndimage.distance_transform_edt(~near) * cell_size
+    near = cv2.dilate(obstacle.astype(np.uint8), np.ones((3, 3), np.uint8))
+    gap = cv2.distanceTransform(1 - near, cv2.DIST_L2, cv2.DIST_MASK_PRECISE) * cell_size
     cells[(gap < margin) & ~obstacle] = MARGIN
     return cells

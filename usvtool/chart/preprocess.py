@@ -32,6 +32,7 @@ class Options:
     ship_length: float = DEFAULT_SHIP_LENGTH
     cell_size: float | None = None  # default 1.5 x ship_length
     margin: float | None = None  # metres; default 0.5 cell (the paper's rule)
+    swell: bool = True  # False: grid used as drawn (already swelled, or a grid environment)
     resolution: float | None = None  # metres per pixel of a plain image
     bounds: tuple[float, float, float, float] | None = None  # GeoJSON extent
     clusters: int = 8
@@ -52,6 +53,8 @@ class Options:
 
     @property
     def margin_m(self) -> float:
+        if not self.swell:
+            return 0.0
         return self.margin if self.margin is not None else 0.5 * self.cell
 
 
@@ -74,7 +77,7 @@ def preprocess(path, options: Options | None = None) -> Result:
     if kind in ("raster", "kap"):
         chart = sources.read_raster(path, opts.resolution)
         timings["read"] = time.perf_counter() - t
-        seg = segment(
+        seg = _named(path, segment)(
             chart.rgb,
             chart.valid,
             clusters=opts.clusters,
@@ -160,6 +163,18 @@ def preprocess(path, options: Options | None = None) -> Result:
     return Result(grid, summary, chart, seg)
 
 
+def _named(path, func):
+    """``func`` with its :class:`UsvError` messages prefixed by the chart's path."""
+
+    def call(*args, **kwargs):
+        try:
+            return func(*args, **kwargs)
+        except UsvError as exc:
+            raise UsvError(f"{path}: {exc}") from None
+
+    return call
+
+
 def _rasterise(vec: sources.VectorChart, frame, occupancy: float) -> np.ndarray:
     """Obstacle cells of a vector chart; cells outside its extent are obstacles too.
 
@@ -181,7 +196,7 @@ def _rasterise(vec: sources.VectorChart, frame, occupancy: float) -> np.ndarray:
     k = 8
     fine = features.rasterize(
         ((g, 1) for g in vec.obstacles), (shape[0] * k, shape[1] * k),
-        transform=frame.transform * frame.transform.scale(1 / k), dtype="uint8",
+        transform=frame.transform @ frame.transform.scale(1 / k), dtype="uint8",
     )
     share = fine.reshape(shape[0], k, shape[1], k).mean(axis=(1, 3))
     return gridding.obstacles_from_fraction(share, occupancy) | outside

@@ -159,7 +159,13 @@ def read_s57(path: str | os.PathLike, min_depth: float, hazard_radius: float) ->
 
 
 def _read_rgb(ds, path):
-    """The RGB pixels (H, W, 3) and alpha (or None) of a dataset: RGB(A), palette or grey."""
+    """The RGB pixels (H, W, 3) and alpha (or None) of a dataset: RGB(A), palette or grey.
+
+    PNG and JPEG pixels are decoded by OpenCV, which refuses a truncated file where GDAL's
+    drivers only log the libpng/libjpeg error and return partial pixels.
+    """
+    if ds.driver in ("PNG", "JPEG"):
+        return _decode_with_opencv(path, ds.driver)
     if ds.count >= 3:
         data = ds.read()
         rgb = np.moveaxis(data[:3], 0, -1)
@@ -182,6 +188,21 @@ def _read_rgb(ds, path):
     return np.ascontiguousarray(rgb), alpha
 
 
+def _decode_with_opencv(path, driver: str):
+    import cv2
+
+    data = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
+    if data is None:
+        raise UsvError(f"{path}: truncated or corrupt {driver} image")
+    if data.dtype != np.uint8:
+        raise UsvError(f"{path}: expected 8-bit colour, found {data.dtype}")
+    if data.ndim == 2:
+        return np.ascontiguousarray(np.repeat(data[..., None], 3, axis=2)), None
+    if data.shape[2] == 4:
+        return cv2.cvtColor(data, cv2.COLOR_BGRA2RGB), data[..., 3]
+    return cv2.cvtColor(data, cv2.COLOR_BGR2RGB), None
+
+
 def _warp(rgb, valid, path, *, src_crs, gcps=None, transform=None, cutline=None) -> RasterChart:
     """Warp to the UTM zone of the chart's centre (nearest neighbour), masking the cutline."""
     from rasterio import features
@@ -190,8 +211,8 @@ def _warp(rgb, valid, path, *, src_crs, gcps=None, transform=None, cutline=None)
 
     height, width = rgb.shape[:2]
     src_transform = from_gcps(gcps) if gcps else transform
-    left, top = src_transform * (0, 0)
-    right, bottom = src_transform * (width, height)
+    left, top = src_transform @ (0, 0)
+    right, bottom = src_transform @ (width, height)
     lon0, lat0 = _centre_lonlat(src_crs, left, bottom, right, top, transform_bounds)
     dst_crs = utm_crs(lon0, lat0)
     edges = {"left": left, "bottom": bottom, "right": right, "top": top}

@@ -31,8 +31,10 @@ class Colour(click.ParamType):
 @click.option("--ship-length", type=POSITIVE, default=2.5, show_default=True,
               help="Ship length in metres (cell = 1.5 x ship length).")
 @click.option("--cell-size", type=POSITIVE, help="Cell size in metres (overrides the rule).")
-@click.option("--margin", type=NON_NEGATIVE,
+@click.option("--margin", type=POSITIVE,
               help="Safety margin in metres around obstacles [default: 0.5 cell].")
+@click.option("--swell/--no-swell", default=True, show_default=True,
+              help="Swell obstacles by the margin (--no-swell: use the grid as drawn).")
 @click.option("--resolution", type=POSITIVE, help="Metres per pixel of a plain chart image.")
 @click.option("--bounds", type=float, nargs=4, metavar="L B R T",
               help="Extent of a GeoJSON obstacle map (default: its bbox or its obstacles').")
@@ -53,7 +55,7 @@ class Colour(click.ParamType):
 @click.option("--hazard-radius", type=NON_NEGATIVE, default=10.0, show_default=True,
               help="S-57: buffer (m) around rocks, wrecks and obstructions.")
 @seed_option
-def preprocess(chart, output, preview, ship_length, cell_size, margin, resolution, bounds,
+def preprocess(chart, output, preview, ship_length, cell_size, margin, swell, resolution, bounds,
                clusters, land_colours, channel, threshold, min_area, occupancy, min_depth,
                hazard_radius, seed):
     """Turn CHART (image, GeoTIFF, BSB/KAP, S-57 cell or GeoJSON) into a navigation grid.
@@ -70,7 +72,8 @@ def preprocess(chart, output, preview, ship_length, cell_size, margin, resolutio
     if preview:
         check_output_path(preview, "--preview")
     opts = Options(
-        ship_length=ship_length, cell_size=cell_size, margin=margin, resolution=resolution,
+        ship_length=ship_length, cell_size=cell_size, margin=margin, swell=swell,
+        resolution=resolution,
         bounds=tuple(bounds) if bounds else None, clusters=clusters,
         land_colours=list(land_colours), channel=channel, threshold=threshold,
         min_area=min_area, occupancy=occupancy, min_depth=min_depth,
