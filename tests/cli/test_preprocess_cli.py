@@ -83,7 +83,8 @@ def test_bundled_grids_are_what_the_script_and_pipeline_make(charts, tmp_path, u
     spec.loader.exec_module(mk)
     mk.main(str(tmp_path))
     for name in ("env1", "env2", "grid20", "grid50"):
-        assert (tmp_path / f"{name}.geojson").read_text() == (charts / f"{name}.geojson").read_text()
+        fresh = (tmp_path / f"{name}.geojson").read_text()
+        assert fresh == (charts / f"{name}.geojson").read_text()
     out = tmp_path / "grid20.tif"
     r = usv("preprocess", tmp_path / "grid20.geojson", "-o", out, "--cell-size", 1,
             "--no-swell", "--occupancy", 0.5)
@@ -135,7 +136,8 @@ def bad_inputs(tmp_path):
     "case",
     ["missing", "empty", "text", "truncated", "tiny", "no water", "no land", "no resolution",
      "tiff no georef", "cell > chart"]
-    + [f"{o} {v}" for o in ("--ship-length", "--cell-size", "--margin") for v in ("0", "-3", "nan")],
+    + [f"{o} {v}" for o in ("--ship-length", "--cell-size", "--margin")
+       for v in ("0", "-3", "nan")],
 )
 def test_bad_input(case, tmp_path, usv):
     path, extra, code, words = bad_inputs(tmp_path)[case]
