@@ -27,6 +27,23 @@ import numpy as np
 from usvtool.plan.optimizers.base import Optimizer
 
 
+def constants(p: dict) -> tuple[float, float]:
+    """The constriction ``mu`` (from ``tau``) and the wavy frequency ``f``."""
+    tau = p["tau"]
+    mu = 2.0 / abs(2.0 - tau - np.sqrt(tau * tau - 4.0 * tau))
+    return mu, p["f_min"] + (p["f_max"] - p["f_min"]) / (p["f_max"] + p["f_min"])
+
+
+def schedule(p: dict, k: int, K: int) -> tuple[float, float, float, float]:
+    """``p1``, ``p2``, ``mv`` and ``s_s`` at iteration ``k`` of ``K``."""
+    decay = np.exp(-((4.0 * k / K) ** 2))
+    p1 = p["p_max"] + (p["p_max"] - p["p_min"]) * decay
+    p2 = p["p_min"] + (p["p_max"] - p["p_min"]) * decay
+    mv = 1.0 / (p["a0"] + np.exp((K / 2.0 - k) / p["a1"]))
+    s_s = abs(1.0 - np.exp(-p["a2"] * k / K))
+    return p1, p2, mv, s_s
+
+
 class WSO(Optimizer):
     name = "wso"
     defaults = {
@@ -41,20 +58,13 @@ class WSO(Optimizer):
     }
 
     def _run(self) -> None:
-        p = self.params
         n, K = self.pop, self.iters
-        tau = p["tau"]
-        mu = 2.0 / abs(2.0 - tau - np.sqrt(tau * tau - 4.0 * tau))
-        freq = p["f_min"] + (p["f_max"] - p["f_min"]) / (p["f_max"] + p["f_min"])
+        mu, freq = constants(self.params)
         W, F = self._initial()
         V = np.zeros_like(W)
         best_W, best_F = W.copy(), F.copy()
         for k in range(1, K + 1):
-            decay = np.exp(-((4.0 * k / K) ** 2))
-            p1 = p["p_max"] + (p["p_max"] - p["p_min"]) * decay
-            p2 = p["p_min"] + (p["p_max"] - p["p_min"]) * decay
-            mv = 1.0 / (p["a0"] + np.exp((K / 2.0 - k) / p["a1"]))
-            s_s = abs(1.0 - np.exp(-p["a2"] * k / K))
+            p1, p2, mv, s_s = schedule(self.params, k, K)
             nu = self.rng.integers(0, n, n)
             c1, c2 = self.rng.random((2, n, self.dim))
             V = mu * (V + p1 * c1 * (self.best_x - W) + p2 * c2 * (best_W[nu] - W))
