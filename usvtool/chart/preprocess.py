@@ -21,8 +21,6 @@ from usvtool.grid import MARGIN, OBSTACLE, Grid
 DEFAULT_SHIP_LENGTH = 2.5
 #: The paper's cell: 1.5 x ship length.
 CELL_PER_SHIP_LENGTH = 1.5
-#: Hazard points and lines are buffered by this many metres before rasterising (S-57).
-DEFAULT_HAZARD_RADIUS = 10.0
 
 
 @dataclass
@@ -42,7 +40,7 @@ class Options:
     min_area: int = 16  # pixels: smaller land specks and water holes are clutter
     occupancy: float = 0.0  # obstacle share above which a cell blocks (0: any pixel)
     min_depth: float | None = None  # S-57: default s57.DEFAULT_MIN_DEPTH
-    hazard_radius: float = DEFAULT_HAZARD_RADIUS
+    hazard_radius: float | None = None  # S-57: default s57.DEFAULT_HAZARD_RADIUS
     seed: int = 0
 
     @property
@@ -104,8 +102,11 @@ def preprocess(path, options: Options | None = None) -> Result:
             from usvtool.chart import s57
 
             min_depth = opts.min_depth if opts.min_depth is not None else s57.DEFAULT_MIN_DEPTH
-            vec = sources.read_s57(path, min_depth, opts.hazard_radius)
-            extra = {"min_depth_m": min_depth, "hazard_radius_m": opts.hazard_radius}
+            radius = (
+                opts.hazard_radius if opts.hazard_radius is not None else s57.DEFAULT_HAZARD_RADIUS
+            )
+            vec = sources.read_s57(path, min_depth, radius)
+            extra = {"min_depth_m": min_depth, "hazard_radius_m": radius}
         else:
             vec = sources.read_geojson(path, opts.bounds)
         timings["read"] = time.perf_counter() - t

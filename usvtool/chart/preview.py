@@ -57,6 +57,16 @@ def render_preview(grid: Grid, chart=None) -> np.ndarray:
     return out
 
 
+def s57_background(path, resolution: float):
+    """The S-52 drawing of an S-57 cell, as the preview's background."""
+    from usvtool.chart.render import render_cell
+    from usvtool.chart.s57 import read_cell
+    from usvtool.chart.sources import RasterChart
+
+    rgb, truth, frame = render_cell(read_cell(path), resolution, soundings=False)
+    return RasterChart(np.ascontiguousarray(np.moveaxis(rgb, 0, -1)), truth != 255, frame, "s57")
+
+
 def write_png(path, rgb: np.ndarray) -> None:
     """Write an RGB array as PNG, atomically."""
     ok, buf = cv2.imencode(".png", cv2.cvtColor(rgb, cv2.COLOR_RGB2BGR))

@@ -10,8 +10,8 @@ The pipeline, each stage with a real library:
 2. each cluster is classed by the nearest reference chart colour (:data:`PALETTE`: the S-52 day
    colours and the NOAA paper-chart colours; ``land_colours`` adds the user's own), as land,
    water, drying (intertidal), no-data or ink (text, symbols, lines);
-3. Otsu binarisation (OpenCV) of the land membership (or of a chromatic or grey channel), or a
-   fixed threshold such as the paper's 100;
+3. Otsu binarisation (OpenCV) of the land membership (or of the chromatic Lab b* channel, or
+   of plain grey), or a fixed threshold such as the paper's 100;
 4. clutter removal: ink pixels take the class of the nearest non-ink pixel (OpenCV distance
    transform with labels), then land specks and water holes smaller than ``min_area`` pixels are
    removed (connected components).
@@ -72,14 +72,15 @@ def segment(
     channel: str = "membership",
     threshold: float | None = None,
     min_area: int = 16,
-    sample: int = 20000,
+    sample: int | None = 20000,
     seed: int = 0,
     m: float = 2.0,
 ) -> Segmentation:
     """Segment an RGB chart image (H, W, 3 uint8) into land and water.
 
     ``valid`` marks the pixels inside the chart (default: all). ``threshold`` (0..255) replaces
-    Otsu's; ``min_area`` is in pixels. Raises :class:`UsvError` when the image holds no water or
+    Otsu's; ``min_area`` is in pixels. ``sample`` pixels are clustered; ``None`` clusters every
+    pixel (the slow reference the benchmark compares against). Raises :class:`UsvError` when the image holds no water or
     no land.
     """
     if channel not in CHANNELS:
@@ -110,7 +111,10 @@ def segment(
     rng = np.random.default_rng(seed)
     n_clusters = int(min(clusters, colours.size))
     valid_index = index[valid]
-    picks = valid_index[rng.integers(0, valid_index.size, min(sample, valid_index.size))]
+    if sample is None or sample >= valid_index.size:
+        picks = valid_index
+    else:
+        picks = valid_index[rng.integers(0, valid_index.size, sample)]
     centres, u = _fuzzy_cmeans(colours_lab, picks, n_clusters, m, rng)
     timings["fcm"] = time.perf_counter() - t
 
@@ -186,9 +190,9 @@ def _channel(channel, membership, colours_rgb, is_land, u):
     """The 0..255 channel per distinct colour, and whether land lies above the threshold."""
     if channel == "membership":
         return np.round(membership * 255).astype(np.uint8), True
-    rgb = colours_rgb.astype(np.int16)
-    if channel == "chromatic":  # R - B: high for buff/brown land, low for blue water
-        return ((rgb[:, 0] - rgb[:, 2] + 255) // 2).astype(np.uint8), True
+    if channel == "chromatic":  # Lab b*: yellow-brown land high, blue water low
+        b = _lab(colours_rgb.astype(np.uint8))[:, 2]
+        return np.clip(np.round(b + 128), 0, 255).astype(np.uint8), True
     grey = _grey(colours_rgb)
     # land is on the side of the threshold where the land clusters' grey lies
     weights = u[is_land].sum(axis=0)

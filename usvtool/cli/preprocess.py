@@ -51,9 +51,10 @@ class Colour(click.ParamType):
 @click.option("--occupancy", type=click.FloatRange(0, 1, max_open=True), default=0.0,
               show_default=True, help="Obstacle share of a cell above which it blocks.")
 @click.option("--min-depth", type=float,
-              help="S-57: depth areas shallower than this (m) are obstacles [default: 1.5].")
-@click.option("--hazard-radius", type=NON_NEGATIVE, default=10.0, show_default=True,
-              help="S-57: buffer (m) around rocks, wrecks and obstructions.")
+              help="S-57: depth areas shallower than this (m) are obstacles "
+              "[default: 1.2 = 0.6 m draft + 0.5 m under-keel clearance + 0.1 m].")
+@click.option("--hazard-radius", type=NON_NEGATIVE,
+              help="S-57: buffer (m) around rocks, wrecks and obstructions [default: 10].")
 @seed_option
 def preprocess(chart, output, preview, ship_length, cell_size, margin, swell, resolution, bounds,
                clusters, land_colours, channel, threshold, min_area, occupancy, min_depth,
@@ -83,9 +84,12 @@ def preprocess(chart, output, preview, ship_length, cell_size, margin, swell, re
     write_grid(output, result.grid)
     summary = dict(result.summary, output=output)
     if preview:
-        from usvtool.chart.preview import render_preview, write_png
+        from usvtool.chart.preview import render_preview, s57_background, write_png
 
-        write_png(preview, render_preview(result.grid, result.chart))
+        background = result.chart
+        if background is None and result.summary["source_kind"] == "s57":
+            background = s57_background(chart, result.grid.cell_size / 2)
+        write_png(preview, render_preview(result.grid, background))
         summary["preview"] = preview
     log.info("%s: %d x %d cells of %g m", output, result.grid.width, result.grid.height,
              result.grid.cell_size)

@@ -1,0 +1,5 @@
+"""``python -m usvtool.cli``: the same as the ``usvtool`` console script."""
+
+from usvtool.cli import main
+
+main()
