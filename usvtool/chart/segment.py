@@ -80,8 +80,8 @@ def segment(
 
     ``valid`` marks the pixels inside the chart (default: all). ``threshold`` (0..255) replaces
     Otsu's; ``min_area`` is in pixels. ``sample`` pixels are clustered; ``None`` clusters every
-    pixel (the slow reference the benchmark compares against). Raises :class:`UsvError` when the image holds no water or
-    no land.
+    pixel (the slow reference the benchmark compares against). Raises :class:`UsvError` when
+    the image holds no water or no land.
     """
     if channel not in CHANNELS:
         raise ValueError(f"channel must be one of {CHANNELS}")
