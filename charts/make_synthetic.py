@@ -106,8 +106,8 @@ def feature_collection(polygons, bbox, **meta) -> dict:
         "bbox": list(bbox),
         **meta,
         "features": [
-            {"type": "Feature", "properties": {}, "geometry": mapping(shapely.set_precision(g, 1e-3))}
-            for g in merged
+            {"type": "Feature", "properties": {}, "geometry": mapping(g)}
+            for g in shapely.set_precision(merged, 1e-3)
         ],
     }
 
