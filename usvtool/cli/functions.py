@@ -36,6 +36,7 @@ from usvtool.plan.optimizers import OPTIMIZERS
     "function_names",
     multiple=True,
     type=click.Choice(list(FUNCTIONS), case_sensitive=False),
+    metavar="F1..F10",
     help="Function (repeatable; default F1-F10).",
 )
 @seed_option
