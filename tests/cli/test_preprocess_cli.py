@@ -172,3 +172,11 @@ def test_output_in_a_missing_directory(tmp_path, usv):
             "--preview", tmp_path / "missing" / "p.png")
     assert_one_line_error(r, 1, "--preview")
     assert not (tmp_path / "g.tif").exists()
+
+
+@pytest.mark.parametrize("kind", ["empty", "text", "raster-chart", "no-features"])
+def test_bad_s57_cell(bad_cell, kind, tmp_path, usv):
+    path, words = bad_cell(kind)
+    out = tmp_path / "grid.tif"
+    assert_one_line_error(usv("preprocess", path, "-o", out), 1, str(path), words)
+    assert not out.exists()

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-import shutil
 from pathlib import Path
 
 import pytest
@@ -39,39 +38,9 @@ def test_render_writes_chart_and_truth(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["chart.tif", "truth.tif"]
 
 
-def bad_cell(kind: str, directory: Path) -> Path:
-    path = directory / f"{kind}.000"
-    if kind == "empty":
-        path.write_bytes(b"")
-    elif kind == "text":
-        path.write_text("not a chart\n")
-    elif kind == "raster-chart":
-        shutil.copy(CHARTS / "11361_4.KAP", path)
-    elif kind == "no-features":
-        write_dsid_only_cell(path)
-    return path
-
-
-def write_dsid_only_cell(path: Path) -> None:
-    """An S-57 file with only its DSID record: GDAL's S57 driver writes the DSID on creation,
-    then refuses to create the M_COVR layer."""
-    import contextlib
-
-    import numpy as np
-    import shapely
-    from pyogrio.raw import write
-
-    wkb = np.array([shapely.to_wkb(shapely.box(-71, 42, -70.9, 42.1))], dtype=object)
-    with contextlib.suppress(Exception):
-        write(path, wkb, [np.array([1], dtype=np.int32)], fields=["CATCOV"], layer="M_COVR",
-              driver="S57", geometry_type="Polygon", crs="EPSG:4326")  # fmt: skip
-    if not path.is_file() or not path.stat().st_size:
-        pytest.skip("this GDAL does not write S-57 files")
-
-
 @pytest.mark.parametrize("kind", ["missing", "empty", "text", "raster-chart", "no-features"])
-def test_bad_cell_one_line_exit_1_nothing_written(tmp_path, kind):
-    path = bad_cell(kind, tmp_path)
+def test_bad_cell_one_line_exit_1_nothing_written(tmp_path, bad_cell, kind):
+    path, _ = bad_cell(kind)
     result = run(path, "-o", tmp_path / "chart.tif", "--truth", tmp_path / "truth.tif")
     assert result.exit_code == 1
     lines = result.stderr.strip().splitlines()
