@@ -1,0 +1,130 @@
+"""The path problem: a route encoded as a vector, and its cost for a whole population at once.
+
+Encodings (``x`` is one individual, bounds are :attr:`PathProblem.lower` / ``upper``)
+
+``waypoints`` (default)
+    ``x = (x_1, y_1, …, x_K, y_K)``: ``K`` free waypoints in map metres, each bounded by the
+    grid's extent; the route is start → waypoints → goal joined by straight segments.
+``columns`` (the ISSA paper's encoding, section 4)
+    One variable per grid column (dimension = number of columns): ``x_j`` in ``[0, height]`` is
+    the ISSA grid's ``y`` coordinate (counted from the south, eq. 9) of the cell the route visits
+    in column ``j``, floored to a whole cell; the route is start → the centres of the chosen
+    cells, west to east → goal.
+
+Cost (in metres; ``ℓ`` cell size, ``W × H`` grid)
+
+``cost = L + ℓ · w · T + S · n_col + 10 · L_in``, where ``L`` is the route length (IWSO eq. 28),
+``T`` the ISSA turning energy (:func:`usvtool.metrics.turn_cost`, in cell sides, weight ``w``),
+``n_col`` the number of segments touching a blocked cell (exact, :mod:`usvtool.plan.raster`),
+``S = ℓ (W + H)`` (longer than any sensible route, so any collision-free route beats a colliding
+one of similar length) and ``L_in`` the estimated length inside blocked cells, which guides the
+search out of land. The penalty is zero exactly when the route is collision-free.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from usvtool import metrics
+from usvtool.grid import Grid
+from usvtool.plan.raster import SegmentChecker
+
+ENCODINGS = ("waypoints", "columns")
+INSIDE_WEIGHT = 10.0  # cost per metre of route inside blocked cells
+
+_cache: tuple[Grid, SegmentChecker] | None = None
+
+
+def checker_for(grid: Grid) -> SegmentChecker:
+    """The :class:`SegmentChecker` of ``grid`` (kept for the last grid used; do not mutate it)."""
+    global _cache
+    if _cache is None or _cache[0] is not grid:
+        _cache = (grid, SegmentChecker(grid.blocked))
+    return _cache[1]
+
+
+@dataclass
+class PathProblem:
+    """A route from ``start`` to ``goal`` (map metres) on ``grid``; call it on a population.
+
+    >>> from affine import Affine
+    >>> g = Grid(np.zeros((10, 10), np.uint8), Affine(1, 0, 0, 0, -1, 10))
+    >>> p = PathProblem(g, (0.5, 0.5), (9.5, 0.5), waypoints=1)
+    >>> p([[5.0, 0.5], [5.0, 4.5]]).round(3).tolist()  # straight; 12.042 m + an 83.3° turn
+    [9.0, 12.412]
+    """
+
+    grid: Grid
+    start: tuple[float, float]
+    goal: tuple[float, float]
+    encoding: str = "waypoints"
+    waypoints: int = 5
+    turn_weight: float = 1.0
+    checker: SegmentChecker = field(init=False, repr=False)
+
+    def __post_init__(self):
+        if self.encoding not in ENCODINGS:
+            raise ValueError(f"encoding must be one of {ENCODINGS}, not {self.encoding!r}")
+        if self.encoding == "waypoints" and self.waypoints < 1:
+            raise ValueError("waypoints must be >= 1")
+        self.checker = checker_for(self.grid)
+        self._ends = np.array(
+            [self.grid.to_cell_coords(*self.start), self.grid.to_cell_coords(*self.goal)], float
+        )
+        g = self.grid
+        self.penalty = g.cell_size * (g.width + g.height)
+        if self.encoding == "columns":
+            self.lower = np.zeros(g.width)
+            self.upper = np.full(g.width, float(g.height))
+        else:
+            left, bottom, right, top = g.bounds
+            self.lower = np.tile([left, bottom], self.waypoints)
+            self.upper = np.tile([right, top], self.waypoints)
+
+    @property
+    def dim(self) -> int:
+        return self.lower.size
+
+    def decode(self, X) -> np.ndarray:
+        """Routes of the population ``X`` ``(n, dim)`` as cell coordinates ``(n, m, 2)``."""
+        X = np.atleast_2d(np.asarray(X, float))
+        g = self.grid
+        n, k = X.shape
+        routes = np.empty((n, k // 2 + 2 if self.encoding == "waypoints" else k + 2, 2))
+        routes[:, 0] = self._ends[0]
+        routes[:, -1] = self._ends[1]
+        if self.encoding == "columns":
+            routes[:, 1:-1, 0] = np.arange(k) + 0.5
+            routes[:, 1:-1, 1] = g.height - 0.5 - np.clip(np.floor(X), 0, g.height - 1)
+        else:
+            left, _, _, top = g.bounds
+            routes[:, 1:-1, 0] = X[:, 0::2]
+            routes[:, 1:-1, 1] = X[:, 1::2]
+            routes[:, 1:-1] -= (left, top)
+            routes[:, 1:-1] *= (1 / g.cell_size, -1 / g.cell_size)
+        return routes
+
+    def __call__(self, X) -> np.ndarray:
+        """Cost of each individual of ``X`` ``(n, dim)``: one vectorised evaluation."""
+        return self.cost(self.decode(X))
+
+    def cost(self, routes) -> np.ndarray:
+        """Cost (module docstring) of routes given as cell coordinates ``(n, m, 2)``."""
+        routes = np.asarray(routes, float)
+        n, m = routes.shape[:2]
+        ell = self.grid.cell_size
+        hit, inside = self.checker.check_unchecked(
+            routes[:, :-1].reshape(-1, 2), routes[:, 1:].reshape(-1, 2)
+        )
+        n_col = hit.reshape(n, m - 1).sum(axis=1)
+        inside = inside.reshape(n, m - 1).sum(axis=1)
+        length = metrics.path_length(routes)
+        turning = self.turn_weight * metrics.turn_cost(routes)
+        return ell * (length + turning + INSIDE_WEIGHT * inside) + self.penalty * n_col
+
+    def to_map(self, route) -> np.ndarray:
+        """Cell coordinates ``(m, 2)`` to map metres ``(m, 2)``."""
+        route = np.asarray(route, float)
+        return np.column_stack(self.grid.to_map(route[:, 0], route[:, 1]))
