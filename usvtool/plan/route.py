@@ -1,0 +1,248 @@
+"""Plan a global route on a grid and write it as a path GeoJSON (the ``usvtool plan`` API).
+
+Algorithms: every optimizer of :data:`usvtool.plan.optimizers.OPTIMIZERS` (minimising the
+:class:`~usvtool.plan.problem.PathProblem` cost), ``astar`` (8-connected) and ``anyangle`` (the
+exact any-angle shortest route, :mod:`usvtool.plan.exact`). A ``+s`` suffix (``iwso+s``,
+``astar+s``) adds route shortening (:mod:`usvtool.plan.shorten`) to the planner's result.
+
+Figures of a route: ``length_m`` (IWSO eq. 28; for a georeferenced grid the geodesic length on
+the WGS84 ellipsoid), ``turns`` and ``mot`` (:mod:`usvtool.metrics`), ``fitness`` (the path
+problem's cost of the route, the same for every algorithm), ``planning_time_s`` (the search and
+any shortening; reading the grid and validating the request are not included) and
+``collision_free`` (the exact check of :mod:`usvtool.plan.raster` on the written coordinates).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from usvtool import metrics
+from usvtool.errors import UsvError
+from usvtool.grid import MARGIN, OBSTACLE, Grid
+from usvtool.plan import exact
+from usvtool.plan.problem import ENCODINGS, PathProblem, checker_for
+from usvtool.plan.raster import EPS
+from usvtool.plan.shorten import SUFFIX, shorten
+
+EXACT = ("astar", "anyangle")
+
+
+def algorithm_names() -> list[str]:
+    """Every accepted ``algo`` name, without the ``+s`` variants."""
+    from usvtool.plan.optimizers import OPTIMIZERS
+
+    return [*OPTIMIZERS, *EXACT]
+
+
+@dataclass
+class Route:
+    """A planned route: map coordinates ``points`` ``(m, 2)`` and its figures."""
+
+    points: np.ndarray
+    algorithm: str
+    parameters: dict
+    seed: int | None
+    length_m: float
+    turns: int
+    mot: float
+    fitness: float
+    planning_time_s: float
+    collision_free: bool
+    convergence: list[float] = field(default_factory=list)
+
+    def figures(self) -> dict:
+        """The route's figures (the GeoJSON properties and the CLI summary share them)."""
+        return {
+            "algorithm": self.algorithm,
+            "parameters": self.parameters,
+            "seed": self.seed,
+            "length_m": self.length_m,
+            "turns": self.turns,
+            "mot": self.mot,
+            "fitness": self.fitness,
+            "planning_time_s": self.planning_time_s,
+            "collision_free": self.collision_free,
+            "convergence": self.convergence,
+        }
+
+
+def plan_route(
+    grid: Grid,
+    start,
+    goal,
+    algo: str = "iwso",
+    pop: int = 50,
+    iters: int = 300,
+    seed: int | None = 0,
+    waypoints: int = 5,
+    encoding: str = "waypoints",
+    params: dict | None = None,
+    turn_weight: float = 1.0,
+) -> Route:
+    """Plan a route from ``start`` to ``goal`` (map metres) with algorithm ``algo``.
+
+    Raises :class:`UsvError` for an unknown algorithm, a start or goal outside the grid or
+    touching an obstacle or margin cell, or no navigable connection between them.
+    """
+    base, shortened = (algo[: -len(SUFFIX)], True) if algo.endswith(SUFFIX) else (algo, False)
+    if base not in algorithm_names():
+        known = ", ".join(algorithm_names())
+        raise UsvError(f"unknown algorithm {algo!r} (known: {known}, each also with {SUFFIX})")
+    if encoding not in ENCODINGS:
+        raise UsvError(f"unknown encoding {encoding!r} (known: {', '.join(ENCODINGS)})")
+    if encoding == "waypoints" and waypoints < 1:
+        raise UsvError(f"waypoints must be >= 1, not {waypoints}")
+    start_c = _check_end(grid, "start", start)
+    goal_c = _check_end(grid, "goal", goal)
+    _check_connected(grid, start_c, goal_c)
+    problem = PathProblem(
+        grid, tuple(start), tuple(goal), encoding, waypoints, turn_weight=turn_weight
+    )
+    checker = problem.checker
+    convergence: list[float] = []
+    t0 = time.perf_counter()
+    if base == "astar":
+        cells = exact.astar(grid.blocked, start_c, goal_c)
+        parameters: dict = {}
+    elif base == "anyangle":
+        cells = exact.any_angle(checker, grid.blocked, start_c, goal_c)
+        parameters = {"delta_cells": exact.DELTA}
+    else:
+        from usvtool.plan.optimizers import make_optimizer
+
+        try:
+            optimizer = make_optimizer(base, pop, iters, seed, **(params or {}))
+        except ValueError as exc:
+            raise UsvError(f"{base}: {exc}") from None
+        result = optimizer.minimize(problem, problem.lower, problem.upper)
+        cells = problem.decode(result.x)[0]
+        convergence = result.history.tolist()
+        parameters = {**result.params, "encoding": encoding, "turn_weight": turn_weight}
+        if encoding == "waypoints":
+            parameters["waypoints"] = waypoints
+    if cells is None:  # connectivity was checked: an exact planner must find a route
+        raise UsvError(f"{base}: no route found between start and goal")
+    if shortened:
+        cells = shorten(checker, cells)
+        parameters = {**parameters, "shorten": True}
+    elapsed = time.perf_counter() - t0
+    points = problem.to_map(cells)
+    return Route(
+        points=points,
+        algorithm=algo,
+        parameters=parameters,
+        seed=seed if base not in EXACT else None,
+        length_m=route_length(grid, points),
+        turns=int(metrics.turns(points)),
+        mot=float(metrics.mot(points)),
+        fitness=float(problem.cost(cells[None])[0]),
+        planning_time_s=elapsed,
+        collision_free=is_collision_free(grid, points),
+        convergence=convergence,
+    )
+
+
+def route_length(grid: Grid, points) -> float:
+    """Length in metres: geodesic (WGS84) for a georeferenced grid, planar otherwise."""
+    points = np.asarray(points, float)
+    if grid.crs is None:
+        return float(metrics.path_length(points))
+    from usvtool.chart.georef import WGS84, geodesic_length, transformer
+
+    lon, lat = transformer(grid.crs, WGS84).transform(points[:, 0], points[:, 1])
+    return geodesic_length(lon, lat)
+
+
+def is_collision_free(grid: Grid, points) -> bool:
+    """Whether the route (map metres) stays in the grid and touches no blocked cell."""
+    col, row = grid.to_cell_coords(*np.asarray(points, float).T)
+    cells = np.column_stack([col, row])
+    try:
+        hit = checker_for(grid).collides(cells[:-1], cells[1:])
+    except ValueError:  # leaves the grid
+        return False
+    return not hit.any()
+
+
+def write_path_geojson(path: str | os.PathLike, route: Route, grid: Grid) -> None:
+    """Write ``route`` as a GeoJSON FeatureCollection holding one LineString feature, atomically.
+
+    With a CRS the coordinates are lon/lat (RFC 7946) and ``map_coordinates`` (with ``crs``)
+    holds the grid's; without one they are the grid's local metres, and ``frame`` says so.
+    """
+    from usvtool.atomic import write_text
+
+    points = np.asarray(route.points, float)
+    props = route.figures()
+    if grid.crs is None:
+        coords = points
+        props["frame"] = "local metres (no CRS): x east, y north from the grid's lower-left corner"
+    else:
+        from usvtool.chart.georef import WGS84, transformer
+
+        lon, lat = transformer(grid.crs, WGS84).transform(points[:, 0], points[:, 1])
+        coords = np.column_stack([lon, lat])
+        props["crs"] = grid.crs.to_string()
+        props["map_coordinates"] = points.tolist()
+    feature = {
+        "type": "Feature",
+        "geometry": {"type": "LineString", "coordinates": coords.tolist()},
+        "properties": props,
+    }
+    text = json.dumps({"type": "FeatureCollection", "features": [feature]}, indent=1)
+    write_text(path, text + "\n")
+
+
+def read_path_geojson(path: str | os.PathLike) -> tuple[np.ndarray, dict]:
+    """The map coordinates ``(m, 2)`` and the properties of a path GeoJSON."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+        feature = data["features"][0] if data.get("type") == "FeatureCollection" else data
+        props = feature["properties"]
+        coords = props.get("map_coordinates", feature["geometry"]["coordinates"])
+        return np.asarray(coords, float), props
+    except (OSError, ValueError, KeyError, IndexError, TypeError) as exc:
+        raise UsvError(f"{path}: not a path GeoJSON ({exc})") from None
+
+
+def _check_end(grid: Grid, name: str, point) -> tuple[float, float]:
+    """Cell coordinates of a start or goal that lies in the grid and touches no blocked cell."""
+    x, y = (float(v) for v in point)
+    left, bottom, right, top = grid.bounds
+    if not (left <= x <= right and bottom <= y <= top):
+        raise UsvError(
+            f"{name} ({x:g}, {y:g}) is outside the grid (x {left:g}..{right:g}, "
+            f"y {bottom:g}..{top:g})"
+        )
+    col, row = (float(v) for v in grid.to_cell_coords(x, y))
+    rows = slice(max(int(np.ceil(row - 1 - EPS)), 0), int(np.floor(row + EPS)) + 1)
+    cols = slice(max(int(np.ceil(col - 1 - EPS)), 0), int(np.floor(col + EPS)) + 1)
+    touched = grid.cells[rows, cols]
+    if (touched == OBSTACLE).any():
+        raise UsvError(f"{name} ({x:g}, {y:g}) is on an obstacle")
+    if (touched == MARGIN).any():
+        raise UsvError(f"{name} ({x:g}, {y:g}) is in the safety margin around an obstacle")
+    return col, row
+
+
+def _check_connected(grid: Grid, start, goal) -> None:
+    """Refuse a request whose start and goal lie in different navigable regions.
+
+    A route can pass between two free cells only through a shared edge (crossing a corner
+    touches the other two cells), so the regions are the 4-connected components.
+    """
+    from scipy.ndimage import label
+
+    labels, _ = label(~grid.blocked)
+
+    def region(c):
+        return labels[min(int(c[1]), grid.height - 1), min(int(c[0]), grid.width - 1)]
+
+    if region(start) != region(goal):
+        raise UsvError("no navigable connection between start and goal")
