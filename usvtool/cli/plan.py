@@ -1,0 +1,147 @@
+"""``usvtool plan``: a global route on a navigation grid, written as a path GeoJSON."""
+
+from __future__ import annotations
+
+import json
+
+import click
+
+from usvtool.cli.options import NON_NEGATIVE, emit, output_option, seed_option
+from usvtool.plan.problem import ENCODINGS
+from usvtool.plan.route import algorithm_names
+from usvtool.plan.shorten import SUFFIX
+
+
+def _algo(ctx, param, value: str) -> str:
+    names = algorithm_names()
+    if value.removesuffix(SUFFIX) not in names:
+        raise click.BadParameter(
+            f"{value!r} is not one of {', '.join(names)} (each also with the suffix {SUFFIX})"
+        )
+    return value
+
+
+def _params(ctx, param, values: tuple[str, ...]) -> dict:
+    params = {}
+    for item in values:
+        name, sep, text = item.partition("=")
+        if not sep or not name:
+            raise click.BadParameter(f"{item!r} is not NAME=VALUE")
+        try:
+            params[name] = json.loads(text)
+        except ValueError:
+            params[name] = text
+    return params
+
+
+@click.command()
+@click.argument("grid_path", metavar="GRID.tif", type=click.Path(dir_okay=False))
+@click.option("--start", nargs=2, type=float, metavar="X Y", help="Start in map metres.")
+@click.option("--goal", nargs=2, type=float, metavar="X Y", help="Goal in map metres.")
+@click.option(
+    "--start-lonlat", nargs=2, type=float, metavar="LON LAT", help="Start (georeferenced grid)."
+)
+@click.option(
+    "--goal-lonlat", nargs=2, type=float, metavar="LON LAT", help="Goal (georeferenced grid)."
+)
+@click.option(
+    "--algo",
+    default="iwso",
+    show_default=True,
+    callback=_algo,
+    help=f"One of {', '.join(algorithm_names())}; add {SUFFIX} for route shortening.",
+)
+@click.option("--pop", type=click.IntRange(min=2), default=50, show_default=True, help="Agents.")
+@click.option(
+    "--iters", type=click.IntRange(min=1), default=300, show_default=True, help="Iterations."
+)
+@seed_option
+@click.option(
+    "--waypoints",
+    type=click.IntRange(min=1),
+    default=5,
+    show_default=True,
+    help="Free waypoints (waypoints encoding).",
+)
+@click.option(
+    "--encoding",
+    type=click.Choice(ENCODINGS),
+    default="waypoints",
+    show_default=True,
+    help="Route encoding: free waypoints, or one cell per grid column (ISSA).",
+)
+@click.option(
+    "--param",
+    "params",
+    multiple=True,
+    callback=_params,
+    metavar="NAME=VALUE",
+    help="An optimizer parameter (repeatable).",
+)
+@click.option(
+    "--turn-weight",
+    type=NON_NEGATIVE,
+    default=1.0,
+    show_default=True,
+    help="Weight of the ISSA turning energy in the cost.",
+)
+@output_option("Path GeoJSON to write.")
+def plan(
+    grid_path: str,
+    start,
+    goal,
+    start_lonlat,
+    goal_lonlat,
+    algo: str,
+    pop: int,
+    iters: int,
+    seed: int,
+    waypoints: int,
+    encoding: str,
+    params: dict,
+    turn_weight: float,
+    output: str,
+) -> None:
+    """Plan a route from --start to --goal on GRID.tif and write it to -o as GeoJSON."""
+    from usvtool.atomic import check_output_path
+    from usvtool.errors import UsvError
+    from usvtool.grid import read_grid
+    from usvtool.plan.route import plan_route, write_path_geojson
+
+    check_output_path(output)
+    grid = read_grid(grid_path)
+    start = _point(grid, grid_path, "start", start, start_lonlat)
+    goal = _point(grid, grid_path, "goal", goal, goal_lonlat)
+    try:
+        route = plan_route(
+            grid, start, goal, algo, pop, iters, seed, waypoints, encoding, params, turn_weight
+        )
+    except UsvError as exc:
+        raise UsvError(f"{grid_path}: {exc}") from None
+    write_path_geojson(output, route, grid)
+    emit(
+        {
+            "output": output,
+            "grid": grid_path,
+            "start": list(start),
+            "goal": list(goal),
+            "points": len(route.points),
+            **route.figures(),
+        }
+    )
+
+
+def _point(grid, grid_path: str, name: str, xy, lonlat) -> tuple[float, float]:
+    """The map coordinates given by ``--NAME X Y`` or ``--NAME-lonlat LON LAT`` (exactly one)."""
+    from usvtool.errors import UsvError
+
+    if (xy is None) == (lonlat is None):
+        raise click.UsageError(f"give exactly one of --{name} X Y and --{name}-lonlat LON LAT")
+    if xy is not None:
+        return float(xy[0]), float(xy[1])
+    if grid.crs is None:
+        raise UsvError(f"--{name}-lonlat: {grid_path} has no CRS; give --{name} X Y in metres")
+    from usvtool.chart.georef import WGS84, transformer
+
+    x, y = transformer(WGS84, grid.crs).transform(*lonlat)
+    return float(x), float(y)
