@@ -103,7 +103,7 @@ class PathProblem:
             routes[:, 1:-1, 0] = X[:, 0::2]
             routes[:, 1:-1, 1] = X[:, 1::2]
             routes[:, 1:-1] -= (left, top)
-            routes[:, 1:-1] *= (1 / g.cell_size, -1 / g.cell_size)
+            routes[:, 1:-1] /= (g.cell_size, -g.cell_size)
         return routes
 
     def __call__(self, X) -> np.ndarray:

@@ -1,0 +1,165 @@
+"""The path problem: the exact collision check against an independent rasteriser, and the cost."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from affine import Affine
+
+from usvtool.grid import Grid
+from usvtool.plan.problem import PathProblem
+from usvtool.plan.raster import SegmentChecker
+
+
+def grid_of(blocked, cell=1.0) -> Grid:
+    blocked = np.asarray(blocked)
+    h = blocked.shape[0]
+    return Grid(blocked.astype(np.uint8), Affine(cell, 0, 0, 0, -cell, h * cell))
+
+
+def random_segments(rng, n, width, height):
+    """Random segments of every length, plus lattice-aligned ones (edges, corners, diagonals)."""
+    a = rng.random((n, 2)) * (width, height)
+    angle = rng.random(n) * 2 * math.pi
+    length = rng.exponential(6.0, n)
+    b = a + length[:, None] * np.column_stack([np.cos(angle), np.sin(angle)])
+    half = rng.integers(0, 2 * width + 1, (n, 2)) / 2.0
+    step = rng.integers(-12, 13, (n, 2)) / 2.0
+    step[np.all(step == 0, axis=1)] = (0.5, 1.0)
+    a = np.vstack([a, half])
+    b = np.vstack([b, half + step])
+    limit = (width, height)
+    return np.clip(a, 0, limit), np.clip(b, 0, limit)
+
+
+@pytest.mark.parametrize("density, samples", [(0.02, 24), (0.1, 24), (0.3, 5), (0.05, 2)])
+def test_collisions_agree_with_an_independent_rasteriser(density, samples, reference):
+    rng = np.random.default_rng(int(density * 100) + samples)
+    blocked = rng.random((30, 40)) < density
+    chk = SegmentChecker(blocked, samples=samples)
+    a, b = random_segments(rng, 3000, 40, 30)
+    keep = np.any(a != b, axis=1)
+    a, b = a[keep], b[keep]
+    expected = reference(blocked).segments_hit(a, b)
+    assert 0.05 < expected.mean() < 0.95
+    assert np.array_equal(chk.collides(a, b), expected)
+    assert np.array_equal(chk.touches(a, b), expected)
+
+
+def test_long_segments_near_obstacles_agree(reference):
+    rng = np.random.default_rng(7)
+    blocked = np.zeros((120, 150), bool)
+    blocked[rng.integers(0, 120, 60), rng.integers(0, 150, 60)] = True  # isolated single cells
+    a = rng.random((2000, 2)) * (150, 120)
+    b = rng.random((2000, 2)) * (150, 120)
+    expected = reference(blocked).segments_hit(a, b)
+    assert np.array_equal(SegmentChecker(blocked).collides(a, b), expected)
+
+
+@pytest.fixture
+def one_cell():
+    """A 10 x 10 grid whose only obstacle is the cell x 5..6, y 5..6 (cell coordinates)."""
+    blocked = np.zeros((10, 10), bool)
+    blocked[5, 5] = True
+    return blocked
+
+
+def test_a_segment_grazing_a_single_cell_is_caught(one_cell):
+    chk = SegmentChecker(one_cell)
+    # x + y = 11.99 cuts a triangle of legs 0.01 off the cell's corner (6, 6): far thinner
+    # than the spacing of the samples along the segment
+    a, b = np.array([[2.0, 9.99]]), np.array([[9.99, 2.0]])
+    assert chk.collides(a, b)[0]
+    # passing the corner exactly also collides; 1e-6 beyond it does not
+    assert chk.collides([[2.0, 10.0]], [[10.0, 2.0]])[0]
+    assert not chk.collides([[3.0, 9.0 + 1e-6]], [[9.0 + 1e-6, 3.0]])[0]
+    # running along the cell's edge touches it; half a cell away does not
+    assert chk.collides([[0.5, 5.0]], [[9.5, 5.0]])[0]
+    assert not chk.collides([[0.5, 4.5]], [[9.5, 4.5]])[0]
+
+
+def test_a_diagonal_gap_between_two_cells_is_closed():
+    blocked = np.zeros((4, 4), bool)
+    blocked[1, 2] = blocked[2, 1] = True  # they share only the corner (2, 2)
+    chk = SegmentChecker(blocked)
+    assert chk.collides([[0.5, 0.5]], [[3.5, 3.5]])[0]  # through the corner point
+
+
+def test_the_cost_penalises_grazing_and_corners(one_cell):
+    g = grid_of(one_cell)
+    top = 10.0
+    # map y = top - cell y; the route start -> waypoint -> goal with a straight line through
+    # the waypoint, so there is no turn
+    start, goal = (2.0, top - 9.99), (9.99, top - 2.0)
+    p = PathProblem(g, start, goal, waypoints=1)
+    graze = p([[6.0, top - 5.99]])[0]  # on the line x + y = 11.99
+    length = math.hypot(7.99, 7.99)
+    assert graze > length + p.penalty - 1e-6
+    clear = PathProblem(g, (0.5, 9.5), (9.5, 9.5), waypoints=1)
+    assert clear([[5.0, 9.5]])[0] == pytest.approx(9.0)
+    corner = PathProblem(g, (2.0, top - 10.0), (10.0, top - 2.0), waypoints=1)
+    assert corner([[6.0, top - 6.0]])[0] > corner.penalty
+
+
+def test_penalty_is_zero_exactly_for_collision_free_routes(reference):
+    rng = np.random.default_rng(11)
+    blocked = rng.random((40, 40)) < 0.01
+    blocked[38:, :2] = blocked[:2, 38:] = False  # around the start and the goal
+    g = grid_of(blocked)
+    p = PathProblem(g, (1.0, 1.0), (39.0, 39.0), waypoints=3)
+    X = rng.uniform(p.lower, p.upper, (500, p.dim))
+    routes = p.decode(X)
+    ref = reference(blocked)
+    free = np.array([ref.route_free(r) for r in routes])
+    assert 0.05 < free.mean() < 0.95
+    from usvtool import metrics
+
+    plain = metrics.path_length(routes) + metrics.turn_cost(routes)
+    cost = p(X)
+    assert cost[free] == pytest.approx(plain[free])
+    assert np.all(cost[~free] > plain[~free] + p.penalty - 1e-9)
+
+
+def test_waypoints_decode_to_cell_coordinates_and_bounds_are_the_extent():
+    g = Grid(np.zeros((4, 6), np.uint8), Affine(10, 0, 1000, 0, -10, 2040))
+    p = PathProblem(g, (1005, 2005), (1055, 2035), waypoints=2)
+    assert p.dim == 4
+    assert p.lower.tolist() == [1000, 2000, 1000, 2000]
+    assert p.upper.tolist() == [1060, 2040, 1060, 2040]
+    routes = p.decode([[1000, 2040, 1060, 2000]])
+    assert routes.tolist() == [[[0.5, 3.5], [0, 0], [6, 4], [5.5, 0.5]]]
+    assert p.to_map(routes[0]).tolist() == [[1005, 2005], [1000, 2040], [1060, 2000], [1055, 2035]]
+
+
+def test_columns_encoding_is_one_cell_per_column():
+    g = grid_of(np.zeros((20, 20), bool))
+    p = PathProblem(g, (0.5, 0.5), (19.5, 19.5), encoding="columns")
+    assert p.dim == 20 and p.lower.tolist() == [0] * 20 and p.upper.tolist() == [20] * 20
+    diagonal = np.arange(20) + 0.3  # the cell at height j (from the south) in column j
+    route = p.decode([diagonal])[0]
+    assert route[1:-1].tolist() == [[j + 0.5, 19.5 - j] for j in range(20)]
+    # start, (0.5, 0.5) again, ..., (19.5, 19.5), goal: a straight diagonal of 19 √2
+    assert p([diagonal])[0] == pytest.approx(19 * math.sqrt(2))
+    flat = np.zeros(20)  # along the south row, then straight up the last column: one turn
+    assert p([flat])[0] == pytest.approx(19 + 19 + 0.4)
+
+
+def test_the_population_is_evaluated_in_one_vectorised_call():
+    g = grid_of(np.random.default_rng(2).random((50, 50)) < 0.05)
+    p = PathProblem(g, (0.5, 0.5), (49.5, 49.5), waypoints=4)
+    X = np.random.default_rng(5).uniform(p.lower, p.upper, (64, p.dim))
+    together = p(X)
+    assert together.shape == (64,)
+    assert together == pytest.approx([p(x[None])[0] for x in X])
+
+
+def test_bad_encoding_and_waypoints_are_refused():
+    g = grid_of(np.zeros((5, 5), bool))
+    with pytest.raises(ValueError, match="encoding"):
+        PathProblem(g, (0.5, 0.5), (4.5, 4.5), encoding="spline")
+    with pytest.raises(ValueError, match="waypoints"):
+        PathProblem(g, (0.5, 0.5), (4.5, 4.5), waypoints=0)
+    with pytest.raises(ValueError, match="inside the grid"):
+        SegmentChecker(np.zeros((5, 5), bool)).collides([[0, 0]], [[6, 1]])
