@@ -106,18 +106,19 @@ def plan(
     from usvtool.atomic import check_output_path
     from usvtool.errors import UsvError
     from usvtool.grid import read_grid
-    from usvtool.plan.route import plan_route, write_path_geojson
+    from usvtool.plan.route import check_ends, plan_route, write_path_geojson
 
     check_output_path(output)
     grid = read_grid(grid_path)
     start = _point(grid, grid_path, "start", start, start_lonlat)
     goal = _point(grid, grid_path, "goal", goal, goal_lonlat)
     try:
-        route = plan_route(
-            grid, start, goal, algo, pop, iters, seed, waypoints, encoding, params, turn_weight
-        )
+        check_ends(grid, start, goal)
     except UsvError as exc:
         raise UsvError(f"{grid_path}: {exc}") from None
+    route = plan_route(
+        grid, start, goal, algo, pop, iters, seed, waypoints, encoding, params, turn_weight
+    )
     write_path_geojson(output, route, grid)
     emit(
         {

@@ -97,9 +97,7 @@ def plan_route(
         raise UsvError(f"unknown encoding {encoding!r} (known: {', '.join(ENCODINGS)})")
     if encoding == "waypoints" and waypoints < 1:
         raise UsvError(f"waypoints must be >= 1, not {waypoints}")
-    start_c = _check_end(grid, "start", start)
-    goal_c = _check_end(grid, "goal", goal)
-    _check_connected(grid, start_c, goal_c)
+    start_c, goal_c = check_ends(grid, start, goal)
     problem = PathProblem(
         grid, tuple(start), tuple(goal), encoding, waypoints, turn_weight=turn_weight
     )
@@ -118,7 +116,7 @@ def plan_route(
         try:
             optimizer = make_optimizer(base, pop, iters, seed, **(params or {}))
         except ValueError as exc:
-            raise UsvError(f"{base}: {exc}") from None
+            raise UsvError(str(exc)) from None
         result = optimizer.minimize(problem, problem.lower, problem.upper)
         cells = problem.decode(result.x)[0]
         convergence = result.history.tolist()
@@ -209,6 +207,17 @@ def read_path_geojson(path: str | os.PathLike) -> tuple[np.ndarray, dict]:
         return np.asarray(coords, float), props
     except (OSError, ValueError, KeyError, IndexError, TypeError) as exc:
         raise UsvError(f"{path}: not a path GeoJSON ({exc})") from None
+
+
+def check_ends(grid: Grid, start, goal) -> tuple[tuple[float, float], tuple[float, float]]:
+    """Cell coordinates of ``start`` and ``goal`` (map metres), or :class:`UsvError`.
+
+    Each must lie in the grid and touch no blocked cell, and a navigable route must join them.
+    """
+    start_c = _check_end(grid, "start", start)
+    goal_c = _check_end(grid, "goal", goal)
+    _check_connected(grid, start_c, goal_c)
+    return start_c, goal_c
 
 
 def _check_end(grid: Grid, name: str, point) -> tuple[float, float]:
