@@ -33,8 +33,7 @@ def path_length(points) -> np.ndarray:
     >>> float(path_length([(0, 0), (3, 4), (3, 10)]))
     11.0
     """
-    seg = _segments(points)
-    return np.hypot(seg[..., 0], seg[..., 1]).sum(axis=-1)
+    return np.abs(_segments(points)).sum(axis=-1)
 
 
 def turn_angles(points) -> np.ndarray:
@@ -47,28 +46,24 @@ def turn_angles(points) -> np.ndarray:
     [0.0, 45.0, 0.0]
     """
     seg = _segments(points)
-    if seg.shape[-2] < 2:
-        return np.zeros(seg.shape[:-2] + (0,))
-    sx, sy = seg[..., 0], seg[..., 1]
-    real = (sx != 0) | (sy != 0)
+    if seg.shape[-1] < 2:
+        return np.zeros(seg.shape[:-1] + (0,))
+    real = seg != 0
     if real.all():
-        return _angle(sx[..., :-1], sy[..., :-1], sx[..., 1:], sy[..., 1:])
+        return np.abs(np.angle(seg[..., 1:] * seg[..., :-1].conj()))
     # u = the last non-degenerate segment before each segment (index -1 if none)
     n = real.shape[-1]
     prev = np.maximum.accumulate(np.where(real, np.arange(n), -1), axis=-1)[..., :-1]
     rows = np.arange(0, real.size, n).reshape(real.shape[:-1] + (1,))
-    u = seg.reshape(-1, 2)[np.maximum(prev, 0) + rows]
-    angle = _angle(u[..., 0], u[..., 1], sx[..., 1:], sy[..., 1:])
+    u = seg.ravel()[np.maximum(prev, 0) + rows]
+    angle = np.abs(np.angle(seg[..., 1:] * u.conj()))
     return np.where(real[..., 1:] & (prev >= 0), angle, 0.0)
 
 
 def _segments(points) -> np.ndarray:
+    """The segments of routes ``(..., m, 2)`` as complex numbers ``dx + i dy``, ``(..., m - 1)``."""
     p = np.asarray(points, float)
-    return p[..., 1:, :] - p[..., :-1, :]
-
-
-def _angle(ux, uy, vx, vy):
-    return np.arctan2(np.abs(ux * vy - uy * vx), ux * vx + uy * vy)
+    return (p[..., 1:, :] - p[..., :-1, :]).view(np.complex128)[..., 0]
 
 
 def turns(points, tol_deg: float = TURN_TOLERANCE_DEG) -> np.ndarray:

@@ -74,6 +74,9 @@ class PathProblem:
             [self.grid.to_cell_coords(*self.start), self.grid.to_cell_coords(*self.goal)], float
         )
         g = self.grid
+        left, _, _, top = g.bounds
+        self._origin = np.array([left, top])
+        self._scale = np.array([g.cell_size, -g.cell_size])
         self.penalty = g.cell_size * (g.width + g.height)
         if self.encoding == "columns":
             self.lower = np.zeros(g.width)
@@ -90,20 +93,18 @@ class PathProblem:
     def decode(self, X) -> np.ndarray:
         """Routes of the population ``X`` ``(n, dim)`` as cell coordinates ``(n, m, 2)``."""
         X = np.atleast_2d(np.asarray(X, float))
-        g = self.grid
         n, k = X.shape
-        routes = np.empty((n, k // 2 + 2 if self.encoding == "waypoints" else k + 2, 2))
-        routes[:, 0] = self._ends[0]
-        routes[:, -1] = self._ends[1]
+        g = self.grid
         if self.encoding == "columns":
-            routes[:, 1:-1, 0] = np.arange(k) + 0.5
-            routes[:, 1:-1, 1] = g.height - 0.5 - np.clip(np.floor(X), 0, g.height - 1)
+            mid = np.empty((n, k, 2))
+            mid[..., 0] = np.arange(k) + 0.5
+            mid[..., 1] = g.height - 0.5 - np.clip(np.floor(X), 0, g.height - 1)
         else:
-            left, _, _, top = g.bounds
-            routes[:, 1:-1, 0] = X[:, 0::2]
-            routes[:, 1:-1, 1] = X[:, 1::2]
-            routes[:, 1:-1] -= (left, top)
-            routes[:, 1:-1] /= (g.cell_size, -g.cell_size)
+            mid = (X.reshape(n, k // 2, 2) - self._origin) / self._scale
+        routes = np.empty((n, mid.shape[1] + 2, 2))
+        routes[:, 0] = self._ends[0]
+        routes[:, 1:-1] = mid
+        routes[:, -1] = self._ends[1]
         return routes
 
     def __call__(self, X) -> np.ndarray:

@@ -128,28 +128,29 @@ class SegmentChecker:
     def _traverse(self, x0, y0, x1, y1) -> np.ndarray:
         """Whether each segment touches a blocked cell, column strip by column strip.
 
-        Segments are oriented west to east. In the strip of column ``c`` the segment spans
-        ``x_a … x_b`` (the enlarged strip clipped to its ends) and ``y`` runs from
-        ``y0 + t_a dy`` to ``y0 + t_b dy`` with ``t_a = (x_a - x0)/dx`` and
-        ``t_b = 1 - (x1 - x_b)/dx``; for ``dx = 0`` (a north-south segment) ``1/dx`` is taken as
-        0, which gives the whole ``[y0, y1]``.
+        Segments are oriented west to east, with slope ``k = dy/dx`` (0 when ``dx = 0``). In the
+        strip of column ``c`` a segment spans ``y`` from ``y0 + k·max(c - EPS - x0, 0)`` to
+        ``y1 - k·max(x1 - c - 1 - EPS, 0)``: its enlarged strip clipped to its ends. A north-south
+        segment (``k = 0``) thus spans all of ``[y0, y1]``.
         """
         back = x1 < x0
         x0, y0, x1, y1 = np.where(back, (x1, y1, x0, y0), (x0, y0, x1, y1))
         dx = x1 - x0
-        inv = np.divide(1.0, dx, out=np.zeros_like(dx), where=dx > 0)
-        first = np.ceil(x0 - (1 + EPS))
+        slope = np.divide(y1 - y0, dx, out=np.zeros_like(dx), where=dx > 0)
+        first = np.ceil(x0 - (1 + EPS))  # columns first … floor(x1 + EPS), -1 … width
         counts = (np.floor(x1 + EPS) - first + 1).astype(np.intp)
         starts = np.cumsum(counts) - counts
-        per = np.stack([x0, x1, y0, y1 - y0, inv, first - starts])
-        x0, x1, y0, dy, inv, shift = np.repeat(per, counts, axis=1)
-        c = np.arange(x0.size) + shift  # the column of each strip, -1 … width
-        ya = y0 + (np.maximum(c - EPS, x0) - x0) * inv * dy
-        yb = y0 + (1 - (x1 - np.minimum(c + (1 + EPS), x1)) * inv) * dy
+        shift = first - starts  # column c = j + shift for the j-th strip overall
+        stride = self.width + 2
+        per = np.stack([y0, y1, slope, shift - x0, dx - (1 + EPS), shift + (1 + stride)])
+        y0, y1, slope, to_c, span, base = np.repeat(per, counts, axis=1)
+        j = np.arange(y0.size)
+        cx = j + to_c  # c - x0
+        ya = y0 + slope * np.maximum(cx - EPS, 0.0)
+        yb = y1 - slope * np.maximum(span - cx, 0.0)
         r0 = np.ceil(np.minimum(ya, yb) - (1 + EPS))  # rows r0 … r1, -1 … height
         r1 = np.floor(np.maximum(ya, yb) + EPS)
-        stride = self.width + 2
-        base = c + (1 + stride)
+        base += j  # c + 1 + stride
         above = self._prefix.take((r0 * stride + base).astype(np.intp))
-        through = self._prefix.take((r1 * stride + base + stride).astype(np.intp))
+        through = self._prefix.take(((r1 + 1) * stride + base).astype(np.intp))
         return np.logical_or.reduceat(through > above, starts)
