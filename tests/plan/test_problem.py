@@ -136,14 +136,16 @@ def test_waypoints_decode_to_cell_coordinates_and_bounds_are_the_extent():
 def test_columns_encoding_is_one_cell_per_column():
     g = grid_of(np.zeros((20, 20), bool))
     p = PathProblem(g, (0.5, 0.5), (19.5, 19.5), encoding="columns")
-    assert p.dim == 20 and p.lower.tolist() == [0] * 20 and p.upper.tolist() == [20] * 20
-    diagonal = np.arange(20) + 0.3  # the cell at height j (from the south) in column j
-    route = p.decode([diagonal])[0]
+    assert p.dim == 20 and p.lower.tolist() == [-20] * 20 and p.upper.tolist() == [20] * 20
+    straight = np.zeros(20)  # no offset from the start-goal line: the diagonal cells
+    route = p.decode([straight])[0]
     assert route[1:-1].tolist() == [[j + 0.5, 19.5 - j] for j in range(20)]
-    # start, (0.5, 0.5) again, ..., (19.5, 19.5), goal: a straight diagonal of 19 √2
-    assert p([diagonal])[0] == pytest.approx(19 * math.sqrt(2))
-    flat = np.zeros(20)  # along the south row, then straight up the last column: one turn
-    assert p([flat])[0] == pytest.approx(19 + 19 + 0.4)
+    # start, (0.5, 19.5) again, ..., (19.5, 0.5), goal: a straight diagonal of 19 √2
+    assert p([straight])[0] == pytest.approx(19 * math.sqrt(2))
+    south = -np.arange(20) - 0.2  # j cells south of the line: along the south row, then up
+    assert p.decode([south])[0, 1:-1, 1].tolist() == [19.5] * 20
+    assert p([south])[0] == pytest.approx(19 + 19 + 0.4)  # one right-angle turn
+    assert p.decode([np.full(20, 20.0)])[0, 1:-1, 1].tolist() == [0.5] * 20  # clipped north
 
 
 def test_the_population_is_evaluated_in_one_vectorised_call():

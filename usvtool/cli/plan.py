@@ -59,7 +59,7 @@ def _params(ctx, param, values: tuple[str, ...]) -> dict:
 @click.option(
     "--waypoints",
     type=click.IntRange(min=1),
-    default=5,
+    default=3,
     show_default=True,
     help="Free waypoints (waypoints encoding).",
 )

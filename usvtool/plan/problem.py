@@ -6,10 +6,13 @@ Encodings (``x`` is one individual, bounds are :attr:`PathProblem.lower` / ``upp
     ``x = (x_1, y_1, …, x_K, y_K)``: ``K`` free waypoints in map metres, each bounded by the
     grid's extent; the route is start → waypoints → goal joined by straight segments.
 ``columns`` (the ISSA paper's encoding, section 4)
-    One variable per grid column (dimension = number of columns): ``x_j`` in ``[0, height]`` is
-    the ISSA grid's ``y`` coordinate (counted from the south, eq. 9) of the cell the route visits
-    in column ``j``, floored to a whole cell; the route is start → the centres of the chosen
-    cells, west to east → goal.
+    One variable per grid column (dimension = number of columns): the route visits one cell in
+    each column, west to east: start → the centres of the chosen cells → goal. ``x_j`` in
+    ``[-H, H]`` is the chosen cell's offset in cells (north positive) from the straight
+    start-goal line at the column's centre, floored to a whole cell and clipped to the grid.
+    Measuring from that line rather than from the grid's edge keeps the encoding the same
+    whichever corner the route starts from, and makes ``x = 0`` the straight route rather than
+    the route along an edge of the grid (SSA and ISSA pull producers towards ``x = 0``).
 
 Cost (in metres; ``ℓ`` cell size, ``W × H`` grid)
 
@@ -60,7 +63,7 @@ class PathProblem:
     start: tuple[float, float]
     goal: tuple[float, float]
     encoding: str = "waypoints"
-    waypoints: int = 5
+    waypoints: int = 3
     turn_weight: float = 1.0
     checker: SegmentChecker = field(init=False, repr=False)
 
@@ -79,7 +82,10 @@ class PathProblem:
         self._scale = np.array([g.cell_size, -g.cell_size])
         self.penalty = g.cell_size * (g.width + g.height)
         if self.encoding == "columns":
-            self.lower = np.zeros(g.width)
+            (c0, r0), (c1, r1) = self._ends
+            centres = np.arange(g.width) + 0.5
+            self._line = r0 + (r1 - r0) * ((centres - c0) / (c1 - c0) if c1 != c0 else 0.0)
+            self.lower = np.full(g.width, -float(g.height))
             self.upper = np.full(g.width, float(g.height))
         else:
             left, bottom, right, top = g.bounds
@@ -98,7 +104,7 @@ class PathProblem:
         if self.encoding == "columns":
             mid = np.empty((n, k, 2))
             mid[..., 0] = np.arange(k) + 0.5
-            mid[..., 1] = g.height - 0.5 - np.clip(np.floor(X), 0, g.height - 1)
+            mid[..., 1] = np.clip(np.floor(self._line - X), 0, g.height - 1) + 0.5
         else:
             mid = (X.reshape(n, k // 2, 2) - self._origin) / self._scale
         routes = np.empty((n, mid.shape[1] + 2, 2))

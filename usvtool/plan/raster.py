@@ -55,10 +55,12 @@ class SegmentChecker:
     [False, True, False]
     """
 
-    def __init__(self, blocked: np.ndarray, samples: int = 24):
+    def __init__(self, blocked: np.ndarray, samples: int | None = None):
         blocked = np.asarray(blocked, bool)
         self.height, self.width = h, w = blocked.shape
-        self.samples = samples
+        # samples along each segment: about one per 20 cells of the grid's size, 4 to 24
+        self.samples = samples or int(np.clip(np.ceil(max(h, w) / 20), 4, 24))
+        samples = self.samples
         t = np.linspace(0.0, 1.0, samples)
         self._basis = np.vstack([1.0 - t, t])
         self._ones = np.ones(samples)

@@ -79,7 +79,7 @@ def plan_route(
     pop: int = 50,
     iters: int = 300,
     seed: int | None = 0,
-    waypoints: int = 5,
+    waypoints: int = 3,
     encoding: str = "waypoints",
     params: dict | None = None,
     turn_weight: float = 1.0,
