@@ -192,7 +192,9 @@ def write_path_geojson(path: str | os.PathLike, route: Route, grid: Grid) -> Non
         "geometry": {"type": "LineString", "coordinates": coords.tolist()},
         "properties": props,
     }
-    text = json.dumps({"type": "FeatureCollection", "features": [feature]}, indent=1)
+    text = json.dumps(
+        {"type": "FeatureCollection", "features": [feature]}, indent=1, default=_jsonable
+    )
     write_text(path, text + "\n")
 
 
@@ -207,6 +209,11 @@ def read_path_geojson(path: str | os.PathLike) -> tuple[np.ndarray, dict]:
         return np.asarray(coords, float), props
     except (OSError, ValueError, KeyError, IndexError, TypeError) as exc:
         raise UsvError(f"{path}: not a path GeoJSON ({exc})") from None
+
+
+def _jsonable(value):
+    """numpy scalars and arrays (optimizer parameters may hold them) as JSON values."""
+    return value.tolist() if hasattr(value, "tolist") else str(value)
 
 
 def check_ends(grid: Grid, start, goal) -> tuple[tuple[float, float], tuple[float, float]]:
