@@ -77,7 +77,7 @@ class PathProblem:
             [self.grid.to_cell_coords(*self.start), self.grid.to_cell_coords(*self.goal)], float
         )
         g = self.grid
-        left, _, _, top = g.bounds
+        left, bottom, right, top = g.bounds
         self._origin = np.array([left, top])
         self._scale = np.array([g.cell_size, -g.cell_size])
         self.penalty = g.cell_size * (g.width + g.height)
@@ -88,7 +88,6 @@ class PathProblem:
             self.lower = np.full(g.width, -float(g.height))
             self.upper = np.full(g.width, float(g.height))
         else:
-            left, bottom, right, top = g.bounds
             self.lower = np.tile([left, bottom], self.waypoints)
             self.upper = np.tile([right, top], self.waypoints)
 
@@ -118,7 +117,7 @@ class PathProblem:
         return self.cost(self.decode(X))
 
     def cost(self, routes) -> np.ndarray:
-        """Cost (module docstring) of routes given as cell coordinates ``(n, m, 2)``."""
+        """Cost (module docstring) of routes in cell coordinates ``(n, m, 2)`` inside the grid."""
         routes = np.asarray(routes, float)
         n, m = routes.shape[:2]
         ell = self.grid.cell_size
