@@ -94,13 +94,13 @@ def test_the_cost_penalises_grazing_and_corners(one_cell):
     # the waypoint, so there is no turn
     start, goal = (2.0, top - 9.99), (9.99, top - 2.0)
     p = PathProblem(g, start, goal, waypoints=1)
-    graze = p([[6.0, top - 5.99]])[0]  # on the line x + y = 11.99
+    graze = p(p.encode([[6.0, top - 5.99]]))[0]  # on the line x + y = 11.99
     length = math.hypot(7.99, 7.99)
     assert graze > length + p.penalty - 1e-6
     clear = PathProblem(g, (0.5, 9.5), (9.5, 9.5), waypoints=1)
-    assert clear([[5.0, 9.5]])[0] == pytest.approx(9.0)
+    assert clear(clear.encode([[5.0, 9.5]]))[0] == pytest.approx(9.0)
     corner = PathProblem(g, (2.0, top - 10.0), (10.0, top - 2.0), waypoints=1)
-    assert corner([[6.0, top - 6.0]])[0] > corner.penalty
+    assert corner(corner.encode([[6.0, top - 6.0]]))[0] > corner.penalty
 
 
 def test_penalty_is_zero_exactly_for_collision_free_routes(reference):
@@ -122,13 +122,20 @@ def test_penalty_is_zero_exactly_for_collision_free_routes(reference):
     assert np.all(cost[~free] > plain[~free] + p.penalty - 1e-9)
 
 
-def test_waypoints_decode_to_cell_coordinates_and_bounds_are_the_extent():
+def test_waypoints_are_offsets_from_the_straight_line_bounded_by_the_extent():
     g = Grid(np.zeros((4, 6), np.uint8), Affine(10, 0, 1000, 0, -10, 2040))
     p = PathProblem(g, (1005, 2005), (1055, 2035), waypoints=2)
     assert p.dim == 4
-    assert p.lower.tolist() == [1000, 2000, 1000, 2000]
-    assert p.upper.tolist() == [1060, 2040, 1060, 2040]
-    routes = p.decode([[1000, 2040, 1060, 2000]])
+    # base points at 1/3 and 2/3 of the way: (1021.667, 2015) and (1038.333, 2025)
+    b1, b2 = (1005 + 50 / 3, 2015.0), (1005 + 100 / 3, 2025.0)
+    assert p.lower == pytest.approx([1000 - b1[0], 2000 - b1[1], 1000 - b2[0], 2000 - b2[1]])
+    assert p.upper == pytest.approx([1060 - b1[0], 2040 - b1[1], 1060 - b2[0], 2040 - b2[1]])
+    straight = [0.5, 3.5, (b1[0] - 1000) / 10, (2040 - b1[1]) / 10,
+                (b2[0] - 1000) / 10, (2040 - b2[1]) / 10, 5.5, 0.5]  # fmt: skip
+    assert p.decode(np.zeros(4))[0].ravel() == pytest.approx(straight)  # zero offsets
+    assert p.decode(p.lower)[0, 1:-1].ravel() == pytest.approx([0, 4, 0, 4])  # the SW corner
+    assert p.decode(p.upper)[0, 1:-1].ravel() == pytest.approx([6, 0, 6, 0])  # the NE corner
+    routes = p.decode(p.encode([[1000, 2040, 1060, 2000]]))
     assert routes.tolist() == [[[0.5, 3.5], [0, 0], [6, 4], [5.5, 0.5]]]
     assert p.to_map(routes[0]).tolist() == [[1005, 2005], [1000, 2040], [1060, 2000], [1055, 2035]]
 

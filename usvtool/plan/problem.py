@@ -3,8 +3,14 @@
 Encodings (``x`` is one individual, bounds are :attr:`PathProblem.lower` / ``upper``)
 
 ``waypoints`` (default)
-    ``x = (x_1, y_1, …, x_K, y_K)``: ``K`` free waypoints in map metres, each bounded by the
-    grid's extent; the route is start → waypoints → goal joined by straight segments.
+    ``x = (dx_1, dy_1, …, dx_K, dy_K)``: ``K`` free waypoints, each given in map metres as its
+    offset from its base point ``b_k = start + k / (K + 1) (goal - start)`` on the straight
+    start-goal line and bounded so that it stays inside the grid's extent; the route is start →
+    waypoints → goal joined by straight segments. Centring the variables on the straight route
+    matters: WSO/IWSO (eqs. 4, 9), SSA/ISSA (eq. 1) and others scale positions towards the
+    origin, which with absolute coordinates is the map's corner (their routes then crowd it,
+    docs/planning.md has the figures); with offsets it is the straight route, a fair prior for
+    every algorithm.
 ``columns`` (the ISSA paper's encoding, section 4)
     One variable per grid column (dimension = number of columns): the route visits one cell in
     each column, west to east: start → the centres of the chosen cells → goal. ``x_j`` in
@@ -37,17 +43,6 @@ from usvtool.plan.raster import SegmentChecker
 ENCODINGS = ("waypoints", "columns")
 INSIDE_WEIGHT = 10.0  # cost per metre of route inside blocked cells
 
-_cache: tuple[Grid, SegmentChecker] | None = None
-
-
-def checker_for(grid: Grid) -> SegmentChecker:
-    """The :class:`SegmentChecker` of ``grid`` (kept for the last grid used; do not mutate it)."""
-    global _cache
-    if _cache is None or _cache[0] is not grid:
-        _cache = (grid, SegmentChecker(grid.blocked))
-    return _cache[1]
-
-
 @dataclass
 class PathProblem:
     """A route from ``start`` to ``goal`` (map metres) on ``grid``; call it on a population.
@@ -55,7 +50,10 @@ class PathProblem:
     >>> from affine import Affine
     >>> g = Grid(np.zeros((10, 10), np.uint8), Affine(1, 0, 0, 0, -1, 10))
     >>> p = PathProblem(g, (0.5, 0.5), (9.5, 0.5), waypoints=1)
-    >>> p([[5.0, 0.5], [5.0, 4.5]]).round(3).tolist()  # straight; 12.042 m + an 83.3° turn
+    >>> X = p.encode([[[5.0, 0.5]], [[5.0, 4.5]]])  # waypoints in map metres -> offsets
+    >>> X.tolist()
+    [[0.0, 0.0], [0.0, 4.0]]
+    >>> p(X).round(3).tolist()  # straight; 12.042 m + an 83.3° turn
     [9.0, 12.412]
     """
 
@@ -65,14 +63,15 @@ class PathProblem:
     encoding: str = "waypoints"
     waypoints: int = 3
     turn_weight: float = 1.0
-    checker: SegmentChecker = field(init=False, repr=False)
+    checker: SegmentChecker | None = field(default=None, repr=False)  # built when not given
 
     def __post_init__(self):
         if self.encoding not in ENCODINGS:
             raise ValueError(f"encoding must be one of {ENCODINGS}, not {self.encoding!r}")
         if self.encoding == "waypoints" and self.waypoints < 1:
             raise ValueError("waypoints must be >= 1")
-        self.checker = checker_for(self.grid)
+        if self.checker is None:
+            self.checker = SegmentChecker(self.grid.blocked)
         self._ends = np.array(
             [self.grid.to_cell_coords(*self.start), self.grid.to_cell_coords(*self.goal)], float
         )
@@ -88,8 +87,11 @@ class PathProblem:
             self.lower = np.full(g.width, -float(g.height))
             self.upper = np.full(g.width, float(g.height))
         else:
-            self.lower = np.tile([left, bottom], self.waypoints)
-            self.upper = np.tile([right, top], self.waypoints)
+            t = np.arange(1, self.waypoints + 1) / (self.waypoints + 1)
+            start, goal = np.asarray(self.start, float), np.asarray(self.goal, float)
+            self._base = start + t[:, None] * (goal - start)  # (K, 2) map metres
+            self.lower = (np.array([left, bottom]) - self._base).ravel()
+            self.upper = (np.array([right, top]) - self._base).ravel()
 
     @property
     def dim(self) -> int:
@@ -105,12 +107,20 @@ class PathProblem:
             mid[..., 0] = np.arange(k) + 0.5
             mid[..., 1] = np.clip(np.floor(self._line - X), 0, g.height - 1) + 0.5
         else:
-            mid = (X.reshape(n, k // 2, 2) - self._origin) / self._scale
+            mid = (X.reshape(n, k // 2, 2) + self._base - self._origin) / self._scale
         routes = np.empty((n, mid.shape[1] + 2, 2))
         routes[:, 0] = self._ends[0]
         routes[:, 1:-1] = mid
         routes[:, -1] = self._ends[1]
         return routes
+
+    def encode(self, waypoints) -> np.ndarray:
+        """Individuals ``(n, dim)`` for waypoints given in map metres ``(n, K, 2)``
+        (``waypoints`` encoding)."""
+        if self.encoding != "waypoints":
+            raise ValueError("encode() is for the waypoints encoding")
+        W = np.asarray(waypoints, float).reshape(-1, self.waypoints, 2)
+        return (W - self._base).reshape(W.shape[0], -1)
 
     def __call__(self, X) -> np.ndarray:
         """Cost of each individual of ``X`` ``(n, dim)``: one vectorised evaluation."""

@@ -26,8 +26,8 @@ from usvtool import metrics
 from usvtool.errors import UsvError
 from usvtool.grid import MARGIN, OBSTACLE, Grid
 from usvtool.plan import exact
-from usvtool.plan.problem import ENCODINGS, PathProblem, checker_for
-from usvtool.plan.raster import EPS
+from usvtool.plan.problem import ENCODINGS, PathProblem
+from usvtool.plan.raster import EPS, SegmentChecker
 from usvtool.plan.shorten import SUFFIX, shorten
 
 EXACT = ("astar", "anyangle")
@@ -141,7 +141,7 @@ def plan_route(
         mot=float(metrics.mot(points)),
         fitness=float(problem.cost(cells[None])[0]),
         planning_time_s=elapsed,
-        collision_free=is_collision_free(grid, points),
+        collision_free=is_collision_free(grid, points, checker),
         convergence=convergence,
     )
 
@@ -157,12 +157,13 @@ def route_length(grid: Grid, points) -> float:
     return geodesic_length(lon, lat)
 
 
-def is_collision_free(grid: Grid, points) -> bool:
+def is_collision_free(grid: Grid, points, checker: SegmentChecker | None = None) -> bool:
     """Whether the route (map metres) stays in the grid and touches no blocked cell."""
     col, row = grid.to_cell_coords(*np.asarray(points, float).T)
     cells = np.column_stack([col, row])
+    checker = checker or SegmentChecker(grid.blocked)
     try:
-        hit = checker_for(grid).collides(cells[:-1], cells[1:])
+        hit = checker.collides(cells[:-1], cells[1:])
     except ValueError:  # leaves the grid
         return False
     return not hit.any()
