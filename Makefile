@@ -25,7 +25,7 @@ charts: $(STAMP)
 	$(MAKE) -f pipelines/charts.mk BIN=$(abspath $(BIN)) all
 
 report: charts
-	$(MAKE) -f pipelines/report.mk BIN=$(abspath $(BIN)) report
+	$(MAKE) -j2 -f pipelines/report.mk BIN=$(abspath $(BIN)) report
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_preprocess.py
