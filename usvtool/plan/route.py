@@ -169,6 +169,11 @@ def is_collision_free(grid: Grid, points, checker: SegmentChecker | None = None)
     return not hit.any()
 
 
+def _m(value: float) -> str:
+    """Metres for messages: 0.1 m resolution, no exponent, no trailing zeros (332204.3, 21)."""
+    return f"{value:.1f}".rstrip("0").rstrip(".")
+
+
 def write_path_geojson(path: str | os.PathLike, route: Route, grid: Grid) -> None:
     """Write ``route`` as a GeoJSON FeatureCollection holding one LineString feature, atomically.
 
@@ -235,17 +240,17 @@ def _check_end(grid: Grid, name: str, point) -> tuple[float, float]:
     left, bottom, right, top = grid.bounds
     if not (left <= x <= right and bottom <= y <= top):
         raise UsvError(
-            f"{name} ({x:g}, {y:g}) is outside the grid (x {left:g}..{right:g}, "
-            f"y {bottom:g}..{top:g})"
+            f"{name} ({_m(x)}, {_m(y)}) is outside the grid (x {_m(left)}..{_m(right)}, "
+            f"y {_m(bottom)}..{_m(top)})"
         )
     col, row = (float(v) for v in grid.to_cell_coords(x, y))
     rows = slice(max(int(np.ceil(row - 1 - EPS)), 0), int(np.floor(row + EPS)) + 1)
     cols = slice(max(int(np.ceil(col - 1 - EPS)), 0), int(np.floor(col + EPS)) + 1)
     touched = grid.cells[rows, cols]
     if (touched == OBSTACLE).any():
-        raise UsvError(f"{name} ({x:g}, {y:g}) is on an obstacle")
+        raise UsvError(f"{name} ({_m(x)}, {_m(y)}) is on an obstacle")
     if (touched == MARGIN).any():
-        raise UsvError(f"{name} ({x:g}, {y:g}) is in the safety margin around an obstacle")
+        raise UsvError(f"{name} ({_m(x)}, {_m(y)}) is in the safety margin around an obstacle")
     return col, row
 
 
