@@ -84,6 +84,16 @@ def test_same_seed_same_file(local_grid, tmp_path):
     assert texts[0] == texts[1]
 
 
+def test_no_timing_gives_byte_identical_files(local_grid, tmp_path):
+    outs = [tmp_path / "a.geojson", tmp_path / "b.geojson"]
+    for out in outs:
+        result = run(local_grid, "--start", 3, 3, "--goal", 59, 39, "--algo", "iwso", "--pop", 8,
+                     "--iters", 10, "--seed", 9, "--no-timing", "-o", out)  # fmt: skip
+        assert result.exit_code == 0, result.output
+        assert json.loads(result.stdout)["planning_time_s"] is None
+    assert outs[0].read_bytes() == outs[1].read_bytes()
+
+
 @pytest.mark.parametrize("algo", ["astar", "anyangle", "astar+s", "gwo+s"])
 def test_every_kind_of_algorithm(local_grid, tmp_path, algo):
     out = tmp_path / "path.geojson"

@@ -85,6 +85,12 @@ def _params(ctx, param, values: tuple[str, ...]) -> dict:
     show_default=True,
     help="Weight of the ISSA turning energy in the cost.",
 )
+@click.option(
+    "--timing/--no-timing",
+    default=True,
+    show_default=True,
+    help="Record planning_time_s (--no-timing writes null: byte-identical outputs per seed).",
+)
 @output_option("Path GeoJSON to write.")
 def plan(
     grid_path: str,
@@ -100,6 +106,7 @@ def plan(
     encoding: str,
     params: dict,
     turn_weight: float,
+    timing: bool,
     output: str,
 ) -> None:
     """Plan a route from --start to --goal on GRID.tif and write it to -o as GeoJSON."""
@@ -119,6 +126,8 @@ def plan(
     route = plan_route(
         grid, start, goal, algo, pop, iters, seed, waypoints, encoding, params, turn_weight
     )
+    if not timing:
+        route.planning_time_s = None
     write_path_geojson(output, route, grid)
     emit(
         {

@@ -52,7 +52,7 @@ class Route:
     turns: int
     mot: float
     fitness: float
-    planning_time_s: float
+    planning_time_s: float | None  # None: not recorded (--no-timing)
     collision_free: bool
     convergence: list[float] = field(default_factory=list)
 
