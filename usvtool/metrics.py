@@ -1,7 +1,9 @@
 """The papers' path metrics: one implementation, used by every stage.
 
 A route is a polyline of ``m`` points; every function takes an array of shape ``(..., m, 2)``
-(one route, or a whole population at once) and returns one value per route (shape ``(...)``).
+(one route, or a whole population at once), or the routes' segments from :func:`segments`
+(complex, ``(..., m - 1)``: computed once when several metrics are wanted, as in the path
+cost), and returns one value per route (shape ``(...)``).
 
 Turn angle
     At an interior vertex, the deflection ``θ`` between the incoming and the outgoing segment
@@ -33,7 +35,7 @@ def path_length(points) -> np.ndarray:
     >>> float(path_length([(0, 0), (3, 4), (3, 10)]))
     11.0
     """
-    return np.abs(_segments(points)).sum(axis=-1)
+    return np.abs(segments(points)).sum(axis=-1)
 
 
 def turn_angles(points) -> np.ndarray:
@@ -45,7 +47,7 @@ def turn_angles(points) -> np.ndarray:
     >>> np.degrees(turn_angles([(0, 0), (1, 0), (1, 0), (2, 1), (3, 2)])).round(6).tolist()
     [0.0, 45.0, 0.0]
     """
-    seg = _segments(points)
+    seg = segments(points)
     if seg.shape[-1] < 2:
         return np.zeros(seg.shape[:-1] + (0,))
     real = seg != 0
@@ -60,8 +62,15 @@ def turn_angles(points) -> np.ndarray:
     return np.where(real[..., 1:] & (prev >= 0), angle, 0.0)
 
 
-def _segments(points) -> np.ndarray:
-    """The segments of routes ``(..., m, 2)`` as complex numbers ``dx + i dy``, ``(..., m - 1)``."""
+def segments(points) -> np.ndarray:
+    """The segments of routes ``(..., m, 2)`` as complex numbers ``dx + i dy``, ``(..., m - 1)``
+    (segments given again are returned as they are).
+
+    >>> segments([(0, 0), (3, 4), (3, 10)]).tolist()
+    [(3+4j), 6j]
+    """
+    if np.iscomplexobj(points):
+        return points
     p = np.asarray(points, float)
     return (p[..., 1:, :] - p[..., :-1, :]).view(np.complex128)[..., 0]
 

@@ -131,14 +131,17 @@ class PathProblem:
         routes = np.asarray(routes, float)
         n, m = routes.shape[:2]
         ell = self.grid.cell_size
+        seg = metrics.segments(routes)  # once, for the lengths, the turns and the checks
+        seg_length = np.abs(seg)
         hit, inside = self.checker.check_unchecked(
-            routes[:, :-1].reshape(-1, 2), routes[:, 1:].reshape(-1, 2)
+            routes[:, :-1].reshape(-1, 2), routes[:, 1:].reshape(-1, 2), seg_length.ravel()
         )
         n_col = hit.reshape(n, m - 1).sum(axis=1)
         inside = inside.reshape(n, m - 1).sum(axis=1)
-        length = metrics.path_length(routes)
-        turning = self.turn_weight * metrics.turn_cost(routes)
-        return ell * (length + turning + INSIDE_WEIGHT * inside) + self.penalty * n_col
+        turning = self.turn_weight * metrics.turn_cost(seg)
+        return ell * (seg_length.sum(axis=1) + turning + INSIDE_WEIGHT * inside) + (
+            self.penalty * n_col
+        )
 
     def to_map(self, route) -> np.ndarray:
         """Cell coordinates ``(m, 2)`` to map metres ``(m, 2)``."""

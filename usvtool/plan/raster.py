@@ -93,10 +93,14 @@ class SegmentChecker:
         """
         return self.check_unchecked(*self._segments(a, b))
 
-    def check_unchecked(self, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`check` for float ``(k, 2)`` arrays known to lie inside the grid (no checks)."""
+    def check_unchecked(
+        self, a: np.ndarray, b: np.ndarray, length: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`check` for float ``(k, 2)`` arrays known to lie inside the grid (no checks);
+        ``length`` may give the segments' lengths when the caller has them."""
         k = len(a)
-        length = np.hypot(b[:, 0] - a[:, 0], b[:, 1] - a[:, 1])
+        if length is None:
+            length = np.hypot(b[:, 0] - a[:, 0], b[:, 1] - a[:, 1])
         # samples (1 - t) a + t b: x of the k segments then y, as one small matrix product
         xy = np.stack([a.T, b.T], axis=-1).reshape(2 * k, 2) @ self._basis
         x, y = xy[:k], xy[k:]
