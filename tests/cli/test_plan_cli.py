@@ -179,3 +179,18 @@ def test_missing_output_directory_and_missing_grid(local_grid, tmp_path):
     result = run(tmp_path / "none.tif", "--start", 3, 3, "--goal", 5, 5, "-o", tmp_path / "p.json")
     assert result.exit_code == 1 and "no such file" in result.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_colliding_best_route_is_written_flagged_and_warned(tmp_path):
+    """One iteration of a tiny population cannot get round a wall: the route is still written,
+    flagged, and a warning goes to stderr."""
+    cells = np.zeros((10, 10), np.uint8)
+    cells[1:10, 5] = 1  # a wall with a gap at the top row only
+    grid = tmp_path / "wall.tif"
+    write_grid(grid, Grid(cells, Affine(1, 0, 0, 0, -1, 10)))
+    out = tmp_path / "r.geojson"
+    result = run(grid, "--start", 1.5, 1.5, "--goal", 8.5, 1.5, "--algo", "pso", "--pop", 2,
+                 "--iters", 1, "--waypoints", 1, "--seed", 0, "-o", out)  # fmt: skip
+    assert result.exit_code == 0
+    assert json.loads(result.stdout)["collision_free"] is False
+    assert "touches obstacle" in result.stderr and out.exists()

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import importlib
 import logging
-import sys
 
 import click
 
@@ -66,11 +65,19 @@ def cli(ctx: click.Context, verbose: int, quiet: int) -> None:
 
     Every command prints one JSON summary on stdout; messages go to stderr.
     """
-    level = logging.WARNING - 10 * (verbose - quiet)
-    logging.basicConfig(
-        stream=sys.stderr, level=max(logging.DEBUG, level), format="usvtool: %(message)s"
-    )
+    logger = logging.getLogger("usvtool")
+    logger.handlers[:] = [_StderrHandler()]
+    logger.setLevel(max(logging.DEBUG, logging.WARNING - 10 * (verbose - quiet)))
+    logger.propagate = False
     ctx.obj = {"verbose": verbose}
+
+
+class _StderrHandler(logging.Handler):
+    """Log records as ``usvtool: message`` lines on the current stderr (click's, so that test
+    runners that swap the stream see them)."""
+
+    def emit(self, record: logging.LogRecord) -> None:
+        click.echo(f"usvtool: {record.getMessage()}", err=True)
 
 
 def main() -> None:

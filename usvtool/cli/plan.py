@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import logging
 
 import click
 
@@ -10,6 +11,8 @@ from usvtool.cli.options import NON_NEGATIVE, emit, output_option, seed_option
 from usvtool.plan.problem import ENCODINGS
 from usvtool.plan.route import algorithm_names
 from usvtool.plan.shorten import SUFFIX
+
+log = logging.getLogger(__name__)
 
 
 def _algo(ctx, param, value: str) -> str:
@@ -128,6 +131,12 @@ def plan(
     )
     if not timing:
         route.planning_time_s = None
+    if not route.collision_free:
+        log.warning(
+            "%s: the best route %s found touches obstacle or margin cells (written with "
+            "collision_free false); try more --waypoints or --iters, another --seed or algorithm",
+            grid_path, algo,
+        )
     write_path_geojson(output, route, grid)
     emit(
         {
