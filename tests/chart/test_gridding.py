@@ -71,3 +71,22 @@ def test_absurd_grids_are_refused_with_a_suggestion():
         grid_frame((0, 0, 100, 50), 60.0)
     with pytest.raises(UsvError, match=r"use --cell-size \d"):
         grid_frame((0, 0, 100_000, 100_000), 1.0)
+
+
+def test_cell_shares_agree_with_gdal_average_resampling():
+    """Independent check: GDAL's area-weighted average (rasterio.warp.reproject) gives the same
+    shares on a random mask with 9.4 m pixels and 10 m cells (no common alignment)."""
+    from rasterio.warp import Resampling, reproject
+
+    rng = np.random.default_rng(5)
+    blocked = rng.random((97, 131)) < 0.3
+    src = tiny_frame(131, 97, 9.4)
+    dst = grid_frame(src.bounds, 10.0)
+    ours = occupancy_fraction(blocked, src, dst)
+    gdal = np.full((dst.height, dst.width), np.nan, np.float32)
+    reproject(blocked.astype(np.float32), gdal, src_transform=src.transform,
+              dst_transform=dst.transform, src_crs="EPSG:32619", dst_crs="EPSG:32619",
+              src_nodata=np.nan, dst_nodata=np.nan, resampling=Resampling.average)  # fmt: skip
+    inside = ~np.isnan(gdal)
+    assert inside.mean() > 0.95
+    assert np.abs(ours[inside] - gdal[inside]).max() < 1e-5
