@@ -27,8 +27,12 @@ charts: $(STAMP)
 report: charts
 	$(MAKE) -j2 -f pipelines/report.mk BIN=$(abspath $(BIN)) report
 
+# speed and quality figures (several minutes): preprocessing, planning, ISSA 20 x 20, Table 1
 bench: $(STAMP)
 	$(BIN)/python benchmarks/bench_preprocess.py
+	$(BIN)/python benchmarks/bench_plan.py
+	$(BIN)/python benchmarks/bench_issa20.py
+	$(BIN)/python benchmarks/bench_functions.py --runs 5 -j 2
 
 clean:
 	rm -rf $(BUILD)
