@@ -83,11 +83,11 @@ def render(
             "crs": frame.crs.to_string(),
             "land_fraction": round(land_fraction, 6),
             "soundings": soundings,
-            "timings": {
-                "read_s": round(read_s, 3),
-                "render_s": round(render_s, 3),
-                "write_s": round(total_s - read_s - render_s, 3),
-                "total_s": round(total_s, 3),
+            "timings_s": {
+                "read": round(read_s, 3),
+                "render": round(render_s, 3),
+                "write": round(total_s - read_s - render_s, 3),
+                "total": round(total_s, 3),
             },
         }
     )
