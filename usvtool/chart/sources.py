@@ -149,7 +149,7 @@ def read_s57(path: str | os.PathLike, min_depth: float, hazard_radius: float) ->
     check_input(path)
     cell = s57.read_cell(path)
     geoms = np.asarray(s57.obstacles(cell, min_depth, hazard_radius), dtype=object)
-    target = utm_crs(*cell.coverage.centroid.coords[0])
+    target = cell.utm  # the same zone the S-52 rendering of the cell uses
     return VectorChart(
         reproject_geometries(geoms, WGS84, target),
         reproject_geometries([cell.coverage], WGS84, target)[0],
