@@ -93,15 +93,3 @@ def test_repeated_points_do_not_hide_turns():
         assert metrics.turn_cost(doubled) == pytest.approx(metrics.turn_cost(route))
         assert metrics.mot(doubled) == pytest.approx(metrics.mot(route))
 
-
-@pytest.mark.parametrize(
-    "module",
-    ["usvtool.metrics", "usvtool.plan.raster", "usvtool.plan.problem", "usvtool.plan.exact",
-     "usvtool.plan.shorten"],
-)  # fmt: skip
-def test_docstring_examples(module):
-    import doctest
-    import importlib
-
-    result = doctest.testmod(importlib.import_module(module))
-    assert result.failed == 0 and result.attempted > 0
