@@ -26,6 +26,8 @@ def main(root: str) -> None:
     for r in rows:
         r["length_ratio"] = round(r["length_m"] / best[r["chart"]], 4) if r["chart"] in best else ""
         r["length_m"] = round(r["length_m"], 2)
+        r["mot"], r["fitness"] = round(r["mot"], 4), round(r["fitness"], 2)
+        r["planning_time_s"] = round(r["planning_time_s"], 3)
         writer.writerow(r)
 
 
