@@ -27,7 +27,8 @@ def main(root: str) -> None:
         r["length_ratio"] = round(r["length_m"] / best[r["chart"]], 4) if r["chart"] in best else ""
         r["length_m"] = round(r["length_m"], 2)
         r["mot"], r["fitness"] = round(r["mot"], 4), round(r["fitness"], 2)
-        r["planning_time_s"] = round(r["planning_time_s"], 3)
+        if r.get("planning_time_s") is not None:  # null with --no-timing
+            r["planning_time_s"] = round(r["planning_time_s"], 3)
         writer.writerow(r)
 
 
