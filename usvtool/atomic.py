@@ -53,6 +53,11 @@ def _umask() -> int:
     return mask
 
 
+def jsonable(value):
+    """``json`` default for NumPy values (arrays, scalars) and anything else as a string."""
+    return value.tolist() if hasattr(value, "tolist") else str(value)
+
+
 def write_text(path: str | os.PathLike, text: str) -> None:
     """Write ``text`` to ``path`` atomically."""
     with atomic_path(path) as tmp:

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from affine import Affine
 
-from usvtool.errors import UsvError
+from usvtool.errors import UsvError, check_input_file
 
 NAVIGABLE = 0
 OBSTACLE = 1
@@ -96,8 +96,7 @@ def read_grid(path: str | os.PathLike) -> Grid:
     import rasterio
     from rasterio.errors import RasterioIOError
 
-    if not os.path.exists(path):
-        raise UsvError(f"{path}: no such file")
+    check_input_file(path)
     try:
         with rasterio.open(path) as ds:
             if ds.count != 1:

@@ -26,7 +26,7 @@ import numpy as np
 import shapely
 
 from usvtool.chart.georef import WGS84, reproject_geometries, utm_crs
-from usvtool.errors import UsvError
+from usvtool.errors import UsvError, check_input_file
 
 LAND_LAYERS = ("LNDARE", "BUAARE", "PONTON", "HULKES", "FLODOC", "DRYDOC")
 DEPTH_LAYERS = ("DEPARE", "DRGARE")
@@ -85,10 +85,7 @@ class Cell:
 def read_cell(path, updates: bool = True) -> Cell:
     """Read an S-57 cell (``.000``); with ``updates``, apply the update files beside it."""
     path = Path(path)
-    if not path.is_file():
-        raise UsvError(f"{path}: no such file")
-    if path.stat().st_size == 0:
-        raise UsvError(f"{path}: empty file")
+    check_input_file(path)
     reader = _Reader(path, updates)
 
     land = np.concatenate([_polygons(reader.read(name)[0]) for name in LAND_LAYERS])

@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from usvtool.chart.georef import WGS84, Frame, reproject_geometries, utm_crs
-from usvtool.errors import UsvError
+from usvtool.errors import UsvError, check_input_file
 
 MIN_PIXELS = 4  # an image narrower than this cannot hold a chart
 
@@ -54,21 +54,12 @@ def chart_kind(path: str | os.PathLike) -> str:
     return "raster"
 
 
-def check_input(path: str | os.PathLike) -> None:
-    if not os.path.exists(path):
-        raise UsvError(f"{path}: no such file")
-    if os.path.isdir(path):
-        raise UsvError(f"{path}: is a directory, not a chart")
-    if os.path.getsize(path) == 0:
-        raise UsvError(f"{path}: empty file")
-
-
 def read_raster(path: str | os.PathLike, resolution: float | None = None) -> RasterChart:
     """Read an image, GeoTIFF or KAP chart (see the module docstring)."""
     import rasterio
     from rasterio.errors import NotGeoreferencedWarning, RasterioIOError
 
-    check_input(path)
+    check_input_file(path)
     kind = "kap" if chart_kind(path) == "kap" else None
     try:
         with warnings.catch_warnings():
@@ -115,7 +106,7 @@ def read_geojson(path: str | os.PathLike, bounds=None) -> VectorChart:
     import shapely
     from shapely.geometry import box, shape
 
-    check_input(path)
+    check_input_file(path)
     try:
         doc = json.loads(Path(path).read_text(encoding="utf-8"))
         features = doc["features"] if doc.get("type") == "FeatureCollection" else [doc]
@@ -146,7 +137,6 @@ def read_s57(path: str | os.PathLike, min_depth: float, hazard_radius: float) ->
     """Read an S-57 cell's obstacles and coverage, projected to the UTM zone of its centre."""
     from usvtool.chart import s57
 
-    check_input(path)
     cell = s57.read_cell(path)
     geoms = np.asarray(s57.obstacles(cell, min_depth, hazard_radius), dtype=object)
     target = cell.utm  # the same zone the S-52 rendering of the cell uses

@@ -8,6 +8,8 @@ import sys
 
 import click
 
+from usvtool.atomic import jsonable
+
 seed_option = click.option(
     "--seed", type=int, default=0, show_default=True, help="Seed of the random generator."
 )
@@ -53,11 +55,5 @@ NON_NEGATIVE = NonNegativeFloat()
 
 def emit(summary: dict) -> None:
     """Print the command's summary JSON on stdout."""
-    json.dump(summary, sys.stdout, indent=2, default=_jsonable)
+    json.dump(summary, sys.stdout, indent=2, default=jsonable)
     sys.stdout.write("\n")
-
-
-def _jsonable(value):
-    if hasattr(value, "tolist"):
-        return value.tolist()
-    return str(value)

@@ -180,7 +180,7 @@ def write_path_geojson(path: str | os.PathLike, route: Route, grid: Grid) -> Non
     With a CRS the coordinates are lon/lat (RFC 7946) and ``map_coordinates`` (with ``crs``)
     holds the grid's; without one they are the grid's local metres, and ``frame`` says so.
     """
-    from usvtool.atomic import write_text
+    from usvtool.atomic import jsonable, write_text
 
     points = np.asarray(route.points, float)
     props = route.figures()
@@ -200,7 +200,7 @@ def write_path_geojson(path: str | os.PathLike, route: Route, grid: Grid) -> Non
         "properties": props,
     }
     text = json.dumps(
-        {"type": "FeatureCollection", "features": [feature]}, indent=1, default=_jsonable
+        {"type": "FeatureCollection", "features": [feature]}, indent=1, default=jsonable
     )
     write_text(path, text + "\n")
 
@@ -216,11 +216,6 @@ def read_path_geojson(path: str | os.PathLike) -> tuple[np.ndarray, dict]:
         return np.asarray(coords, float), props
     except (OSError, ValueError, KeyError, IndexError, TypeError) as exc:
         raise UsvError(f"{path}: not a path GeoJSON ({exc})") from None
-
-
-def _jsonable(value):
-    """numpy scalars and arrays (optimizer parameters may hold them) as JSON values."""
-    return value.tolist() if hasattr(value, "tolist") else str(value)
 
 
 def check_ends(grid: Grid, start, goal) -> tuple[tuple[float, float], tuple[float, float]]:
