@@ -12,11 +12,13 @@ import shapely
 
 
 class ShapelyReference:
-    """Blocked cells of ``blocked`` (row 0 = y 0) as closed boxes in cell coordinates."""
+    """Blocked cells of ``blocked`` (row 0 = y 0) as closed boxes in cell coordinates, grown
+    by ``grow`` on every side."""
 
-    def __init__(self, blocked: np.ndarray):
+    def __init__(self, blocked: np.ndarray, grow: float = 0.0):
         rows, cols = np.nonzero(blocked)
-        self.tree = shapely.STRtree(shapely.box(cols, rows, cols + 1, rows + 1))
+        boxes = shapely.box(cols - grow, rows - grow, cols + 1 + grow, rows + 1 + grow)
+        self.tree = shapely.STRtree(boxes)
 
     def segments_hit(self, a, b) -> np.ndarray:
         """Whether each segment ``a[i] → b[i]`` intersects a blocked cell's closed square."""

@@ -9,7 +9,7 @@ import pytest
 from affine import Affine
 
 from usvtool.grid import Grid
-from usvtool.plan.problem import PathProblem
+from usvtool.plan.problem import PAD, PathProblem
 from usvtool.plan.raster import SegmentChecker
 
 
@@ -103,23 +103,89 @@ def test_the_cost_penalises_grazing_and_corners(one_cell):
     assert corner(corner.encode([[6.0, top - 6.0]]))[0] > corner.penalty
 
 
-def test_penalty_is_zero_exactly_for_collision_free_routes(reference):
+@pytest.mark.parametrize("spread", [40.0, 0.002])
+def test_penalty_is_zero_exactly_for_routes_clear_of_the_grown_squares(spread, reference):
+    """Penalised: every route touching a blocked square grown by PAD, so every colliding
+    route; free of charge: every other one. ``spread`` 0.002 puts the routes' waypoint within
+    thousandths of a cell of a blocked cell's corner, where the tolerance decides."""
     rng = np.random.default_rng(11)
     blocked = rng.random((40, 40)) < 0.01
     blocked[38:, :2] = blocked[:2, 38:] = False  # around the start and the goal
     g = grid_of(blocked)
-    p = PathProblem(g, (1.0, 1.0), (39.0, 39.0), waypoints=3)
-    X = rng.uniform(p.lower, p.upper, (500, p.dim))
+    if spread > 1:
+        p = PathProblem(g, (1.0, 1.0), (39.0, 39.0), waypoints=3)
+        X = rng.uniform(p.lower, p.upper, (500, p.dim))
+    else:  # one waypoint at a corner of a blocked cell, nudged
+        p = PathProblem(g, (1.0, 1.0), (39.0, 39.0), waypoints=1)
+        rows, cols = np.nonzero(blocked)
+        k = rng.integers(0, rows.size, 500)
+        corners = np.column_stack([cols[k], 40 - rows[k]]) - rng.integers(0, 2, (500, 2))
+        X = p.encode(corners + rng.normal(0, spread, (500, 2)))
     routes = p.decode(X)
-    ref = reference(blocked)
-    free = np.array([ref.route_free(r) for r in routes])
-    assert 0.05 < free.mean() < 0.95
+    clear = ~np.array([reference(blocked, PAD).segments_hit(r[:-1], r[1:]).any() for r in routes])
+    free = np.array([reference(blocked).route_free(r) for r in routes])
+    assert 0.05 < clear.mean() <= free.mean() < 0.95
+    if spread < 1:
+        assert (free & ~clear).sum() > 10  # free routes within PAD of a blocked cell
     from usvtool import metrics
 
     plain = metrics.path_length(routes) + metrics.turn_cost(routes)
     cost = p(X)
-    assert cost[free] == pytest.approx(plain[free])
-    assert np.all(cost[~free] > plain[~free] + p.penalty - 1e-9)
+    assert cost[clear] == pytest.approx(plain[clear])
+    assert np.all(cost[~clear] > plain[~clear] + p.penalty - 1e-9)
+
+
+def column_blocks(blocked, pad):
+    """Reference for SegmentChecker.inside: per column, the union of its blocked cells grown by
+    ``pad`` (open; with pad 0 each cell's open square on its own)."""
+    import shapely
+
+    shapes = []
+    for c in range(blocked.shape[1]):
+        rows = np.nonzero(blocked[:, c])[0]
+        boxes = [shapely.box(c - pad, r - pad, c + 1 + pad, r + 1 + pad) for r in rows]
+        if pad:
+            shapes += [shapely.union_all(boxes)] if boxes else []
+        else:
+            shapes += boxes
+    return [s.buffer(-1e-10, join_style="mitre") for s in shapes]
+
+
+@pytest.mark.parametrize("pad", [0.0, PAD, 0.2])
+def test_length_inside_agrees_with_shapely(pad):
+    rng = np.random.default_rng(int(pad * 1e4))
+    import shapely
+
+    for _ in range(6):
+        h, w = rng.integers(4, 14, 2)
+        blocked = rng.random((h, w)) < 0.3
+        chk = SegmentChecker(blocked, pad=pad)
+        a, b = random_segments(rng, 150, w, h)
+        a[:20, 1] = b[:20, 1] = np.floor(a[:20, 1]) + rng.choice([0.0, 0.5], 20)  # level
+        b[20:40, 0] = a[20:40, 0]  # north-south
+        b[40:50, 0] = np.clip(a[40:50, 0] + 1e-10, 0, w)  # nearly north-south
+        lines = shapely.linestrings(np.stack([a, b], 1))
+        blocks = column_blocks(blocked, pad)
+        expected = [sum(line.intersection(s).length for s in blocks) for line in lines]
+        # exact up to rounding, which nearly level pieces amplify (a y-difference over a slope)
+        assert chk.inside(a, b) == pytest.approx(expected, rel=1e-6, abs=1e-7)
+
+
+def test_length_inside_grows_linearly_to_the_grown_corner(one_cell):
+    """The segments x + y = 12 + u pass the corner (6, 6) of cell x 5..6, y 5..6 at u = 0, and
+    the grown square's corner (6 + pad, 6 + pad) at u = 2 pad: they cut a triangle of legs
+    2 pad - u off the grown square, so the length inside is √2 (2 pad - u) up to u = 2 pad
+    and 0 beyond: no flat stretch at the real corner for a search to settle on."""
+    pad = 1e-3
+    chk = SegmentChecker(one_cell, pad=pad)
+    u = np.array([-0.01, -pad, 0.0, pad, 1.9 * pad, 2 * pad + 1e-6, 0.01])
+    a, b = np.column_stack([np.full(7, 3.0), 9 + u]), np.column_stack([9 + u, np.full(7, 3.0)])
+    expected = np.sqrt(2) * np.maximum(2 * pad - u, 0.0)
+    assert chk.inside(a, b) == pytest.approx(expected, abs=1e-9)
+    touches, inside = chk.guide(a, b)
+    assert touches.tolist() == [True] * 5 + [False] * 2
+    assert inside == pytest.approx(expected, abs=1e-9)
+    assert chk.collides(a, b).tolist() == [True] * 3 + [False] * 4  # the exact check
 
 
 def test_waypoints_are_offsets_from_the_straight_line_bounded_by_the_extent():

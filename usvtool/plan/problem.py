@@ -22,12 +22,20 @@ Encodings (``x`` is one individual, bounds are :attr:`PathProblem.lower` / ``upp
 
 Cost (in metres; ``ℓ`` cell size, ``W × H`` grid)
 
-``cost = L + ℓ · w · T + S · n_col + 10 · L_in``, where ``L`` is the route length (IWSO eq. 28),
-``T`` the ISSA turning energy (:func:`usvtool.metrics.turn_cost`, in cell sides, weight ``w``),
-``n_col`` the number of segments touching a blocked cell (exact, :mod:`usvtool.plan.raster`),
-``S = ℓ (W + H)`` (longer than any sensible route, so any collision-free route beats a colliding
-one of similar length) and ``L_in`` the estimated length inside blocked cells, which guides the
-search out of land. The penalty is zero exactly when the route is collision-free.
+``cost = L + ℓ · w · T + S · n_col + 10 · ℓ · L_in``, where ``L`` is the route length (IWSO eq.
+28), ``T`` the ISSA turning energy (:func:`usvtool.metrics.turn_cost`, in cell sides, weight
+``w``), ``S = ℓ (W + H)`` (longer than any sensible route, so any collision-free route beats a
+colliding one of similar length), and, against the blocked squares grown by ``PAD`` = 1e-3 cell
+(:meth:`usvtool.plan.raster.SegmentChecker.guide`), ``n_col`` the number of segments touching
+them and ``L_in`` (cells) the length inside them, which guides the search out of land: exact
+near the boundary, estimated from samples for segments that run deep into land.
+
+The tolerance ``PAD`` matters. Against the exact squares, ``L_in`` falls to 0 at the obstacle's
+boundary while ``n_col`` is still 1, so a search converging onto the boundary from the colliding
+side (SSA and ISSA do, pulled towards the straight route) ends 1e-9 cell inside it: colliding.
+With the grown squares it ends 1e-3 cell outside: free. The penalty is zero exactly for routes
+that keep 1e-3 cell clear of every blocked cell; collision-free routes closer than that (a
+measure-zero set for a continuous search) are penalised like colliding ones.
 """
 
 from __future__ import annotations
@@ -42,6 +50,8 @@ from usvtool.plan.raster import SegmentChecker
 
 ENCODINGS = ("waypoints", "columns")
 INSIDE_WEIGHT = 10.0  # cost per metre of route inside blocked cells
+PAD = 1e-3  # cells by which the cost grows the blocked squares (module docstring)
+
 
 @dataclass
 class PathProblem:
@@ -71,7 +81,7 @@ class PathProblem:
         if self.encoding == "waypoints" and self.waypoints < 1:
             raise ValueError("waypoints must be >= 1")
         if self.checker is None:
-            self.checker = SegmentChecker(self.grid.blocked)
+            self.checker = SegmentChecker(self.grid.blocked, pad=PAD)
         self._ends = np.array(
             [self.grid.to_cell_coords(*self.start), self.grid.to_cell_coords(*self.goal)], float
         )
@@ -133,7 +143,7 @@ class PathProblem:
         ell = self.grid.cell_size
         seg = metrics.segments(routes)  # once, for the lengths, the turns and the checks
         seg_length = np.abs(seg)
-        hit, inside = self.checker.check_unchecked(
+        hit, inside = self.checker.guide(
             routes[:, :-1].reshape(-1, 2), routes[:, 1:].reshape(-1, 2), seg_length.ravel()
         )
         n_col = hit.reshape(n, m - 1).sum(axis=1)

@@ -31,6 +31,17 @@ The check (:meth:`SegmentChecker.check`) is exact under that definition and fast
 The result is the exact answer for the definition above, with no sampling step that can step
 over a one-cell obstacle: sampling only ever proves freedom (step 1) or collision (a sample in a
 blocked cell), everything else is decided cell by cell.
+
+Guidance for penalties (:meth:`SegmentChecker.guide`). The path problem's cost also needs how
+deep a colliding segment goes, and a tolerance: it asks for the squares grown by ``pad`` (1e-3
+cell), so that a search converging onto the boundary of its feasible set from the colliding side
+ends on a route that is truly free. ``guide`` gives, in the same pass, whether each segment
+touches a grown square and its length inside them, ``Σ_c`` (length inside column ``c``'s grown
+squares), exact: the strip of column ``c`` becomes ``[c - pad, c + 1 + pad]`` and, along the
+column, the grown length below ``y`` is read from running sums like the counts above. It is
+positive exactly when the segment enters an open grown square and varies continuously with the
+segment's ends (but for segments parallel to a cell edge); neighbouring columns' grown squares
+overlap in a seam ``2 pad`` wide, which is counted twice.
 """
 
 from __future__ import annotations
@@ -45,7 +56,9 @@ _SQRT2 = float(np.sqrt(2.0))
 class SegmentChecker:
     """Collision checks of segments against a boolean ``blocked`` mask (row 0 = y 0).
 
-    Segments must lie inside the grid's extent ``[0, width] × [0, height]``.
+    Segments must lie inside the grid's extent ``[0, width] × [0, height]``. ``pad`` (0 or in
+    (EPS, 1/2)) is the growth of the squares for :meth:`guide` and :meth:`inside`;
+    :meth:`collides` is always exact.
 
     >>> blocked = np.zeros((3, 3), bool); blocked[1, 1] = True
     >>> chk = SegmentChecker(blocked)
@@ -55,7 +68,10 @@ class SegmentChecker:
     [False, True, False]
     """
 
-    def __init__(self, blocked: np.ndarray, samples: int | None = None):
+    def __init__(self, blocked: np.ndarray, samples: int | None = None, pad: float = 0.0):
+        if not (pad == 0.0 or EPS < pad < 0.5):
+            raise ValueError("pad must be 0 or in (1e-9, 0.5)")
+        self.pad = d = float(pad)
         blocked = np.asarray(blocked, bool)
         self.height, self.width = h, w = blocked.shape
         # samples along each segment: about one per 20 cells of the grid's size, 4 to 24
@@ -73,31 +89,56 @@ class SegmentChecker:
         # one extra row and column (copies of the last ones) hold the points on the far edges
         clear = np.where(blocked, -1.0, clear)
         self._clear = np.pad(clear, ((0, 1), (0, 1)), mode="edge").ravel()
-        # running counts of blocked cells down each column, padded so that rows -1 … h and
-        # columns -1 … w (outside the grid, never blocked) need no bounds checks:
-        # _prefix[i, j] = blocked cells of column j - 1 in rows < i - 1
-        down = np.cumsum(blocked, axis=0)
-        down = np.vstack([np.zeros((2, w), np.int64), down, down[-1:]])
-        self._prefix = np.pad(down, ((0, 0), (1, 1))).ravel()
+        # Column tables padded so that rows -1 … h + 1 and columns -1 … w (outside the grid,
+        # never blocked) need no bounds checks; entry [r + 1, c + 1] is about row r, column c:
+        # _prefix: blocked cells of column c in rows < r;
+        # _below: length of column c's squares grown by pad (vertically) below y = r;
+        # _band: in row r, whether [r, r + pad), [r + pad, r + 1 - pad], (r + 1 - pad, r + 1]
+        #        are in them.
+        cells = np.pad(blocked, ((2, 3), (1, 1))).astype(float)  # rows -2 … h + 2
+        self._prefix = np.cumsum(np.vstack([np.zeros((1, w + 2)), cells[1:-2]]), axis=0).ravel()
+        mid = cells[1:-1]
+        band = np.stack([np.maximum(cells[:-2], mid), mid, np.maximum(mid, cells[2:])])
+        per_row = d * band[0] + (1.0 - 2.0 * d) * band[1] + d * band[2]
+        self._below = np.cumsum(np.vstack([np.zeros((1, w + 2)), per_row[:-1]]), axis=0).ravel()
+        self._band = band.reshape(3, -1)
 
     def collides(self, a, b) -> np.ndarray:
         """Whether each segment ``a[i] → b[i]`` (arrays ``(k, 2)``) touches a blocked cell."""
-        return self.check(a, b)[0]
+        return self._check(*self._segments(a, b), None, guide=False)[0]
 
-    def check(self, a, b) -> tuple[np.ndarray, np.ndarray]:
-        """``(collides, inside)`` for each segment ``a[i] → b[i]``.
-
-        ``collides`` is exact (module docstring); ``inside`` estimates the length of the segment
-        inside blocked cells (the share of samples in blocked cells times the length): a guide
-        for penalties, positive only for colliding segments.
-        """
-        return self.check_unchecked(*self._segments(a, b))
-
-    def check_unchecked(
+    def guide(
         self, a: np.ndarray, b: np.ndarray, length: np.ndarray | None = None
     ) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`check` for float ``(k, 2)`` arrays known to lie inside the grid (no checks);
-        ``length`` may give the segments' lengths when the caller has them."""
+        """``(touches, inside)`` against the squares grown by ``pad``, for penalties.
+
+        For float ``(k, 2)`` arrays known to lie inside the grid (no checks); ``length`` may give
+        the segments' lengths. ``touches`` is exact; ``inside`` is :meth:`inside` for a segment
+        with no sample in a blocked cell, else estimated as the share of its samples in blocked
+        cells times its length (it runs deep into land, and exactness is not needed there).
+        """
+        return self._check(a, b, length, guide=True)
+
+    def inside(self, a, b) -> np.ndarray:
+        """Length (cells) of each segment inside the squares grown by ``pad`` (module docstring).
+
+        With ``pad = 0``: the exact length inside the open blocked squares (a corner touch, or
+        a run along a cell edge, adds 0).
+
+        >>> chk = SegmentChecker(np.eye(2, dtype=bool))  # cells (0, 0) and (1, 1)
+        >>> chk.inside([[0.0, 0.5], [0.0, 0.0]], [[2.0, 0.5], [2.0, 2.0]]).tolist()
+        [1.0, 2.8284271247461903]
+        """
+        a, b = self._segments(a, b)
+        return self._traverse(a[:, 0], a[:, 1], b[:, 0], b[:, 1], guide=True)[1]
+
+    def touches(self, a, b) -> np.ndarray:
+        """Exact strip traversal of whole segments, without the filter (step 2 alone)."""
+        a, b = self._segments(a, b)
+        return self._traverse(a[:, 0], a[:, 1], b[:, 0], b[:, 1], guide=False)[0]
+
+    def _check(self, a, b, length, guide: bool) -> tuple[np.ndarray, np.ndarray | None]:
+        """The filter, then the traversal of the intervals it leaves (module docstring)."""
         k = len(a)
         if length is None:
             length = np.hypot(b[:, 0] - a[:, 0], b[:, 1] - a[:, 1])
@@ -110,17 +151,18 @@ class SegmentChecker:
         r = self._clear.take(cell)
         n_in = (r < 0).astype(float) @ self._ones
         hit = n_in > 0
-        unsure = r[:, :-1] + r[:, 1:] <= (length / (self.samples - 1) + _MARGIN)[:, None]
+        # a point farther than pad √2 from every blocked square is outside the grown ones
+        margin = _MARGIN + 2 * _SQRT2 * self.pad * guide
+        unsure = r[:, :-1] + r[:, 1:] <= (length / (self.samples - 1) + margin)[:, None]
         unsure[hit] = False
+        inside = n_in * length / self.samples if guide else None
         i, j = np.divmod(np.flatnonzero(unsure), self.samples - 1)
         if i.size:
-            hit[i[self._traverse(x[i, j], y[i, j], x[i, j + 1], y[i, j + 1])]] = True
-        return hit, n_in * length / self.samples
-
-    def touches(self, a, b) -> np.ndarray:
-        """Exact strip traversal of whole segments, without the filter (step 2 alone)."""
-        a, b = self._segments(a, b)
-        return self._traverse(a[:, 0], a[:, 1], b[:, 0], b[:, 1])
+            touch, within = self._traverse(x[i, j], y[i, j], x[i, j + 1], y[i, j + 1], guide)
+            hit[i[touch]] = True
+            if guide:
+                inside += np.bincount(i, within, k)
+        return hit, inside
 
     def _segments(self, a, b) -> tuple[np.ndarray, np.ndarray]:
         a = np.asarray(a, float).reshape(-1, 2)
@@ -131,32 +173,94 @@ class SegmentChecker:
             raise ValueError("segments must lie inside the grid extent")
         return a, b
 
-    def _traverse(self, x0, y0, x1, y1) -> np.ndarray:
-        """Whether each segment touches a blocked cell, column strip by column strip.
+    def _traverse(self, x0, y0, x1, y1, guide: bool) -> tuple[np.ndarray, np.ndarray | None]:
+        """``(touches, inside)`` of each segment, column strip by column strip.
 
-        Segments are oriented west to east, with slope ``k = dy/dx`` (0 when ``dx = 0``). In the
-        strip of column ``c`` a segment spans ``y`` from ``y0 + k·max(c - EPS - x0, 0)`` to
-        ``y1 - k·max(x1 - c - 1 - EPS, 0)``: its enlarged strip clipped to its ends. A north-south
-        segment (``k = 0``) thus spans all of ``[y0, y1]``.
+        ``touches``: whether the segment touches a blocked square enlarged by ``g`` on every
+        side, ``g = EPS`` (exact), or ``pad`` when ``guide``. Segments are oriented west to
+        east, with slope ``k = dy/dx`` (0 when ``dx = 0``). In the strip of column ``c`` a
+        segment spans ``y`` from ``y0 + k·max(c - g - x0, 0)`` to ``y1 - k·max(x1 - c - 1 - g,
+        0)``: its enlarged strip clipped to its ends. A north-south segment (``k = 0``) thus
+        spans all of ``[y0, y1]``. The rows of that span (the supercover) are tested against the
+        running counts.
+
+        ``inside`` (when ``guide``, else None): in the strip ``[c - pad, c + 1 + pad]`` the piece
+        spans ``y_lo … y_hi`` and is ``w √(1 + k²)`` long (``w`` its width); with ``G(y)`` the
+        grown length of the column below ``y`` (``_below`` at ``⌊y⌋`` plus the part of row
+        ``⌊y⌋``'s bands below ``y``) its share inside is ``(G(y_hi) - G(y_lo)) / (y_hi - y_lo)``,
+        or the band holding ``y_lo`` when the piece is level.
         """
+        g = max(self.pad, EPS) if guide else EPS
         back = x1 < x0
         x0, y0, x1, y1 = np.where(back, (x1, y1, x0, y0), (x0, y0, x1, y1))
         dx = x1 - x0
         slope = np.divide(y1 - y0, dx, out=np.zeros_like(dx), where=dx > 0)
-        first = np.ceil(x0 - (1 + EPS))  # columns first … floor(x1 + EPS), -1 … width
-        counts = (np.floor(x1 + EPS) - first + 1).astype(np.intp)
+        first = np.ceil(x0 - (1 + g))  # columns first … floor(x1 + g), -1 … width
+        counts = (np.floor(x1 + g) - first + 1).astype(np.intp)
         starts = np.cumsum(counts) - counts
         shift = first - starts  # column c = j + shift for the j-th strip overall
         stride = self.width + 2
-        per = np.stack([y0, y1, slope, shift - x0, dx - (1 + EPS), shift + (1 + stride)])
-        y0, y1, slope, to_c, span, base = np.repeat(per, counts, axis=1)
+        per = np.stack([y0, y1, slope, shift - x0, dx, shift + (1 + stride)])
+        y0, y1, slope, to_c, dx, base = np.repeat(per, counts, axis=1)
         j = np.arange(y0.size)
         cx = j + to_c  # c - x0
-        ya = y0 + slope * np.maximum(cx - EPS, 0.0)
-        yb = y1 - slope * np.maximum(span - cx, 0.0)
-        r0 = np.ceil(np.minimum(ya, yb) - (1 + EPS))  # rows r0 … r1, -1 … height
-        r1 = np.floor(np.maximum(ya, yb) + EPS)
-        base += j  # c + 1 + stride
+        ya = y0 + slope * np.minimum(np.maximum(cx - g, 0.0), dx)
+        yb = y1 - slope * np.minimum(np.maximum(dx - (1 + g) - cx, 0.0), dx)
+        lo, hi = np.minimum(ya, yb), np.maximum(ya, yb)
+        r0 = np.ceil(lo - (1 + g))  # rows r0 … r1, -1 … height
+        r1 = np.floor(hi + g)
+        base += j  # c + 1 + stride: table[r * stride + base] is about row r, column c
         above = self._prefix.take((r0 * stride + base).astype(np.intp))
         through = self._prefix.take(((r1 + 1) * stride + base).astype(np.intp))
-        return np.logical_or.reduceat(through > above, starts)
+        touches = np.logical_or.reduceat(through > above, starts)
+        if not guide:
+            return touches, None
+
+        d = self.pad
+        # only the segments touching the (grown) squares have a length inside them
+        take = np.flatnonzero(np.repeat(touches, counts))
+        inside = np.zeros(touches.size)
+        if not take.size:
+            return touches, inside
+        y0, y1, slope, dx, cx, lo, hi, base = (
+            v.take(take) for v in (y0, y1, slope, dx, cx, lo, hi, base)
+        )
+        if d != g:  # pad = 0: the exact strip [c, c + 1], not the EPS-enlarged one
+            ya = y0 + slope * np.minimum(np.maximum(cx, 0.0), dx)
+            yb = y1 - slope * np.minimum(np.maximum(dx - 1.0 - cx, 0.0), dx)
+            lo, hi = np.minimum(ya, yb), np.maximum(ya, yb)
+        ys = np.concatenate([lo, hi])
+        row = np.floor(ys)
+        f = ys - row  # position in the row, [0, 1)
+        at = (row * stride + np.concatenate([base, base])).astype(np.intp)
+        lower, middle, upper = self._band.take(at, axis=1)
+        grown = self._below.take(at) + (
+            lower * np.minimum(f, d)
+            + middle * np.minimum(np.maximum(f - d, 0.0), 1.0 - 2.0 * d)
+            + upper * np.maximum(f - (1.0 - d), 0.0)
+            if d
+            else middle * f
+        )
+        # share × piece = (G(y_hi) - G(y_lo)) · (length per unit of y: √(1 + k²) / |k|, 1 if
+        # north-south); a level piece instead takes its width √(1 + k²) times its band
+        n = lo.size
+        rise = hi - lo
+        steep = slope != 0
+        per_y = np.divide(np.hypot(1.0, slope), np.abs(slope), out=np.ones_like(slope), where=steep)
+        within = (grown[n:] - grown[:n]) * per_y
+        flat = np.flatnonzero(rise <= 1e-12)
+        if flat.size:
+            fl, cf, dxf = f[flat], cx[flat], dx[flat]
+            if d:
+                top = np.where(fl > 1 - d, upper[flat], middle[flat])
+                band = np.where(fl < d, lower[flat], top)
+            else:  # on a row edge: outside the open squares
+                band = middle[flat] * (fl != 0.0)
+            width = np.maximum(np.minimum(dxf, cf + (1.0 + d)) - np.maximum(cf - d, 0.0), 0.0)
+            within[flat] = np.where(dxf > 0, width * np.hypot(1.0, slope[flat]), 0.0) * band
+        if not dx.all():  # a north-south piece counts in the strips whose interior holds it
+            within *= (dx > 0) | ((cx < d) & (cx > -1.0 - d))
+        # pieces of one segment are consecutive in take: sum them per segment
+        owner = np.repeat(np.arange(touches.size), counts).take(take)
+        inside += np.bincount(owner, within, touches.size)
+        return touches, inside
