@@ -52,7 +52,8 @@ def turn_angles(points) -> np.ndarray:
         return np.zeros(seg.shape[:-1] + (0,))
     real = seg != 0
     if real.all():
-        return np.abs(np.angle(seg[..., 1:] * seg[..., :-1].conj()))
+        turn = seg[..., 1:] * seg[..., :-1].conj()
+        return np.abs(np.arctan2(turn.imag, turn.real))
     # u = the last non-degenerate segment before each segment (index -1 if none)
     n = real.shape[-1]
     prev = np.maximum.accumulate(np.where(real, np.arange(n), -1), axis=-1)[..., :-1]

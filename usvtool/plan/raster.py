@@ -143,7 +143,8 @@ class SegmentChecker:
         if length is None:
             length = np.hypot(b[:, 0] - a[:, 0], b[:, 1] - a[:, 1])
         # samples (1 - t) a + t b: x of the k segments then y, as one small matrix product
-        xy = np.stack([a.T, b.T], axis=-1).reshape(2 * k, 2) @ self._basis
+        ends = np.concatenate([a, b], axis=1).reshape(k, 2, 2).transpose(2, 0, 1)
+        xy = ends.reshape(2 * k, 2) @ self._basis
         x, y = xy[:k], xy[k:]
         cell = y.astype(np.intp)  # truncation: coordinates are >= 0 (up to rounding)
         cell *= self.width + 1
@@ -200,8 +201,10 @@ class SegmentChecker:
         starts = np.cumsum(counts) - counts
         shift = first - starts  # column c = j + shift for the j-th strip overall
         stride = self.width + 2
-        per = np.stack([y0, y1, slope, shift - x0, dx, shift + (1 + stride)])
-        y0, y1, slope, to_c, dx, base = np.repeat(per, counts, axis=1)
+        strip = np.repeat(np.arange(counts.size), counts)  # the segment of each strip
+        y0, y1, slope, to_c, dx, base = (
+            v.take(strip) for v in (y0, y1, slope, shift - x0, dx, shift + (1 + stride))
+        )
         j = np.arange(y0.size)
         cx = j + to_c  # c - x0
         ya = y0 + slope * np.minimum(np.maximum(cx - g, 0.0), dx)
@@ -218,10 +221,9 @@ class SegmentChecker:
 
         d = self.pad
         # only the segments touching the (grown) squares have a length inside them
-        take = np.flatnonzero(np.repeat(touches, counts))
-        inside = np.zeros(touches.size)
+        take = np.flatnonzero(touches.take(strip))
         if not take.size:
-            return touches, inside
+            return touches, np.zeros(touches.size)
         y0, y1, slope, dx, cx, lo, hi, base = (
             v.take(take) for v in (y0, y1, slope, dx, cx, lo, hi, base)
         )
@@ -260,7 +262,4 @@ class SegmentChecker:
             within[flat] = np.where(dxf > 0, width * np.hypot(1.0, slope[flat]), 0.0) * band
         if not dx.all():  # a north-south piece counts in the strips whose interior holds it
             within *= (dx > 0) | ((cx < d) & (cx > -1.0 - d))
-        # pieces of one segment are consecutive in take: sum them per segment
-        owner = np.repeat(np.arange(touches.size), counts).take(take)
-        inside += np.bincount(owner, within, touches.size)
-        return touches, inside
+        return touches, np.bincount(strip.take(take), within, touches.size)
