@@ -1,0 +1,84 @@
+"""Global path planning on the bundled charts' routes of `make report`, over several seeds.
+
+For each chart (the grids `make report` writes to build/grids/, the start and goal of
+pipelines/routes.mk) and optimizer: the collision-free rate over N seeds, and over the
+collision-free routes the median length relative to the any-angle optimum and the median
+planning time. `make report` plans one seed; this shows how typical that seed's outcome is.
+
+Usage: python benchmarks/bench_charts.py [--seeds 10] [--charts us5ma12m,grid50]
+       [--algos ssa,issa] [--pop 50] [--iters 300] [--waypoints 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import shlex
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from usvtool.chart.georef import WGS84, transformer
+from usvtool.grid import read_grid
+from usvtool.plan.optimizers import OPTIMIZERS
+from usvtool.plan.route import plan_route
+
+ROOT = Path(__file__).resolve().parent.parent
+GRIDS = ROOT / "build" / "grids"
+ROUTES_MK = ROOT / "pipelines" / "routes.mk"
+
+
+def bundled_ends() -> dict[str, list[str]]:
+    """``ENDS_<chart> := --start … --goal …`` of pipelines/routes.mk, as argument lists."""
+    pattern = re.compile(r"^ENDS_(\w+)\s*:=\s*(.+)$")
+    found = (pattern.match(line) for line in ROUTES_MK.read_text().splitlines())
+    return {m[1]: shlex.split(m[2]) for m in found if m}
+
+
+def map_points(grid, args: list[str]) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The start and goal in the grid's map metres from ``--start X Y --goal-lonlat LON LAT``…"""
+    points = {}
+    for i in range(0, len(args), 3):
+        name, xy = args[i].lstrip("-"), (float(args[i + 1]), float(args[i + 2]))
+        if name.endswith("-lonlat"):
+            name, xy = name.removesuffix("-lonlat"), transformer(WGS84, grid.crs).transform(*xy)
+        points[name] = tuple(float(v) for v in xy)
+    return points["start"], points["goal"]
+
+
+def main() -> None:
+    ends = bundled_ends()
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--seeds", type=int, default=10)
+    ap.add_argument("--charts", default="us5ma12m,head_of_passes,grid20,grid50")
+    ap.add_argument("--algos", default=",".join(OPTIMIZERS))
+    ap.add_argument("--pop", type=int, default=50)
+    ap.add_argument("--iters", type=int, default=300)
+    ap.add_argument("--waypoints", type=int, default=3)
+    args = ap.parse_args()
+    for chart in args.charts.split(","):
+        path = GRIDS / f"{chart}.tif"
+        if chart not in ends or not path.exists():
+            sys.exit(f"bench_charts: no route or no grid for {chart!r} (run `make report` first)")
+        grid = read_grid(path)
+        start, goal = map_points(grid, ends[chart])
+        optimum = plan_route(grid, start, goal, "anyangle").length_m
+        print(f"\n{chart}: {grid.width} x {grid.height} cells of {grid.cell_size:g} m, any-angle "
+              f"optimum {optimum:.1f} m; {args.seeds} seeds, {args.pop} x {args.iters}, "
+              f"{args.waypoints} waypoints")  # fmt: skip
+        print(f"{'algorithm':10} {'free':>5} {'len/opt':>8} {'time s':>7}  free seeds")
+        for algo in args.algos.split(","):
+            routes = [
+                plan_route(grid, start, goal, algo, args.pop, args.iters, seed, args.waypoints)
+                for seed in range(args.seeds)
+            ]
+            free = [r for r in routes if r.collision_free]
+            ratio = np.median([r.length_m for r in free]) / optimum if free else float("nan")
+            seconds = np.median([r.planning_time_s for r in routes])
+            seeds = ",".join(str(r.seed) for r in free)
+            print(f"{algo:10} {len(free) / len(routes):5.0%} {ratio:8.4f} {seconds:7.3f}  {seeds}")
+
+
+if __name__ == "__main__":
+    main()
