@@ -27,11 +27,13 @@ charts: $(STAMP)
 report: charts
 	$(MAKE) -j2 -f pipelines/report.mk BIN=$(abspath $(BIN)) report
 
-# speed and quality figures (several minutes): preprocessing, planning, ISSA 20 x 20, Table 1
-bench: $(STAMP)
+# speed and quality figures (several minutes): preprocessing, planning, ISSA 20 x 20, the
+# bundled charts' routes over 10 seeds, Table 1
+bench: charts
 	$(BIN)/python benchmarks/bench_preprocess.py
 	$(BIN)/python benchmarks/bench_plan.py
 	$(BIN)/python benchmarks/bench_issa20.py
+	$(BIN)/python benchmarks/bench_charts.py
 	$(BIN)/python benchmarks/bench_functions.py --runs 5 -j 2
 
 clean:
