@@ -132,6 +132,9 @@ def test_exact_routes_on_the_bundled_environments(env, reference):
     routes = {a: plan_route(env, (10, 10), (490, 490), a) for a in ("anyangle", "astar", "astar+s")}
     for r in routes.values():
         assert r.collision_free and ref.route_free(to_cells(env, r.points))
+        # the reported fitness of a free route is its length and turning cost (1 m cells):
+        # the exact routes pass corners within 1e-5 cell, inside the search's tolerance
+        assert r.fitness == pytest.approx(r.length_m + metrics.turn_cost(r.points), rel=1e-9)
     best = routes["anyangle"].length_m
     assert math.hypot(480, 480) < best <= routes["astar+s"].length_m <= routes["astar"].length_m
     assert routes["astar"].length_m <= best * (1 + (SQ2 - 1) / 2)  # octile bound, loosely

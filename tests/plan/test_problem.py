@@ -133,6 +133,10 @@ def test_penalty_is_zero_exactly_for_routes_clear_of_the_grown_squares(spread, r
     cost = p(X)
     assert cost[clear] == pytest.approx(plain[clear])
     assert np.all(cost[~clear] > plain[~clear] + p.penalty - 1e-9)
+    # the figure reported for a route: no tolerance, penalised exactly when colliding
+    exact = p.cost(routes, exact=True)
+    assert exact[free] == pytest.approx(plain[free])
+    assert np.all(exact[~free] > plain[~free] + p.penalty - 1e-9)
 
 
 def column_blocks(blocked, pad):

@@ -105,19 +105,19 @@ class SegmentChecker:
 
     def collides(self, a, b) -> np.ndarray:
         """Whether each segment ``a[i] → b[i]`` (arrays ``(k, 2)``) touches a blocked cell."""
-        return self._check(*self._segments(a, b), None, guide=False)[0]
+        return self._check(*self._segments(a, b), None, None)[0]
 
     def guide(
-        self, a: np.ndarray, b: np.ndarray, length: np.ndarray | None = None
+        self, a: np.ndarray, b: np.ndarray, length: np.ndarray | None = None, exact: bool = False
     ) -> tuple[np.ndarray, np.ndarray]:
-        """``(touches, inside)`` against the squares grown by ``pad``, for penalties.
+        """``(touches, inside)`` against the squares grown by ``pad`` (by 0 if ``exact``).
 
         For float ``(k, 2)`` arrays known to lie inside the grid (no checks); ``length`` may give
         the segments' lengths. ``touches`` is exact; ``inside`` is :meth:`inside` for a segment
         with no sample in a blocked cell, else estimated as the share of its samples in blocked
         cells times its length (it runs deep into land, and exactness is not needed there).
         """
-        return self._check(a, b, length, guide=True)
+        return self._check(a, b, length, 0.0 if exact else self.pad)
 
     def inside(self, a, b) -> np.ndarray:
         """Length (cells) of each segment inside the squares grown by ``pad`` (module docstring).
@@ -130,15 +130,17 @@ class SegmentChecker:
         [1.0, 2.8284271247461903]
         """
         a, b = self._segments(a, b)
-        return self._traverse(a[:, 0], a[:, 1], b[:, 0], b[:, 1], guide=True)[1]
+        return self._traverse(a[:, 0], a[:, 1], b[:, 0], b[:, 1], self.pad)[1]
 
     def touches(self, a, b) -> np.ndarray:
         """Exact strip traversal of whole segments, without the filter (step 2 alone)."""
         a, b = self._segments(a, b)
-        return self._traverse(a[:, 0], a[:, 1], b[:, 0], b[:, 1], guide=False)[0]
+        return self._traverse(a[:, 0], a[:, 1], b[:, 0], b[:, 1], None)[0]
 
-    def _check(self, a, b, length, guide: bool) -> tuple[np.ndarray, np.ndarray | None]:
-        """The filter, then the traversal of the intervals it leaves (module docstring)."""
+    def _check(self, a, b, length, pad: float | None) -> tuple[np.ndarray, np.ndarray | None]:
+        """The filter, then the traversal of the intervals it leaves (module docstring); the
+        inside lengths against the squares grown by ``pad``, unless it is None."""
+        guide = pad is not None
         k = len(a)
         if length is None:
             length = np.hypot(b[:, 0] - a[:, 0], b[:, 1] - a[:, 1])
@@ -153,13 +155,13 @@ class SegmentChecker:
         n_in = (r < 0).astype(float) @ self._ones
         hit = n_in > 0
         # a point farther than pad √2 from every blocked square is outside the grown ones
-        margin = _MARGIN + 2 * _SQRT2 * self.pad * guide
+        margin = _MARGIN + 2 * _SQRT2 * (pad or 0.0)
         unsure = r[:, :-1] + r[:, 1:] <= (length / (self.samples - 1) + margin)[:, None]
         unsure[hit] = False
         inside = n_in * length / self.samples if guide else None
         i, j = np.divmod(np.flatnonzero(unsure), self.samples - 1)
         if i.size:
-            touch, within = self._traverse(x[i, j], y[i, j], x[i, j + 1], y[i, j + 1], guide)
+            touch, within = self._traverse(x[i, j], y[i, j], x[i, j + 1], y[i, j + 1], pad)
             hit[i[touch]] = True
             if guide:
                 inside += np.bincount(i, within, k)
@@ -174,24 +176,28 @@ class SegmentChecker:
             raise ValueError("segments must lie inside the grid extent")
         return a, b
 
-    def _traverse(self, x0, y0, x1, y1, guide: bool) -> tuple[np.ndarray, np.ndarray | None]:
+    def _traverse(
+        self, x0, y0, x1, y1, pad: float | None
+    ) -> tuple[np.ndarray, np.ndarray | None]:
         """``(touches, inside)`` of each segment, column strip by column strip.
 
-        ``touches``: whether the segment touches a blocked square enlarged by ``g`` on every
-        side, ``g = EPS`` (exact), or ``pad`` when ``guide``. Segments are oriented west to
-        east, with slope ``k = dy/dx`` (0 when ``dx = 0``). In the strip of column ``c`` a
+        ``touches``: whether the segment touches a blocked square enlarged by ``g = max(pad,
+        EPS)`` on every side (EPS, exact, when ``pad`` is 0 or None). Segments are oriented west
+        to east, with slope ``k = dy/dx`` (0 when ``dx = 0``). In the strip of column ``c`` a
         segment spans ``y`` from ``y0 + k·max(c - g - x0, 0)`` to ``y1 - k·max(x1 - c - 1 - g,
         0)``: its enlarged strip clipped to its ends. A north-south segment (``k = 0``) thus
         spans all of ``[y0, y1]``. The rows of that span (the supercover) are tested against the
         running counts.
 
-        ``inside`` (when ``guide``, else None): in the strip ``[c - pad, c + 1 + pad]`` the piece
-        spans ``y_lo … y_hi`` and is ``w √(1 + k²)`` long (``w`` its width); with ``G(y)`` the
-        grown length of the column below ``y`` (``_below`` at ``⌊y⌋`` plus the part of row
-        ``⌊y⌋``'s bands below ``y``) its share inside is ``(G(y_hi) - G(y_lo)) / (y_hi - y_lo)``,
-        or the band holding ``y_lo`` when the piece is level.
+        ``inside`` (None when ``pad`` is None; else ``pad`` is 0 or the checker's): in the strip
+        ``[c - pad, c + 1 + pad]`` the piece spans ``y_lo … y_hi`` and is ``w √(1 + k²)`` long
+        (``w`` its width); with ``G(y)`` the grown length of the column below ``y`` (``_below``
+        at ``⌊y⌋`` plus the part of row ``⌊y⌋``'s bands below ``y``; with ``pad`` 0 the running
+        count plus ``blocked(⌊y⌋) (y - ⌊y⌋)``) its share inside is ``(G(y_hi) - G(y_lo)) / (y_hi
+        - y_lo)``, or the band holding ``y_lo`` when the piece is level.
         """
-        g = max(self.pad, EPS) if guide else EPS
+        d = pad or 0.0
+        g = max(d, EPS)
         back = x1 < x0
         x0, y0, x1, y1 = np.where(back, (x1, y1, x0, y0), (x0, y0, x1, y1))
         dx = x1 - x0
@@ -216,10 +222,9 @@ class SegmentChecker:
         above = self._prefix.take((r0 * stride + base).astype(np.intp))
         through = self._prefix.take(((r1 + 1) * stride + base).astype(np.intp))
         touches = np.logical_or.reduceat(through > above, starts)
-        if not guide:
+        if pad is None:
             return touches, None
 
-        d = self.pad
         # only the segments touching the (grown) squares have a length inside them
         take = np.flatnonzero(touches.take(strip))
         if not take.size:
@@ -235,14 +240,17 @@ class SegmentChecker:
         row = np.floor(ys)
         f = ys - row  # position in the row, [0, 1)
         at = (row * stride + np.concatenate([base, base])).astype(np.intp)
-        lower, middle, upper = self._band.take(at, axis=1)
-        grown = self._below.take(at) + (
-            lower * np.minimum(f, d)
-            + middle * np.minimum(np.maximum(f - d, 0.0), 1.0 - 2.0 * d)
-            + upper * np.maximum(f - (1.0 - d), 0.0)
-            if d
-            else middle * f
-        )
+        if d:
+            lower, middle, upper = self._band.take(at, axis=1)
+            grown = self._below.take(at) + (
+                lower * np.minimum(f, d)
+                + middle * np.minimum(np.maximum(f - d, 0.0), 1.0 - 2.0 * d)
+                + upper * np.maximum(f - (1.0 - d), 0.0)
+            )
+        else:  # the squares themselves: the running counts
+            grown = self._prefix.take(at)
+            middle = self._prefix.take(at + stride) - grown
+            grown += middle * f
         # share × piece = (G(y_hi) - G(y_lo)) · (length per unit of y: √(1 + k²) / |k|, 1 if
         # north-south); a level piece instead takes its width √(1 + k²) times its band
         n = lo.size

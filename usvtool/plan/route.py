@@ -139,7 +139,7 @@ def plan_route(
         length_m=route_length(grid, points),
         turns=int(metrics.turns(points)),
         mot=float(metrics.mot(points)),
-        fitness=float(problem.cost(cells[None])[0]),
+        fitness=float(problem.cost(cells[None], exact=True)[0]),
         planning_time_s=elapsed,
         collision_free=is_collision_free(grid, points, checker),
         convergence=convergence,
