@@ -10,7 +10,7 @@ Definition (what "collides" means everywhere in usvtool)
     enlarged by ``EPS`` = 1e-9 cell on every side (a segment passing within 1e-9 cell of a
     blocked square collides). Cells outside the grid are not obstacles.
 
-The check (:meth:`SegmentChecker.check`) is exact under that definition and fast:
+The check (:meth:`SegmentChecker.collides`) is exact under that definition and fast:
 
 1. Clearance filter. ``R(p)``, looked up in the cell holding ``p``, is a lower bound on the
    distance from ``p`` to every blocked square: for ``p`` in cell ``c`` and a blocked square of
@@ -35,8 +35,9 @@ blocked cell), everything else is decided cell by cell.
 Guidance for penalties (:meth:`SegmentChecker.guide`). The path problem's cost also needs how
 deep a colliding segment goes, and a tolerance: it asks for the squares grown by ``pad`` (1e-3
 cell), so that a search converging onto the boundary of its feasible set from the colliding side
-ends on a route that is truly free. ``guide`` gives, in the same pass, whether each segment
-touches a grown square and its length inside them, ``Σ_c`` (length inside column ``c``'s grown
+ends on a route that is truly free. ``guide`` gives, in the same pass (the filter then demands
+``R_k + R_{k+1} > s + 1e-6 + 2√2 pad``), whether each segment touches a grown square, exactly,
+and its length inside them, ``Σ_c`` (length inside column ``c``'s grown
 squares), exact: the strip of column ``c`` becomes ``[c - pad, c + 1 + pad]`` and, along the
 column, the grown length below ``y`` is read from running sums like the counts above. It is
 positive exactly when the segment enters an open grown square and varies continuously with the
