@@ -75,15 +75,14 @@ class PathProblem:
     encoding: str = "waypoints"
     waypoints: int = 3
     turn_weight: float = 1.0
-    checker: SegmentChecker | None = field(default=None, repr=False)  # built when not given
+    checker: SegmentChecker = field(init=False, repr=False)  # its pad is the cost's PAD
 
     def __post_init__(self):
         if self.encoding not in ENCODINGS:
             raise ValueError(f"encoding must be one of {ENCODINGS}, not {self.encoding!r}")
         if self.encoding == "waypoints" and self.waypoints < 1:
             raise ValueError("waypoints must be >= 1")
-        if self.checker is None:
-            self.checker = SegmentChecker(self.grid.blocked, pad=PAD)
+        self.checker = SegmentChecker(self.grid.blocked, pad=PAD)
         self._ends = np.array(
             [self.grid.to_cell_coords(*self.start), self.grid.to_cell_coords(*self.goal)], float
         )
