@@ -242,3 +242,20 @@ def test_bad_encoding_and_waypoints_are_refused():
         PathProblem(g, (0.5, 0.5), (4.5, 4.5), waypoints=0)
     with pytest.raises(ValueError, match="inside the grid"):
         SegmentChecker(np.zeros((5, 5), bool)).collides([[0, 0]], [[6, 1]])
+
+
+def test_waypoints_are_bounded_by_the_box_of_the_start_s_navigable_region():
+    """Hand-made 8 x 10 grid of 2 m cells (top edge y = 16 m): water in rows 0-2 and 5-6,
+    land in rows 3-4 but for a one-cell gap at column 7, land in row 7. With the gap the
+    region's box is rows 0-6: x 0..20 m, y 2..16 m; without it, rows 0-2: y 10..16 m."""
+    blocked = np.zeros((8, 10), bool)
+    blocked[3:5] = blocked[7] = True
+    blocked[3:5, 7] = False  # the gap
+    base = np.array([[7.0, 15.0], [13.0, 15.0]])  # 1/3 and 2/3 of the way
+    p = PathProblem(grid_of(blocked, cell=2.0), (1.0, 15.0), (19.0, 15.0), waypoints=2)
+    assert p.lower.tolist() == ([0.0, 2.0] - base).ravel().tolist()
+    assert p.upper.tolist() == ([20.0, 16.0] - base).ravel().tolist()
+    blocked[3:5, 7] = True
+    p = PathProblem(grid_of(blocked, cell=2.0), (1.0, 15.0), (19.0, 15.0), waypoints=2)
+    assert p.lower.tolist() == ([0.0, 10.0] - base).ravel().tolist()
+    assert p.upper.tolist() == ([20.0, 16.0] - base).ravel().tolist()

@@ -5,8 +5,12 @@ Encodings (``x`` is one individual, bounds are :attr:`PathProblem.lower` / ``upp
 ``waypoints`` (default)
     ``x = (dx_1, dy_1, …, dx_K, dy_K)``: ``K`` free waypoints, each given in map metres as its
     offset from its base point ``b_k = start + k / (K + 1) (goal - start)`` on the straight
-    start-goal line and bounded so that it stays inside the grid's extent; the route is start →
-    waypoints → goal joined by straight segments. Centring the variables on the straight route
+    start-goal line and bounded so that it stays inside the bounding box of the navigable region
+    holding the start and goal (:func:`usvtool.plan.raster.region`; the grid's extent when the
+    water reaches every edge): a waypoint outside that box lies in a cell that no collision-free
+    route reaches, so no such route is lost, and on a chart whose water is a thin strip of a wide
+    grid the box is several times smaller. The route is start → waypoints → goal joined by
+    straight segments. Centring the variables on the straight route
     matters: WSO/IWSO (eqs. 4, 9), SSA/ISSA (eq. 1) and others scale positions towards the
     origin, which with absolute coordinates is the map's corner (their routes then crowd it,
     docs/planning.md has the figures); with offsets it is the straight route, a fair prior for
@@ -48,7 +52,7 @@ import numpy as np
 
 from usvtool import metrics
 from usvtool.grid import Grid
-from usvtool.plan.raster import SegmentChecker
+from usvtool.plan.raster import SegmentChecker, region
 
 ENCODINGS = ("waypoints", "columns")
 INSIDE_WEIGHT = 10.0  # cost per metre of route inside blocked cells
@@ -87,7 +91,7 @@ class PathProblem:
             [self.grid.to_cell_coords(*self.start), self.grid.to_cell_coords(*self.goal)], float
         )
         g = self.grid
-        left, bottom, right, top = g.bounds
+        left, _, _, top = g.bounds
         self._origin = np.array([left, top])
         self._scale = np.array([g.cell_size, -g.cell_size])
         self.penalty = g.cell_size * (g.width + g.height)
@@ -101,8 +105,12 @@ class PathProblem:
             t = np.arange(1, self.waypoints + 1) / (self.waypoints + 1)
             start, goal = np.asarray(self.start, float), np.asarray(self.goal, float)
             self._base = start + t[:, None] * (goal - start)  # (K, 2) map metres
-            self.lower = (np.array([left, bottom]) - self._base).ravel()
-            self.upper = (np.array([right, top]) - self._base).ravel()
+            water = region(g.blocked, self._ends[0])
+            rows, cols = np.flatnonzero(water.any(axis=1)), np.flatnonzero(water.any(axis=0))
+            x0, y0 = g.to_map(cols[0], rows[-1] + 1)  # the box's south-west corner
+            x1, y1 = g.to_map(cols[-1] + 1, rows[0])
+            self.lower = (np.array([x0, y0]) - self._base).ravel()
+            self.upper = (np.array([x1, y1]) - self._base).ravel()
 
     @property
     def dim(self) -> int:

@@ -27,7 +27,7 @@ from usvtool.errors import UsvError
 from usvtool.grid import MARGIN, OBSTACLE, Grid
 from usvtool.plan import exact
 from usvtool.plan.problem import ENCODINGS, PathProblem
-from usvtool.plan.raster import EPS, SegmentChecker
+from usvtool.plan.raster import EPS, SegmentChecker, region
 from usvtool.plan.shorten import SUFFIX, shorten
 
 EXACT = ("astar", "anyangle")
@@ -250,17 +250,7 @@ def _check_end(grid: Grid, name: str, point) -> tuple[float, float]:
 
 
 def _check_connected(grid: Grid, start, goal) -> None:
-    """Refuse a request whose start and goal lie in different navigable regions.
-
-    A route can pass between two free cells only through a shared edge (crossing a corner
-    touches the other two cells), so the regions are the 4-connected components.
-    """
-    from scipy.ndimage import label
-
-    labels, _ = label(~grid.blocked)
-
-    def region(c):
-        return labels[min(int(c[1]), grid.height - 1), min(int(c[0]), grid.width - 1)]
-
-    if region(start) != region(goal):
+    """Refuse a request whose start and goal lie in different navigable regions."""
+    h, w = grid.blocked.shape
+    if not region(grid.blocked, start)[min(int(goal[1]), h - 1), min(int(goal[0]), w - 1)]:
         raise UsvError("no navigable connection between start and goal")
