@@ -10,8 +10,8 @@ Encodings (``x`` is one individual, bounds are :attr:`PathProblem.lower` / ``upp
     water reaches every edge): a waypoint outside that box lies in a cell that no collision-free
     route reaches, so no such route is lost, and on a chart whose water is a thin strip of a wide
     grid the box is several times smaller. The route is start → waypoints → goal joined by
-    straight segments. Centring the variables on the straight route
-    matters: WSO/IWSO (eqs. 4, 9), SSA/ISSA (eq. 1) and others scale positions towards the
+    straight segments. Centring the variables on the straight route matters: WSO/IWSO
+    (eqs. 4, 9), SSA/ISSA (eq. 1) and others scale positions towards the
     origin, which with absolute coordinates is the map's corner (their routes then crowd it,
     docs/planning.md has the figures); with offsets it is the straight route, a fair prior for
     every algorithm.
