@@ -11,6 +11,7 @@ from affine import Affine
 from usvtool.grid import Grid
 from usvtool.plan.problem import PAD, PathProblem
 from usvtool.plan.raster import SegmentChecker
+from usvtool.plan.route import plan_route
 
 
 def grid_of(blocked, cell=1.0) -> Grid:
@@ -259,3 +260,35 @@ def test_waypoints_are_bounded_by_the_box_of_the_start_s_navigable_region():
     p = PathProblem(grid_of(blocked, cell=2.0), (1.0, 15.0), (19.0, 15.0), waypoints=2)
     assert p.lower.tolist() == ([0.0, 10.0] - base).ravel().tolist()
     assert p.upper.tolist() == ([20.0, 16.0] - base).ravel().tolist()
+
+
+def test_the_search_is_in_units_of_the_start_goal_distance():
+    """Hand-computed: start (1, 15), goal (19, 15) on 2 m cells, D = 18 m."""
+    g = grid_of(np.zeros((8, 10), bool), cell=2.0)
+    p = PathProblem(g, (1.0, 15.0), (19.0, 15.0), waypoints=1)
+    s = p.search()
+    assert p.unit == 18.0 and s.scale == 18.0
+    assert s.lower.tolist() == pytest.approx([-10 / 18, -15 / 18])  # box x 0..20, y 0..16
+    assert s.upper.tolist() == pytest.approx([10 / 18, 1 / 18])  # around (10, 15)
+    Z = np.array([[0.0, 0.0], [0.0, -0.5]])  # straight; the waypoint at (10, 6): 9 m south
+    expected = p(Z * 18.0) / 18.0
+    assert s(Z) == pytest.approx(expected)
+    assert s(Z)[0] == pytest.approx(1.0)
+    columns = PathProblem(grid_of(np.zeros((20, 20), bool), cell=2.0), (1, 1), (39, 39), "columns")
+    assert columns.search().scale == 1.0 and columns.unit == 2.0  # cells, cost in cells
+
+
+@pytest.mark.parametrize("algo", ["ssa", "boa"])
+def test_the_search_is_the_same_at_any_scale(algo):
+    """One geometry on 1 m and on 4 m cells (a power of two keeps the arithmetic exact) gives
+    one route: SSA's unit producer step and BOA's fragrance of the cost have a fixed size,
+    so in metres they would search differently."""
+    blocked = np.zeros((20, 30), bool)
+    blocked[4:16, 12:15] = True
+    routes = [
+        plan_route(grid_of(blocked, c), (1.5 * c, 10.5 * c), (28.5 * c, 10.5 * c), algo, 20, 40, 2)
+        for c in (1.0, 4.0)
+    ]
+    assert routes[1].points / 4.0 == pytest.approx(routes[0].points, rel=1e-12, abs=1e-9)
+    assert routes[1].convergence == pytest.approx(np.multiply(routes[0].convergence, 4.0))
+    assert routes[0].length_m > 18.0  # around the wall, not through it

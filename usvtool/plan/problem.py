@@ -24,6 +24,18 @@ Encodings (``x`` is one individual, bounds are :attr:`PathProblem.lower` / ``upp
     whichever corner the route starts from, and makes ``x = 0`` the straight route rather than
     the route along an edge of the grid (SSA and ISSA pull producers towards ``x = 0``).
 
+What the optimizers see (:meth:`PathProblem.search`)
+    A dimensionless view of the problem: the ``waypoints`` variables in units of the straight
+    start-goal distance ``D`` and the cost in units of ``D`` (the ``columns`` variables are
+    already in cells; their cost is counted in cells). Several published update rules have a
+    term of fixed size (SSA's producer step ``x + Q L`` with ``Q ~ N(0, 1)``, its fly-off
+    ``Q exp((x_worst - x) / i^2)``, its scouts' ``K |x - x_worst| / (f - f_w)``, BOA's fragrance
+    ``c I^a``), tuned on benchmark functions whose variables and costs are of order 1-100; in
+    metres their effect would depend on the chart's size and units (on Boston, offsets of
+    10 000 m make the fly-off overflow to the box's corners). In units of ``D`` the same
+    geometry gives the same search whatever its scale. The optimizers' best costs are reported
+    back in metres.
+
 Cost (in metres; ``ℓ`` cell size, ``W × H`` grid)
 
 ``cost = L + ℓ · w · T + S · n_col + 10 · ℓ · L_in``, where ``L`` is the route length (IWSO eq.
@@ -164,7 +176,47 @@ class PathProblem:
             self.penalty * n_col
         )
 
+    @property
+    def unit(self) -> float:
+        """Metres per unit of :meth:`search`'s cost: ``D`` (at least one cell) for ``waypoints``,
+        the cell size for ``columns``."""
+        if self.encoding == "columns":
+            return self.grid.cell_size
+        return max(float(np.hypot(*np.subtract(self.goal, self.start))), self.grid.cell_size)
+
+    def search(self) -> Search:
+        """The dimensionless view the optimizers minimise (module docstring).
+
+        >>> from affine import Affine
+        >>> g = Grid(np.zeros((10, 10), np.uint8), Affine(1, 0, 0, 0, -1, 10))
+        >>> s = PathProblem(g, (0.5, 0.5), (9.5, 0.5), waypoints=1).search()  # D = 9 m
+        >>> s.lower.tolist(), s.upper.tolist()  # the box: x 0 … 10, y 0 … 10 around (5, 0.5)
+        ([-0.5555555555555556, -0.05555555555555555], [0.5555555555555556, 1.0555555555555556])
+        >>> s(np.array([[0.0, 0.0]])).tolist()  # the straight route: 9 m = 1 D
+        [1.0]
+        """
+        scale = 1.0 if self.encoding == "columns" else self.unit
+        return Search(self, scale, self.lower / scale, self.upper / scale)
+
     def to_map(self, route) -> np.ndarray:
         """Cell coordinates ``(m, 2)`` to map metres ``(m, 2)``."""
         route = np.asarray(route, float)
         return np.column_stack(self.grid.to_map(route[:, 0], route[:, 1]))
+
+
+@dataclass(frozen=True)
+class Search:
+    """:class:`PathProblem` as the optimizers see it: variables ``z = x / scale`` within
+    ``lower … upper``, cost in units of ``problem.unit``; call it on a population ``(n, dim)``."""
+
+    problem: PathProblem
+    scale: float  # the problem's variable units per unit of z
+    lower: np.ndarray
+    upper: np.ndarray
+
+    def __call__(self, Z) -> np.ndarray:
+        return self.problem(self.to_problem(Z)) / self.problem.unit
+
+    def to_problem(self, Z) -> np.ndarray:
+        """The problem's variables ``x`` of the search's ``z``."""
+        return np.asarray(Z, float) * self.scale

@@ -118,9 +118,10 @@ def plan_route(
             optimizer = make_optimizer(base, pop, iters, seed, **(params or {}))
         except ValueError as exc:
             raise UsvError(str(exc)) from None
-        result = optimizer.minimize(problem, problem.lower, problem.upper)
-        cells = problem.decode(result.x)[0]
-        convergence = result.history.tolist()
+        search = problem.search()
+        result = optimizer.minimize(search, search.lower, search.upper)
+        cells = problem.decode(search.to_problem(result.x))[0]
+        convergence = (result.history * problem.unit).tolist()  # metres
         parameters = {**result.params, "encoding": encoding, "turn_weight": turn_weight}
         if encoding == "waypoints":
             parameters["waypoints"] = waypoints
