@@ -20,6 +20,7 @@ from __future__ import annotations
 import json
 import os
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 from affine import Affine
@@ -68,6 +69,27 @@ class Grid:
     def blocked(self) -> np.ndarray:
         """Boolean mask of the cells a route must not enter (obstacle or margin)."""
         return self.cells != NAVIGABLE
+
+    @cached_property
+    def regions(self) -> np.ndarray:
+        """Labels of the navigable regions (1, 2, …; 0 on blocked cells), computed once per grid.
+
+        A region is a 4-connected component of the free cells: a route passes from one free
+        cell to another only through a shared edge (crossing a corner touches the other two
+        cells), so no collision-free route leaves its region.
+
+        >>> g = Grid(np.array([[0, 1, 0], [1, 0, 0], [0, 0, 0]], np.uint8), Affine.identity())
+        >>> g.regions.tolist()  # the north-west cell is cut off
+        [[1, 0, 2], [0, 2, 2], [2, 2, 2]]
+        """
+        from scipy.ndimage import label
+
+        return label(~self.blocked)[0]
+
+    def region_at(self, col: float, row: float) -> int:
+        """Label of the region holding the continuous cell coordinates ``(col, row)`` (the far
+        edges count in the last row and column)."""
+        return int(self.regions[min(int(row), self.height - 1), min(int(col), self.width - 1)])
 
     def to_cell_coords(self, x, y):
         """Map metres to continuous (col, row) cell coordinates (cell centres at .5)."""

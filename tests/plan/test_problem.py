@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from affine import Affine
 
+from usvtool.errors import UsvError
 from usvtool.grid import Grid
 from usvtool.plan.problem import PAD, PathProblem
 from usvtool.plan.raster import SegmentChecker
@@ -292,3 +293,21 @@ def test_the_search_is_the_same_at_any_scale(algo):
     assert routes[1].points / 4.0 == pytest.approx(routes[0].points, rel=1e-12, abs=1e-9)
     assert routes[1].convergence == pytest.approx(np.multiply(routes[0].convergence, 4.0))
     assert routes[0].length_m > 18.0  # around the wall, not through it
+
+
+def test_a_plan_labels_the_grid_s_regions_once(monkeypatch):
+    import scipy.ndimage
+
+    calls = []
+    label = scipy.ndimage.label
+    monkeypatch.setattr(scipy.ndimage, "label", lambda a: calls.append(a.shape) or label(a))
+    blocked = np.zeros((8, 10), bool)
+    blocked[3:5] = True
+    blocked[3:5, 7] = False
+    g = grid_of(blocked)
+    route = plan_route(g, (1.0, 7.5), (1.0, 0.5), "gwo", 10, 5, 0)  # check, box, connectivity
+    assert calls == [(8, 10)]
+    assert g.regions.max() == 1 and route.points.shape[1] == 2
+    blocked[3:5, 7] = True
+    with pytest.raises(UsvError, match="no navigable connection"):
+        plan_route(grid_of(blocked), (1.0, 7.5), (1.0, 0.5), "gwo", 10, 5, 0)

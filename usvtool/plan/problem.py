@@ -6,7 +6,7 @@ Encodings (``x`` is one individual, bounds are :attr:`PathProblem.lower` / ``upp
     ``x = (dx_1, dy_1, …, dx_K, dy_K)``: ``K`` free waypoints, each given in map metres as its
     offset from its base point ``b_k = start + k / (K + 1) (goal - start)`` on the straight
     start-goal line and bounded so that it stays inside the bounding box of the navigable region
-    holding the start and goal (:func:`usvtool.plan.raster.region`; the grid's extent when the
+    holding the start and goal (:attr:`usvtool.grid.Grid.regions`; the grid's extent when the
     water reaches every edge): a waypoint outside that box lies in a cell that no collision-free
     route reaches, so no such route is lost, and on a chart whose water is a thin strip of a wide
     grid the box is several times smaller. The route is start → waypoints → goal joined by
@@ -64,7 +64,7 @@ import numpy as np
 
 from usvtool import metrics
 from usvtool.grid import Grid
-from usvtool.plan.raster import SegmentChecker, region
+from usvtool.plan.raster import SegmentChecker
 
 ENCODINGS = ("waypoints", "columns")
 INSIDE_WEIGHT = 10.0  # cost per metre of route inside blocked cells
@@ -117,7 +117,7 @@ class PathProblem:
             t = np.arange(1, self.waypoints + 1) / (self.waypoints + 1)
             start, goal = np.asarray(self.start, float), np.asarray(self.goal, float)
             self._base = start + t[:, None] * (goal - start)  # (K, 2) map metres
-            water = region(g.blocked, self._ends[0])
+            water = g.regions == g.region_at(*self._ends[0])
             rows, cols = np.flatnonzero(water.any(axis=1)), np.flatnonzero(water.any(axis=0))
             x0, y0 = g.to_map(cols[0], rows[-1] + 1)  # the box's south-west corner
             x1, y1 = g.to_map(cols[-1] + 1, rows[0])

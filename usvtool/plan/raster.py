@@ -54,25 +54,6 @@ _MARGIN = 1e-6  # extra clearance the filter demands, >> √2·EPS
 _SQRT2 = float(np.sqrt(2.0))
 
 
-def region(blocked: np.ndarray, point) -> np.ndarray:
-    """Mask of the navigable region holding ``point`` (cell coordinates ``(x, y)``, in a free
-    cell): the 4-connected component of the free cells. A route passes from one free cell to
-    another only through a shared edge (crossing a corner touches the other two cells), so no
-    collision-free route leaves the region.
-
-    >>> blocked = np.array([[0, 1, 0], [1, 0, 0], [0, 0, 0]], bool)
-    >>> region(blocked, (0.5, 0.5)).astype(int).tolist()  # the corner cell is cut off
-    [[1, 0, 0], [0, 0, 0], [0, 0, 0]]
-    >>> int(region(blocked, (2.5, 2.5)).sum())
-    6
-    """
-    from scipy.ndimage import label
-
-    h, w = blocked.shape
-    labels, _ = label(~blocked)
-    return labels == labels[min(int(point[1]), h - 1), min(int(point[0]), w - 1)]
-
-
 class SegmentChecker:
     """Collision checks of segments against a boolean ``blocked`` mask (row 0 = y 0).
 

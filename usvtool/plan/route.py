@@ -27,7 +27,7 @@ from usvtool.errors import UsvError
 from usvtool.grid import MARGIN, OBSTACLE, Grid
 from usvtool.plan import exact
 from usvtool.plan.problem import ENCODINGS, PathProblem
-from usvtool.plan.raster import EPS, SegmentChecker, region
+from usvtool.plan.raster import EPS, SegmentChecker
 from usvtool.plan.shorten import SUFFIX, shorten
 
 EXACT = ("astar", "anyangle")
@@ -252,6 +252,5 @@ def _check_end(grid: Grid, name: str, point) -> tuple[float, float]:
 
 def _check_connected(grid: Grid, start, goal) -> None:
     """Refuse a request whose start and goal lie in different navigable regions."""
-    h, w = grid.blocked.shape
-    if not region(grid.blocked, start)[min(int(goal[1]), h - 1), min(int(goal[0]), w - 1)]:
+    if grid.region_at(*start) != grid.region_at(*goal):
         raise UsvError("no navigable connection between start and goal")
