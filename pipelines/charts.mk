@@ -3,6 +3,8 @@
 BIN ?= .venv/bin
 USV := $(BIN)/usvtool -q
 OUT := build/grids
+# every output depends on the code that makes it: a change re-runs the stages
+SRC := $(shell find usvtool -name '*.py')
 
 GRIDS := env1 env2 grid20 grid50 us5ma12m head_of_passes
 all: $(GRIDS:%=$(OUT)/%.tif)
@@ -11,14 +13,14 @@ $(OUT):
 	mkdir -p $@
 
 # synthetic maps: 1 m cells; env maps keep a 3 m margin, the grid maps are used as drawn
-$(OUT)/env%.tif: charts/env%.geojson | $(OUT)
+$(OUT)/env%.tif: charts/env%.geojson $(SRC) | $(OUT)
 	$(USV) preprocess $< -o $@ --preview $(@:.tif=.png) --cell-size 1 --margin 3 > $(@:.tif=.json)
-$(OUT)/grid%.tif: charts/grid%.geojson | $(OUT)
+$(OUT)/grid%.tif: charts/grid%.geojson $(SRC) | $(OUT)
 	$(USV) preprocess $< -o $@ --preview $(@:.tif=.png) --cell-size 1 --no-swell \
 		--occupancy 0.5 > $(@:.tif=.json)
 # NOAA ENC cell (vector, Boston Harbor): 10 m cells
-$(OUT)/us5ma12m.tif: charts/noaa/US5MA12M.000 | $(OUT)
+$(OUT)/us5ma12m.tif: charts/noaa/US5MA12M.000 $(SRC) | $(OUT)
 	$(USV) preprocess $< -o $@ --preview $(@:.tif=.png) --cell-size 10 > $(@:.tif=.json)
 # NOAA raster chart (BSB/KAP, Head of Passes): the paper's rule, 1.5 x ship length
-$(OUT)/head_of_passes.tif: charts/noaa/11361_4.KAP | $(OUT)
+$(OUT)/head_of_passes.tif: charts/noaa/11361_4.KAP $(SRC) | $(OUT)
 	$(USV) preprocess $< -o $@ --preview $(@:.tif=.png) > $(@:.tif=.json)

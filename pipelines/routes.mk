@@ -15,7 +15,7 @@ ENDS_us5ma12m := --start-lonlat -70.93391 42.32119 --goal-lonlat -70.79426 42.31
 ENDS_head_of_passes := --start-lonlat -89.2677 29.1840 --goal-lonlat -89.2619 29.1240
 
 define route_rule
-$(PATHS_DIR)/$(1)/$(2).geojson: $(OUT)/$(1).tif
+$(PATHS_DIR)/$(1)/$(2).geojson: $(OUT)/$(1).tif $(SRC)
 	@mkdir -p $$(@D)
 	$(USV) plan $$< $(ENDS_$(1)) --algo $(2) --seed $(SEED) -o $$@ > $$(@:.geojson=.json)
 endef
