@@ -196,7 +196,7 @@ class PathProblem:
         [1.0]
         """
         scale = 1.0 if self.encoding == "columns" else self.unit
-        return Search(self, scale, self.lower / scale, self.upper / scale)
+        return Search(self, scale, self.unit, self.lower / scale, self.upper / scale)
 
     def to_map(self, route) -> np.ndarray:
         """Cell coordinates ``(m, 2)`` to map metres ``(m, 2)``."""
@@ -207,15 +207,16 @@ class PathProblem:
 @dataclass(frozen=True)
 class Search:
     """:class:`PathProblem` as the optimizers see it: variables ``z = x / scale`` within
-    ``lower … upper``, cost in units of ``problem.unit``; call it on a population ``(n, dim)``."""
+    ``lower … upper``, cost in units of ``unit`` metres; call it on a population ``(n, dim)``."""
 
     problem: PathProblem
     scale: float  # the problem's variable units per unit of z
+    unit: float  # metres per unit of cost (:attr:`PathProblem.unit`)
     lower: np.ndarray
     upper: np.ndarray
 
     def __call__(self, Z) -> np.ndarray:
-        return self.problem(self.to_problem(Z)) / self.problem.unit
+        return self.problem(self.to_problem(Z)) / self.unit
 
     def to_problem(self, Z) -> np.ndarray:
         """The problem's variables ``x`` of the search's ``z``."""

@@ -121,7 +121,7 @@ def plan_route(
         search = problem.search()
         result = optimizer.minimize(search, search.lower, search.upper)
         cells = problem.decode(search.to_problem(result.x))[0]
-        convergence = (result.history * problem.unit).tolist()  # metres
+        convergence = (result.history * search.unit).tolist()  # metres
         parameters = {**result.params, "encoding": encoding, "turn_weight": turn_weight}
         if encoding == "waypoints":
             parameters["waypoints"] = waypoints
