@@ -3,10 +3,12 @@
 For each chart (the grids `make report` writes to build/grids/, the start and goal of
 pipelines/routes.mk) and optimizer: the collision-free rate over N seeds, and over the
 collision-free routes the median length relative to the any-angle optimum and the median
-planning time. `make report` plans one seed; this shows how typical that seed's outcome is.
+planning time (all runs of a seed). `make report` plans one seed; this shows how typical that
+seed's outcome is. With ``--attempts N`` each seed runs the optimizer up to N times until its
+route is collision-free (``usvtool plan --attempts``), and ``runs`` gives the mean number of runs.
 
 Usage: python benchmarks/bench_charts.py [--seeds 10] [--charts us5ma12m,grid50]
-       [--algos ssa,issa] [--pop 50] [--iters 300] [--waypoints 3]
+       [--algos ssa,issa] [--pop 50] [--iters 300] [--waypoints 3] [--attempts 1]
 """
 
 from __future__ import annotations
@@ -56,6 +58,7 @@ def main() -> None:
     ap.add_argument("--pop", type=int, default=50)
     ap.add_argument("--iters", type=int, default=300)
     ap.add_argument("--waypoints", type=int, default=3)
+    ap.add_argument("--attempts", type=int, default=1)
     args = ap.parse_args()
     for chart in args.charts.split(","):
         path = GRIDS / f"{chart}.tif"
@@ -66,18 +69,25 @@ def main() -> None:
         optimum = plan_route(grid, start, goal, "anyangle").length_m
         print(f"\n{chart}: {grid.width} x {grid.height} cells of {grid.cell_size:g} m, any-angle "
               f"optimum {optimum:.1f} m; {args.seeds} seeds, {args.pop} x {args.iters}, "
-              f"{args.waypoints} waypoints")  # fmt: skip
-        print(f"{'algorithm':10} {'free':>5} {'len/opt':>8} {'time s':>7}  free seeds")
+              f"{args.waypoints} waypoints, at most {args.attempts} run(s)")  # fmt: skip
+        print(f"{'algorithm':10} {'free':>5} {'len/opt':>8} {'time s':>7} {'runs':>5}  free seeds")
         for algo in args.algos.split(","):
             routes = [
-                plan_route(grid, start, goal, algo, args.pop, args.iters, seed, args.waypoints)
+                plan_route(
+                    grid, start, goal, algo, args.pop, args.iters, seed, args.waypoints,
+                    attempts=args.attempts,
+                )
                 for seed in range(args.seeds)
             ]
             free = [r for r in routes if r.collision_free]
             ratio = np.median([r.length_m for r in free]) / optimum if free else float("nan")
             seconds = np.median([r.planning_time_s for r in routes])
+            runs = np.mean([r.attempt for r in routes])
             seeds = ",".join(str(r.seed) for r in free)
-            print(f"{algo:10} {len(free) / len(routes):5.0%} {ratio:8.4f} {seconds:7.3f}  {seeds}")
+            print(
+                f"{algo:10} {len(free) / len(routes):5.0%} {ratio:8.4f} {seconds:7.3f} "
+                f"{runs:5.2f}  {seeds}"
+            )
 
 
 if __name__ == "__main__":

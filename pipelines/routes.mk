@@ -2,6 +2,9 @@
 # summary), then build/paths/summary.csv. Included by report.mk after charts.mk.
 ALGOS := wso iwso ssa issa pso pso-issa gwo woa mrfo boa iwso+s anyangle astar
 SEED ?= 1
+# optimizer runs at most per route (usvtool plan --attempts): a new run while the best route
+# collides; every route's summary says which run gave it (docs/planning.md, "Attempts")
+ATTEMPTS ?= 5
 PATHS_DIR := build/paths
 
 # start and goal of each chart's route (map metres, or lon/lat for the NOAA charts)
@@ -17,7 +20,7 @@ ENDS_head_of_passes := --start-lonlat -89.2677 29.1840 --goal-lonlat -89.2619 29
 define route_rule
 $(PATHS_DIR)/$(1)/$(2).geojson: $(OUT)/$(1).tif $(SRC)
 	@mkdir -p $$(@D)
-	$(USV) plan $$< $(ENDS_$(1)) --algo $(2) --seed $(SEED) -o $$@ > $$(@:.geojson=.json)
+	$(USV) plan $$< $(ENDS_$(1)) --algo $(2) --seed $(SEED) --attempts $(ATTEMPTS) -o $$@ > $$(@:.geojson=.json)
 endef
 $(foreach c,$(GRIDS),$(foreach a,$(ALGOS),$(eval $(call route_rule,$(c),$(a)))))
 

@@ -1,7 +1,8 @@
 """Tabulate the route summaries under a directory (CHART/ALGO.json) as CSV on stdout.
 
 Columns: chart, algorithm, length_m, ratio to the chart's any-angle optimum, turns, mot,
-fitness, planning_time_s, collision_free.
+fitness, planning_time_s (all runs), collision_free, attempt (the optimizer run that gave the
+route; empty for the exact planners).
 """
 
 import csv
@@ -10,7 +11,7 @@ import sys
 from pathlib import Path
 
 FIELDS = ["chart", "algorithm", "length_m", "length_ratio", "turns", "mot", "fitness",
-          "planning_time_s", "collision_free"]  # fmt: skip
+          "planning_time_s", "collision_free", "attempt"]  # fmt: skip
 
 
 def main(root: str) -> None:

@@ -16,7 +16,7 @@ from usvtool.plan.route import read_path_geojson
 
 FIGURES = {
     "algorithm", "parameters", "seed", "length_m", "turns", "mot", "fitness",
-    "planning_time_s", "collision_free", "convergence",
+    "planning_time_s", "collision_free", "convergence", "attempt",
 }  # fmt: skip
 
 
@@ -153,6 +153,7 @@ BAD = [  # arguments, exit status, words of the message (exit 1: the grid's name
     (["--start", 3, 3, "--goal", 59, 39, "--algo", "dijkstra"], 2, "'dijkstra' is not one of"),
     (["--start", 3, 3, "--goal", 59, 39, "--pop", 1], 2, "--pop"),
     (["--start", 3, 3, "--goal", 59, 39, "--iters", 0], 2, "--iters"),
+    (["--start", 3, 3, "--goal", 59, 39, "--attempts", 0], 2, "--attempts"),
     (["--start", 3, 3], 2, "--goal"),
     (["--start", 3, 3, "--start-lonlat", 1, 2, "--goal", 59, 39], 2, "exactly one of --start"),
     (["--start-lonlat", -71, 42, "--goal", 59, 39], 1, "--start-lonlat: "),
@@ -194,3 +195,4 @@ def test_a_colliding_best_route_is_written_flagged_and_warned(tmp_path):
     assert result.exit_code == 0
     assert json.loads(result.stdout)["collision_free"] is False
     assert "touches obstacle" in result.stderr and out.exists()
+    assert "in 1 run(s)" in result.stderr and "--attempts" in result.stderr

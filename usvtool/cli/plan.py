@@ -89,6 +89,14 @@ def _params(ctx, param, values: tuple[str, ...]) -> dict:
     help="Weight of the ISSA turning energy in the cost.",
 )
 @click.option(
+    "--attempts",
+    type=click.IntRange(min=1),
+    default=1,
+    show_default=True,
+    help="Optimizer runs at most: a new run (a seed derived from --seed) while the best "
+    "route collides.",
+)
+@click.option(
     "--timing/--no-timing",
     default=True,
     show_default=True,
@@ -109,6 +117,7 @@ def plan(
     encoding: str,
     params: dict,
     turn_weight: float,
+    attempts: int,
     timing: bool,
     output: str,
 ) -> None:
@@ -127,15 +136,17 @@ def plan(
     except UsvError as exc:
         raise UsvError(f"{grid_path}: {exc}") from None
     route = plan_route(
-        grid, start, goal, algo, pop, iters, seed, waypoints, encoding, params, turn_weight
+        grid, start, goal, algo, pop, iters, seed, waypoints, encoding, params, turn_weight,
+        attempts,
     )
     if not timing:
         route.planning_time_s = None
     if not route.collision_free:
         log.warning(
-            "%s: the best route %s found touches obstacle or margin cells (written with "
-            "collision_free false); try more --waypoints or --iters, another --seed or algorithm",
-            grid_path, algo,
+            "%s: the best route %s found in %d run(s) touches obstacle or margin cells (written "
+            "with collision_free false); try more --attempts, --waypoints or --iters, or another "
+            "algorithm",
+            grid_path, algo, attempts,
         )
     write_path_geojson(output, route, grid)
     emit(

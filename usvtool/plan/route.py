@@ -55,6 +55,7 @@ class Route:
     planning_time_s: float | None  # None: not recorded (--no-timing)
     collision_free: bool
     convergence: list[float] = field(default_factory=list)
+    attempt: int | None = None  # the optimizer run that gave the route (None: exact planner)
 
     def figures(self) -> dict:
         """The route's figures (the GeoJSON properties and the CLI summary share them)."""
@@ -69,6 +70,7 @@ class Route:
             "planning_time_s": self.planning_time_s,
             "collision_free": self.collision_free,
             "convergence": self.convergence,
+            "attempt": self.attempt,
         }
 
 
@@ -84,8 +86,12 @@ def plan_route(
     encoding: str = "waypoints",
     params: dict | None = None,
     turn_weight: float = 1.0,
+    attempts: int = 1,
 ) -> Route:
     """Plan a route from ``start`` to ``goal`` (map metres) with algorithm ``algo``.
+
+    An optimizer runs up to ``attempts`` times (:func:`_optimize`) until its best route is
+    collision-free; the exact planners run once.
 
     Raises :class:`UsvError` for an unknown algorithm, a start or goal outside the grid or
     touching an obstacle or margin cell, or no navigable connection between them.
@@ -98,12 +104,15 @@ def plan_route(
         raise UsvError(f"unknown encoding {encoding!r} (known: {', '.join(ENCODINGS)})")
     if encoding == "waypoints" and waypoints < 1:
         raise UsvError(f"waypoints must be >= 1, not {waypoints}")
+    if attempts < 1:
+        raise UsvError(f"attempts must be >= 1, not {attempts}")
     start_c, goal_c = check_ends(grid, start, goal)
     problem = PathProblem(
         grid, tuple(start), tuple(goal), encoding, waypoints, turn_weight=turn_weight
     )
     checker = problem.checker
     convergence: list[float] = []
+    attempt = None
     t0 = time.perf_counter()
     if base == "astar":
         cells = exact.astar(grid.blocked, start_c, goal_c)
@@ -112,17 +121,10 @@ def plan_route(
         cells = exact.any_angle(checker, grid.blocked, start_c, goal_c)
         parameters = {"delta_cells": exact.DELTA}
     else:
-        from usvtool.plan.optimizers import make_optimizer
-
-        try:
-            optimizer = make_optimizer(base, pop, iters, seed, **(params or {}))
-        except ValueError as exc:
-            raise UsvError(str(exc)) from None
-        search = problem.search()
-        result = optimizer.minimize(search, search.lower, search.upper)
-        cells = problem.decode(search.to_problem(result.x))[0]
-        convergence = (result.history * search.unit).tolist()  # metres
-        parameters = {**result.params, "encoding": encoding, "turn_weight": turn_weight}
+        cells, convergence, parameters, attempt = _optimize(
+            problem, base, pop, iters, seed, params or {}, attempts
+        )
+        parameters = {**parameters, "encoding": encoding, "turn_weight": turn_weight}
         if encoding == "waypoints":
             parameters["waypoints"] = waypoints
     if cells is None:  # connectivity was checked: an exact planner must find a route
@@ -144,7 +146,45 @@ def plan_route(
         planning_time_s=elapsed,
         collision_free=is_collision_free(grid, points, checker),
         convergence=convergence,
+        attempt=attempt,
     )
+
+
+def _optimize(problem: PathProblem, base: str, pop, iters, seed, params: dict, attempts: int):
+    """Minimise ``problem`` with optimizer ``base``: up to ``attempts`` independent runs, stopping
+    at the first whose best route is collision-free (else keeping the lowest-cost route).
+
+    Why restarts: a population-based search converges on one basin per run, and on a hard
+    chart a faithful optimizer's run can end in a colliding basin (docs/planning.md has the
+    rates). Independent runs are the standard remedy (MoveIt's planning attempts; multi-start
+    in the metaheuristics literature); they leave every run the published algorithm. Run 1
+    uses ``seed`` itself, so ``attempts=1`` and the first attempt give the same route as
+    before; run ``k`` > 1 uses child ``k - 2`` of ``SeedSequence(seed).spawn``, so the result
+    depends on the seed alone.
+
+    Returns the route's cells, its run's convergence (metres), the optimizer's parameters with
+    ``attempts``, and the 1-based number of the run that gave the route.
+    """
+    from usvtool.plan.optimizers import make_optimizer
+
+    search = problem.search()
+    children = np.random.SeedSequence(seed).spawn(attempts - 1)
+    seeds = [seed, *(np.random.default_rng(child) for child in children)]
+    best = None
+    for attempt, run_seed in enumerate(seeds, start=1):
+        try:
+            optimizer = make_optimizer(base, pop, iters, run_seed, **params)
+        except ValueError as exc:
+            raise UsvError(str(exc)) from None
+        result = optimizer.minimize(search, search.lower, search.upper)
+        cells = problem.decode(search.to_problem(result.x))[0]
+        fitness = float(problem.cost(cells[None], exact=True)[0])
+        if best is None or fitness < best[0]:
+            best = (fitness, cells, (result.history * search.unit).tolist(), result.params, attempt)
+        if not problem.checker.collides(cells[:-1], cells[1:]).any():
+            break
+    _, cells, convergence, parameters, attempt = best
+    return cells, convergence, {**parameters, "attempts": attempts}, attempt
 
 
 def route_length(grid: Grid, points) -> float:
