@@ -34,7 +34,7 @@ class ShapelyReference:
         return not self.segments_hit(route[:-1], route[1:]).any()
 
 
-@pytest.fixture
+@pytest.fixture(scope="session")
 def reference():
     """``reference(blocked)``: the :class:`ShapelyReference` of a blocked mask."""
     return ShapelyReference
