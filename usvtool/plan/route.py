@@ -7,10 +7,11 @@ exact any-angle shortest route, :mod:`usvtool.plan.exact`). A ``+s`` suffix (``i
 
 Figures of a route: ``length_m`` (IWSO eq. 28; for a georeferenced grid the geodesic length on
 the WGS84 ellipsoid), ``turns`` and ``mot`` (:mod:`usvtool.metrics`), ``fitness`` (the path
-problem's cost of the route, the same for every algorithm), ``planning_time_s`` (the search and
-any shortening; reading the grid, validating the request and building the grid's collision
-tables, about 20 ms on 500 x 500 cells and done once per grid, are not included) and
-``collision_free`` (the exact check of :mod:`usvtool.plan.raster` on the written coordinates).
+problem's cost of the route, the same for every algorithm), ``planning_time_s`` (every run of
+the search, and any shortening; reading the grid, validating the request and building the grid's
+collision tables, about 20 ms on 500 x 500 cells and done once per grid, are not included),
+``collision_free`` (the exact check of :mod:`usvtool.plan.raster` on the written coordinates)
+and ``attempt`` (the optimizer run that gave the route, :func:`_optimize`).
 """
 
 from __future__ import annotations
