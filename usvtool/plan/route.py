@@ -180,10 +180,12 @@ def _optimize(problem: PathProblem, base: str, pop, iters, seed, params: dict, a
         result = optimizer.minimize(search, search.lower, search.upper)
         cells = problem.decode(search.to_problem(result.x))[0]
         fitness = float(problem.cost(cells[None], exact=True)[0])
-        if best is None or fitness < best[0]:
-            best = (fitness, cells, (result.history * search.unit).tolist(), result.params, attempt)
+        run = (fitness, cells, (result.history * search.unit).tolist(), result.params, attempt)
         if not problem.checker.collides(cells[:-1], cells[1:]).any():
+            best = run  # free: kept even if a colliding run cost less (a free detour > S)
             break
+        if best is None or fitness < best[0]:
+            best = run
     _, cells, convergence, parameters, attempt = best
     return cells, convergence, {**parameters, "attempts": attempts}, attempt
 
