@@ -151,7 +151,10 @@ def plan_route(
     )
 
 
-def _optimize(problem: PathProblem, base: str, pop, iters, seed, params: dict, attempts: int):
+def _optimize(
+    problem: PathProblem, base: str, pop: int, iters: int, seed: int | None, params: dict,
+    attempts: int,
+) -> tuple[np.ndarray, list[float], dict, int]:
     """Minimise ``problem`` with optimizer ``base``: up to ``attempts`` independent runs, stopping
     at the first whose best route is collision-free (else keeping the lowest-cost route).
 
