@@ -80,7 +80,7 @@ def roads(enc, reference):
     Shore cells, the blocked cells sharing an edge or a corner with a free cell, suffice for a
     route that starts in a free cell: the first point where it touches a blocked square also
     lies in the free cell it was crossing, so that square is a shore cell. Most of this grid is
-    blocked (2.9 M cells) and its shore is 12 000: the reference builds in a blink, not in 5 s.
+    blocked (2.9 M cells) and its shore is 12 000 cells: this fixture takes 0.9 s, not 6.8 s.
     """
     grid = preprocess(enc, Options(cell_size=10.0)).grid
     ends = on_chart(grid, ROADS_START, ROADS_GOAL)
