@@ -12,9 +12,11 @@ The pipeline, each stage with a real library:
    water, drying (intertidal), no-data or ink (text, symbols, lines);
 3. Otsu binarisation (OpenCV) of the land membership (or of the chromatic Lab b* channel, or
    of plain grey), or a fixed threshold such as the paper's 100;
-4. clutter removal: ink pixels take the class of the nearest non-ink pixel (OpenCV distance
-   transform with labels), then land specks and water holes smaller than ``min_area`` pixels are
-   removed (connected components).
+4. ink: ink on land joins the land; ink in water is clutter (text, soundings, lines: it becomes
+   water) or a hazard (structures, piles, piers: obstacles at their footprint), decided by the
+   shape of its strokes (:mod:`usvtool.chart.ink`); then land specks and water holes smaller
+   than ``min_area`` pixels are removed (connected components). Hazards are kept whatever their
+   size: a pile is small.
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ from dataclasses import dataclass, field
 import cv2
 import numpy as np
 
+from usvtool.chart import ink as ink_rule
 from usvtool.errors import UsvError
 
 LAND, WATER, DRYING, NODATA, INK = "land", "water", "drying", "nodata", "ink"
@@ -57,7 +60,8 @@ class Segmentation:
     """Pixel-level result of :func:`segment`."""
 
     land: np.ndarray  # bool (H, W): land after binarisation and clutter removal
-    blocked: np.ndarray  # bool (H, W): land, drying, no-data or outside the chart
+    blocked: np.ndarray  # bool (H, W): land, drying, no-data, ink hazard or outside the chart
+    hazard: np.ndarray  # bool (H, W): ink in water standing for a structure (ink.resolve)
     threshold: float  # binarisation threshold on the 0..255 channel
     clusters: list[dict] = field(default_factory=list)  # centre RGB, class, pixel share
     timings: dict[str, float] = field(default_factory=dict)
@@ -72,6 +76,7 @@ def segment(
     channel: str = "membership",
     threshold: float | None = None,
     min_area: int = 16,
+    ink: str = "auto",
     sample: int | None = 20000,
     seed: int = 0,
     m: float = 2.0,
@@ -79,12 +84,15 @@ def segment(
     """Segment an RGB chart image (H, W, 3 uint8) into land and water.
 
     ``valid`` marks the pixels inside the chart (default: all). ``threshold`` (0..255) replaces
-    Otsu's; ``min_area`` is in pixels. ``sample`` pixels are clustered; ``None`` clusters every
-    pixel (the slow reference the benchmark compares against). Raises :class:`UsvError` when
-    the image holds no water or no land.
+    Otsu's; ``min_area`` is in pixels; ``ink`` is the ink rule (``auto``, ``clutter`` or
+    ``obstacle``, see :mod:`usvtool.chart.ink`). ``sample`` pixels are clustered; ``None``
+    clusters every pixel (the slow reference the benchmark compares against). Raises
+    :class:`UsvError` when the image holds no water or no land.
     """
     if channel not in CHANNELS:
         raise ValueError(f"channel must be one of {CHANNELS}")
+    if ink not in ink_rule.MODES:
+        raise ValueError(f"ink must be one of {ink_rule.MODES}")
     timings: dict[str, float] = {}
     t = time.perf_counter()
     h, w = rgb.shape[:2]
@@ -136,12 +144,13 @@ def segment(
     timings["binarise"] = time.perf_counter() - t
 
     t = time.perf_counter()
-    ink = (colour_class == INK)[index] & valid
-    land = _resolve_ink(land, ink)
+    inked = (colour_class == INK)[index] & valid
+    land, hazard = ink_rule.resolve(inked, land, ink)
     land = _remove_small(land, min_area) & valid
     other = np.isin(colour_class, (DRYING, NODATA))[index]
     other = _remove_small(other & ~land & valid, min_area)
-    blocked = land | other | ~valid
+    hazard &= valid & ~land
+    blocked = land | other | hazard | ~valid
     timings["clutter"] = time.perf_counter() - t
 
     share = np.bincount(np.argmax(u, axis=0), weights=counts[colours], minlength=n_clusters)
@@ -159,7 +168,7 @@ def segment(
         )
     if blocked[valid].all():
         raise UsvError("found no navigable water in the chart")
-    return Segmentation(land, blocked, float(thr), info, timings)
+    return Segmentation(land, blocked, hazard, float(thr), info, timings)
 
 
 def _fuzzy_cmeans(colours_lab, picks, c, m, rng):
@@ -199,20 +208,6 @@ def _channel(channel, membership, colours_rgb, is_land, u):
     land_grey = np.average(grey, weights=weights + 1e-12)
     water_grey = np.average(grey, weights=(1 - weights) + 1e-12)
     return grey, bool(land_grey > water_grey)
-
-
-def _resolve_ink(land: np.ndarray, ink: np.ndarray) -> np.ndarray:
-    """Give every ink pixel the class of its nearest non-ink pixel."""
-    if not ink.any() or ink.all():
-        return land
-    _, labels = cv2.distanceTransformWithLabels(
-        ink.astype(np.uint8), cv2.DIST_L2, 5, labelType=cv2.DIST_LABEL_PIXEL
-    )
-    # labels number the non-ink pixels 1..n in raster order
-    source = land[~ink]
-    out = land.copy()
-    out[ink] = source[labels[ink] - 1]
-    return out
 
 
 def _remove_small(mask: np.ndarray, min_area: int) -> np.ndarray:
