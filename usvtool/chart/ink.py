@@ -7,27 +7,30 @@ stand in it. The ISSA paper's pipeline (section 3) has no notion of either; this
 usvtool's rule, written by hand because no library classifies chart symbols.
 
 Definitions (all lengths in pixels of the chart image, measured on the chart itself, so the rule
-follows the chart's own drawing scale rather than one chart's colours or resolution):
+follows the chart's own drawing rather than one chart's colours or resolution):
 
 - *ink side*: an ink pixel belongs to the class (land or water) of its nearest non-ink pixel
-  (Euclidean). *Ink in water* is the ink whose nearest non-ink pixel is water.
-- *stroke half-width* ``h`` of the chart: the median, over the ridge pixels of all ink (local
-  maxima of the distance transform inside the ink), of the distance to the nearest non-ink pixel.
-  Text and linework dominate a chart's ink, so ``h`` is the half-width of its ordinary strokes.
-- *small round holes* of ink in water are filled first, so that ring symbols (piles, dolphins,
-  drawn as small circles) become dots: a hole is a 4-connected background component enclosed by
-  ink in water, of area at most ``pi (3h)^2``, whose bounding box has an aspect ratio of at most
-  1.5 and is at least half filled. The elongated holes of the digit 0 are not filled.
-- *core*: the pixels of (filled) ink in water at least ``2h`` from any non-ink pixel: strokes at
-  least twice as thick as the chart's ordinary strokes. Each 8-connected core component, grown
-  back by ``2h`` inside the ink (its *footprint*, area ``A``; ``R`` its largest inscribed
-  radius), is a hazard when it is
-  * *solid*: ``A <= 1.35 pi R^2`` (a filled disc gives 1, a filled square 1.27, a bar of
-    aspect L/T about 1.27 L/T): squares, platforms, filled dots, filled rings; or
-  * *attached to land*: its footprint grown by ``2h`` more (across the coastline's own stroke)
-    touches land: thick piers, jetties and groins running out from the shore.
-  Thick strokes that are neither (bold labels, dashes of channel limits) stay clutter.
-- Everything else in water (strokes of ordinary width) is clutter and becomes water.
+  (Euclidean; ties go to land). *Ink in water* is the ink whose nearest non-ink pixel is water.
+- *ordinary stroke width* ``w``: twice the median, over the ridge pixels of all ink (local maxima
+  of the distance transform inside the ink), of the distance to the nearest non-ink pixel, at
+  least 2. Text and linework dominate a chart's ink, so ``w`` is the width of its ordinary
+  strokes.
+- *ring symbols* (piles, dolphins drawn as small circles) are filled first: a background hole
+  (4-connected) enclosed by ink in water is filled when it is small (area at most
+  ``pi (1.5 w)^2``), round (bounding box of aspect at most 1.5, at least half filled) and its
+  ring is a component of its own (box at most ``2 (w + 1)`` larger than the hole's), so the
+  loops of 4, 6 and 9 and the elongated hole of 0 stay open.
+- *solids*: the parts of the filled ink in water at least ``2 w + 1`` thick (a morphological
+  opening by a disc of that diameter) whose area ``A`` is at most ``1.35 pi R^2``, ``R`` their
+  largest inscribed radius (a disc gives 1, a square 1.27, a bar of aspect L/T about 1.27 L/T):
+  structures, platforms, filled dots and filled rings. Bars (dashes) are not solids.
+- *structures drawn as strokes*: the parts at least ``w + 1`` thick (an opening) that come
+  within ``2 w + 1`` of land (piers, jetties, groins running out from the shore) or whose
+  bounding box is at least ``25 w`` across (a detached breakwater: longer than any glyph of a
+  bold label or any dash).
+- hazards are the solids and the structures, grown back by half a stroke inside the ink (the
+  opening rounds corners off). Everything else in water (strokes of ordinary width, bold labels,
+  dashes) is clutter and becomes water.
 
 Modes: ``auto`` (the rule above), ``clutter`` (every ink pixel takes the class of its nearest
 non-ink pixel: the first version's rule) and ``obstacle`` (every ink pixel in water is a hazard:
@@ -53,9 +56,9 @@ SOLID_AREA = 1.35
 #: even when they do not touch land: longer than any glyph of a bold label or a dash.
 LONG = 25.0
 #: Holes filled as ring symbols: largest area in units of ``w^2``, and shape limits.
-RING_HOLE_AREA = 1.5 * np.pi
+RING_HOLE_AREA = 2.25 * np.pi  # holes up to 1.5 strokes across (pi (1.5 w)^2)
 RING_HOLE_ASPECT = 1.5
-RING_HOLE_FILL = 0.6
+RING_HOLE_FILL = 0.5
 
 
 def land_side(ink: np.ndarray, land: np.ndarray) -> np.ndarray:
@@ -149,18 +152,31 @@ def _solids(filled: np.ndarray, width: float) -> np.ndarray:
 
 
 def _round_holes(wet: np.ndarray, w: float) -> np.ndarray:
-    """Small, round background holes enclosed by ``wet`` ink (ring symbols' insides)."""
-    n, labels, stats, _ = cv2.connectedComponentsWithStats((~wet).astype(np.uint8), connectivity=4)
+    """Ring symbols' insides: small, round background holes in ``wet`` ink whose ring is a
+    component of its own (not the loop of a 6, 9 or 4, whose tail makes its box larger)."""
+    n, labels, stats, centroids = cv2.connectedComponentsWithStats(
+        (~wet).astype(np.uint8), connectivity=4
+    )
+    x, y = stats[:, cv2.CC_STAT_LEFT], stats[:, cv2.CC_STAT_TOP]
     bw, bh = stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT]
     area = stats[:, cv2.CC_STAT_AREA]
-    x, y = stats[:, cv2.CC_STAT_LEFT], stats[:, cv2.CC_STAT_TOP]
     rows, cols = wet.shape
-    inside = (x > 0) & (y > 0) & (x + bw < cols) & (y + bh < rows)
-    round_ = (np.maximum(bw, bh) <= RING_HOLE_ASPECT * np.minimum(bw, bh)) & (
-        area >= RING_HOLE_FILL * bw * bh
-    )
-    ring = inside & round_ & (area <= RING_HOLE_AREA * w * w)
-    ring[0] = False
+    ring = (x > 0) & (y > 0) & (x + bw < cols) & (y + bh < rows)
+    ring &= np.maximum(bw, bh) <= RING_HOLE_ASPECT * np.minimum(bw, bh)
+    ring &= (area >= RING_HOLE_FILL * bw * bh) & (area <= RING_HOLE_AREA * w * w)
+    ring[0] = False  # label 0: the ink itself
+    holes = np.flatnonzero(ring)
+    if holes.size:
+        _, ink_labels, ink_stats, _ = cv2.connectedComponentsWithStats(
+            wet.astype(np.uint8), connectivity=8
+        )
+        above = ink_labels[y[holes] - 1, np.round(centroids[holes, 0]).astype(int)]
+        grown = 2 * (w + 1)  # a ring adds at most a stroke and a pixel on each side
+        ring[holes] = (
+            (above > 0)
+            & (ink_stats[above, cv2.CC_STAT_WIDTH] <= bw[holes] + grown)
+            & (ink_stats[above, cv2.CC_STAT_HEIGHT] <= bh[holes] + grown)
+        )
     return ring[labels]
 
 

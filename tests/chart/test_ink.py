@@ -1,0 +1,101 @@
+"""The ink rule on small drawn charts: each symbol's expected class is known by construction.
+
+A 300 x 300 water image with a strip of land on the west, ordinary text (OpenCV's plain font,
+2-pixel strokes, so the chart's stroke width is 2 px) and one symbol per test.
+"""
+
+import cv2
+import numpy as np
+import pytest
+
+from usvtool.chart.ink import land_side, resolve, stroke_width
+
+SIZE = 300
+
+
+def chart():
+    """(ink, land): land is the strip x < 30; text lines in the water set the stroke width."""
+    ink = np.zeros((SIZE, SIZE), np.uint8)
+    for row, text in ((40, "12 7 9 10"), (270, "Lake 4 5 so")):
+        cv2.putText(ink, text, (120, row), cv2.FONT_HERSHEY_PLAIN, 1.2, 1, 1, cv2.LINE_8)
+    land = np.zeros((SIZE, SIZE), bool)
+    land[:, :30] = True
+    return ink, land
+
+
+def classify(draw, mode="auto"):
+    ink, land = chart()
+    symbol = np.zeros_like(ink)
+    draw(symbol)
+    ink = (ink | symbol).astype(bool)
+    new_land, hazard = resolve(ink, land, mode)
+    return symbol.astype(bool), hazard, new_land
+
+
+def test_the_text_sets_a_two_pixel_stroke():
+    ink, _ = chart()
+    assert stroke_width(ink.astype(bool)) == 2.0
+
+
+def test_text_and_soundings_are_clutter():
+    ink, land = chart()
+    _, hazard = resolve(ink.astype(bool), land)
+    assert not hazard.any()
+
+
+@pytest.mark.parametrize(
+    "name, draw",
+    [
+        ("solid square", lambda im: cv2.rectangle(im, (150, 120), (161, 131), 1, -1)),
+        ("filled dot", lambda im: cv2.circle(im, (150, 150), 5, 1, -1)),
+        ("pile ring", lambda im: cv2.circle(im, (150, 150), 3, 1, 1)),
+        ("thick pier from the shore", lambda im: cv2.line(im, (30, 150), (90, 150), 1, 4)),
+        ("long thick breakwater", lambda im: cv2.line(im, (80, 200), (200, 200), 1, 4)),
+    ],
+)
+def test_hazards_are_obstacles_at_their_footprint(name, draw):
+    symbol, hazard, _ = classify(draw)
+    assert hazard[symbol].mean() > 0.95, name
+    assert not (hazard & ~symbol).any() or name == "pile ring"  # a ring also blocks its inside
+
+
+def test_a_pile_ring_blocks_its_inside():
+    symbol, hazard, _ = classify(lambda im: cv2.circle(im, (150, 150), 3, 1, 1))
+    assert hazard[150, 150] and not symbol[150, 150]
+
+
+@pytest.mark.parametrize(
+    "name, draw",
+    [
+        ("thin line from the shore", lambda im: cv2.line(im, (31, 150), (120, 150), 1, 1)),
+        ("graticule", lambda im: cv2.line(im, (150, 60), (150, 250), 1, 1)),
+        # a dashed limit: thick dashes, each shorter than 25 strokes, off the shore
+        ("dashes", lambda im: [cv2.line(im, (x, 150), (x + 20, 150), 1, 4)
+                               for x in range(80, 260, 30)]),
+        ("a zero", lambda im: cv2.ellipse(im, (150, 150), (4, 7), 0, 0, 360, 1, 1)),
+    ],
+)
+def test_clutter_stays_water(name, draw):
+    symbol, hazard, new_land = classify(draw)
+    assert not hazard[symbol].any(), name
+    assert not new_land[symbol].any()
+
+
+def test_modes():
+    draw = lambda im: cv2.line(im, (30, 150), (120, 150), 1, 1)  # noqa: E731
+    symbol, hazard, _ = classify(draw, "obstacle")
+    assert hazard[symbol][1:].all()  # every ink pixel in water (its first touches the land)
+    _, hazard, _ = classify(lambda im: cv2.circle(im, (150, 150), 5, 1, -1), "clutter")
+    assert not hazard.any()
+    with pytest.raises(ValueError):
+        resolve(np.zeros((3, 3), bool), np.zeros((3, 3), bool), "maybe")
+
+
+def test_ink_takes_the_side_of_its_nearest_non_ink_pixel():
+    # a 6-pixel band: the three pixels next to land are land, the three next to water water
+    ink = np.zeros((5, 20), bool)
+    ink[:, 4:10] = True
+    land = np.zeros((5, 20), bool)
+    land[:, :4] = True
+    side = land_side(ink, land)
+    assert side[:, 4:7].all() and not side[:, 7:10].any()
