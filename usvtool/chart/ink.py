@@ -26,7 +26,7 @@ follows the chart's own drawing rather than one chart's colours or resolution):
   structures, platforms, filled dots and filled rings. Bars (dashes) are not solids.
 - *structures drawn as strokes*: the parts at least ``w + 1`` thick (an opening) that come
   within ``2 w + 1`` of land (piers, jetties, groins running out from the shore) or that are
-  straight bars (area at most 1.5 times box diagonal times thickness ``2 R``) at least ``25 w``
+  straight bars (area at most 1.2 times box diagonal times thickness ``2 R``) at least ``25 w``
   long (a detached breakwater: longer than any dash; a bold label's letters are not bars).
 - hazards are the solids and the structures, grown back by half a stroke inside the ink (the
   opening rounds corners off). Everything else in water (strokes of ordinary width, bold labels,
@@ -57,7 +57,7 @@ SOLID_AREA = 1.35
 LONG = 25.0
 #: A straight bar covers at most this share more than its length times its thickness (the
 #: strokes of a letter N or G cover two to three times their box's diagonal).
-BAR_AREA = 1.5
+BAR_AREA = 1.2
 #: Holes filled as ring symbols: largest area in units of ``w^2``, and shape limits.
 RING_HOLE_AREA = 2.25 * np.pi  # holes up to 1.5 strokes across (pi (1.5 w)^2)
 RING_HOLE_ASPECT = 1.5
