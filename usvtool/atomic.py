@@ -1,56 +1,207 @@
-"""Atomic output: write to a temporary file beside the target, then rename.
+"""All-or-nothing output: stage every output of a command, rename them all once all are complete.
 
-A failure at any point leaves no half-written file behind.
+:class:`staged` hands out one temporary path per target, beside it (same directory, a hidden
+name that keeps the target's suffix so that GDAL and OpenCV pick the format, mode 0666 less
+the umask). On normal exit it renames every temporary onto its target (``os.replace``, atomic
+on POSIX); on any exception it removes every temporary, and every target keeps its old bytes
+(or stays absent). :class:`atomic_path` is the same for one file.
+
+How the pieces fit:
+
+- A command does the work that can fail (a preview too large, ...) in memory first, then stages
+  all its outputs in one ``staged`` block. The writers (``write_grid``, ``write_png``, ...) keep
+  their own ``atomic_path``, so they are atomic when called alone from Python; a path that an
+  active staging handed out is written in place (that staging renames it), so a writer given
+  a staged temporary makes no second one.
+- Signals: inside :class:`catch_signals` (a whole CLI command, and every ``staged`` block)
+  SIGINT and SIGTERM raise :class:`Interrupted` in the main thread, so that the cleanup runs
+  (Python's default for SIGTERM kills the process on the spot). The previous handlers come
+  back afterwards; other threads install nothing (Python runs handlers in the main thread).
+- A signal interrupts only the caller's code. While this module's own code runs (creating the
+  temporaries, the renames, the cleanup, installing and restoring handlers) it is held, and
+  raised when that code is done: so either every rename is done or none has started, and the
+  temporaries are always removed. A signal held before the renames start cancels them. The
+  first target (the main output, the one Makefiles look at) is renamed last.
+- Limits: a rename that fails by itself (a target turned into a directory meanwhile; a sticky
+  directory where the target belongs to another user) is reported naming it, and targets
+  renamed before it keep their new content: the main output, renamed last, is then untouched.
+  There is no fsync: a power cut right after a run may lose the new content.
+
+Hand-written: the atomic-write libraries (``atomicwrites``, archived; ``atomik``) write one file
+or one folder and leave signals alone.
 """
 
 from __future__ import annotations
 
 import contextlib
 import os
-import tempfile
-from collections.abc import Iterator
+import secrets
+import signal
+import threading
+from collections.abc import Callable, Iterable
 from pathlib import Path
+from types import CodeType
 
 from usvtool.errors import UsvError
+
+SIGNALS = (signal.SIGINT, signal.SIGTERM)  # installed in this order, restored in reverse
+
+_CRITICAL: set[CodeType] = set()  # code during which a signal is held (see _on_signal)
+_saved: list[dict] = []  # the handlers each active catch_signals replaced, outermost first
+_pending: int | None = None  # the first signal held
+_handed_out: set[str] = set()  # absolute paths of the temporaries of active stagings
+
+
+class Interrupted(KeyboardInterrupt):
+    """SIGINT or SIGTERM received inside :class:`catch_signals`; ``signum`` says which."""
+
+    def __init__(self, signum: int):
+        self.signum = signum
+        super().__init__(signal.Signals(signum).name)
 
 
 def check_output_path(path: str | os.PathLike, option: str = "-o") -> Path:
     """Refuse an output whose directory does not exist, before any work is done."""
     p = Path(path)
+    label = f"{option} {p}" if option else str(p)
     parent = p.parent if str(p.parent) else Path(".")
     if not parent.is_dir():
-        raise UsvError(f"{option} {p}: directory {parent} does not exist")
+        raise UsvError(f"{label}: directory {parent} does not exist")
     if p.is_dir():
-        raise UsvError(f"{option} {p}: is a directory")
+        raise UsvError(f"{label}: is a directory")
     return p
 
 
-@contextlib.contextmanager
-def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
-    """Yield a temporary path in the target's directory; rename it to ``path`` on success.
+def check_outputs(outputs: Iterable[tuple[str, str | os.PathLike | None]]) -> None:
+    """:func:`check_output_path` for each (option, path) given, and refuse one file named twice."""
+    seen: dict[Path, str] = {}
+    for option, path in outputs:
+        if path is None:
+            continue
+        p = check_output_path(path, option)
+        label = f"{option} {os.fspath(path)}" if option else os.fspath(path)
+        if p.resolve() in seen:
+            raise UsvError(f"{label}: same file as {seen[p.resolve()]}")
+        seen[p.resolve()] = label
 
-    The temporary name keeps the target's suffix so that format drivers that look at it
-    (GDAL, matplotlib) pick the right format.
+
+def _critical(method: Callable) -> Callable:
+    """Hold SIGINT and SIGTERM while ``method`` (or anything it calls) runs."""
+    _CRITICAL.add(method.__code__)
+    return method
+
+
+def _on_signal(signum: int, frame) -> None:
+    """Raise :class:`Interrupted` in the caller's code; hold the signal in this module's own.
+
+    The test is on the stack, not on a flag the code would set: a signal can be handled on
+    entry to any Python function (``__exit__`` included) before its first statement runs.
     """
-    target = Path(path)
-    fd, tmp = tempfile.mkstemp(
-        prefix=f".{target.name}.", suffix=target.suffix, dir=target.parent or "."
-    )
-    os.close(fd)
-    tmp_path = Path(tmp)
-    os.chmod(tmp_path, 0o666 & ~_umask())  # mkstemp makes 0600; outputs get the usual mode
-    try:
-        yield tmp_path
-        os.replace(tmp_path, target)
-    finally:
-        with contextlib.suppress(FileNotFoundError):
-            tmp_path.unlink()
+    global _pending
+    while frame is not None:
+        if frame.f_code in _CRITICAL:
+            if _pending is None:
+                _pending = signum
+            return
+        frame = frame.f_back
+    raise Interrupted(signum)
 
 
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
+class catch_signals:  # lower case: used like contextlib.suppress
+    """Make SIGINT and SIGTERM raise :class:`Interrupted` in the block (main thread only).
+
+    A signal held while the handlers are being installed or restored is raised on exit, unless
+    an interruption is already on its way.
+    """
+
+    _previous: dict | None = None
+
+    @_critical
+    def __enter__(self) -> None:
+        if threading.current_thread() is threading.main_thread():
+            previous = {s: signal.getsignal(s) for s in SIGNALS}
+            for s in SIGNALS:
+                if previous[s] != signal.SIG_IGN:  # an ignored signal stays ignored (nohup, &)
+                    signal.signal(s, _on_signal)
+            self._previous = previous
+            _saved.append(previous)
+            if _pending is not None:
+                self.__exit__(None, None, None)  # restores the handlers and raises it
+
+    @_critical
+    def __exit__(self, exc_type, exc, tb) -> None:
+        global _pending
+        if self._previous is None:
+            return
+        _saved.pop()
+        _restore(self._previous)
+        self._previous = None
+        signum, _pending = _pending, None
+        if signum is not None and not isinstance(exc, KeyboardInterrupt):
+            raise Interrupted(signum)
+
+
+class staged(catch_signals):
+    """``with staged(*targets) as temporaries:`` a temporary path per target (None for None),
+    all renamed onto their targets when the block ends normally, all removed otherwise.
+
+    Refuses a target in a missing directory, a directory, and one file given twice. A target
+    that is the temporary of an active staging is handed back as it is (nested staging).
+    """
+
+    def __init__(self, *targets: str | os.PathLike | None):
+        check_outputs(("", t) for t in targets)
+        self._targets = targets
+        self._temps: dict[Path, Path] = {}  # target -> temporary not renamed yet, in order
+
+    @_critical
+    def __enter__(self) -> tuple[Path | None, ...]:
+        super().__enter__()
+        try:
+            for t in self._targets:
+                if t is not None and os.path.abspath(t) not in _handed_out:
+                    self._temps[Path(t)] = tmp = _new_temporary(Path(t))
+                    _handed_out.add(os.path.abspath(tmp))
+            if self._previous is not None and _pending is not None:
+                raise Interrupted(_pending)  # held while creating: the block does not start
+        except BaseException as exc:
+            self.__exit__(type(exc), exc, exc.__traceback__)
+            raise
+        temps = self._temps
+        return tuple(None if t is None else temps.get(Path(t), Path(t)) for t in self._targets)
+
+    @_critical
+    def __exit__(self, exc_type, exc, tb) -> None:
+        try:
+            if exc_type is None and (self._previous is None or _pending is None):
+                for target, tmp in reversed(list(self._temps.items())):  # the first one last
+                    _rename(tmp, target)
+                    _handed_out.discard(os.path.abspath(tmp))
+                    del self._temps[target]
+        finally:
+            for tmp in self._temps.values():
+                with contextlib.suppress(FileNotFoundError):
+                    tmp.unlink()
+                _handed_out.discard(os.path.abspath(tmp))
+            self._temps.clear()
+            super().__exit__(exc_type, exc, tb)  # a signal held: raised now
+
+
+class atomic_path(staged):
+    """:class:`staged` for one output: ``with atomic_path(path) as tmp:``."""
+
+    def __init__(self, path: str | os.PathLike):
+        super().__init__(path)
+
+    @_critical
+    def __enter__(self) -> Path:
+        return super().__enter__()[0]
+
+
+def write_text(path: str | os.PathLike, text: str) -> None:
+    """Write ``text`` to ``path`` atomically."""
+    with atomic_path(path) as tmp:
+        tmp.write_text(text, encoding="utf-8")
 
 
 def jsonable(value):
@@ -58,7 +209,41 @@ def jsonable(value):
     return value.tolist() if hasattr(value, "tolist") else str(value)
 
 
-def write_text(path: str | os.PathLike, text: str) -> None:
-    """Write ``text`` to ``path`` atomically."""
-    with atomic_path(path) as tmp:
-        tmp.write_text(text, encoding="utf-8")
+def _restore(handlers: dict) -> None:
+    for s in reversed(SIGNALS):  # SIGINT last: its previous handler may raise at once
+        handler = handlers[s]
+        signal.signal(s, signal.SIG_DFL if handler is None else handler)  # None: set from C
+
+
+def _reset_in_child() -> None:
+    """A forked worker (``ProcessPoolExecutor``) starts with the handlers found before any
+    catch_signals: SIGTERM kills it quietly as before."""
+    if _saved and threading.current_thread() is threading.main_thread():
+        _restore(_saved[0])
+
+
+os.register_at_fork(after_in_child=_reset_in_child)
+
+
+def _new_temporary(target: Path) -> Path:
+    """A new empty file beside ``target``: hidden, its suffix kept, mode 0666 less the umask.
+
+    Not ``tempfile.mkstemp``: it makes the file 0600, and reading the umask means setting it,
+    which races with other threads creating files.
+    """
+    while True:
+        tmp = target.with_name(f".{target.name}.{secrets.token_hex(4)}{target.suffix}")
+        try:
+            os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
+        except FileExistsError:
+            continue
+        except OSError as exc:
+            raise UsvError(f"{target}: cannot write in {target.parent}: {exc.strerror}") from None
+        return tmp
+
+
+def _rename(tmp: Path, target: Path) -> None:
+    try:
+        os.replace(tmp, target)
+    except OSError as exc:
+        raise UsvError(f"{target}: cannot replace it: {exc.strerror}") from None

@@ -120,7 +120,7 @@ def test_sounding_text():
 
 
 def test_absurd_size_refused(cell):
-    with pytest.raises(UsvError, match=r"resolution 0.2 m: .* use [\d.]+ m or coarser"):
+    with pytest.raises(UsvError, match=r"--resolution 0.2 m: .* use --resolution [\d.]+ or more"):
         chart_frame(cell, 0.2)
 
 

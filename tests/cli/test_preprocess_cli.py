@@ -1,12 +1,19 @@
 """``usvtool preprocess`` through click's CliRunner: outputs, summary, and every bad input."""
 
 import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
 
 import cv2
 import numpy as np
 import pytest
 import rasterio
 
+from usvtool.errors import UsvError
 from usvtool.grid import read_grid
 
 LANDA, DEPDW = (201, 185, 122), (212, 234, 238)
@@ -180,3 +187,121 @@ def test_bad_s57_cell(bad_cell, kind, tmp_path, usv):
     out = tmp_path / "grid.tif"
     assert_one_line_error(usv("preprocess", path, "-o", out), 1, str(path), words)
     assert not out.exists()
+
+
+# ---- all or nothing: grid and preview appear together, or neither changes (usvtool.atomic) ----
+
+
+def one_line(stderr: str) -> str:
+    lines = [line for line in stderr.splitlines() if line.strip()]
+    assert len(lines) == 1 and "Traceback" not in stderr, stderr
+    return lines[0]
+
+
+@pytest.fixture
+def outputs(tmp_path):
+    """An output directory holding an earlier grid (and no preview): (dir, grid, preview)."""
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "grid.tif").write_bytes(b"an earlier grid \x00\xff")
+    return out, out / "grid.tif", out / "grid.png"
+
+
+def assert_untouched(out: Path) -> None:
+    assert sorted(p.name for p in out.iterdir()) == ["grid.tif"]  # no preview, no temporary
+    assert (out / "grid.tif").read_bytes() == b"an earlier grid \x00\xff"
+
+
+def test_grid_and_preview_written_with_no_temporary_left(tmp_path, usv, outputs):
+    out, grid, prev = outputs
+    src = write_png(tmp_path / "chart.png", island_image())
+    r = usv("preprocess", src, "-o", grid, "--preview", prev, "--resolution", 2.5)
+    assert r.exit_code == 0, r.stderr
+    assert sorted(p.name for p in out.iterdir()) == ["grid.png", "grid.tif"]
+    assert read_grid(grid).width == 80 and cv2.imread(str(prev)) is not None
+
+
+@pytest.mark.parametrize("stage", ["render", "write"])
+def test_a_failing_preview_leaves_the_grid_untouched(stage, tmp_path, usv, outputs, monkeypatch):
+    import usvtool.chart.preview as preview
+
+    out, grid, prev = outputs
+    src = write_png(tmp_path / "chart.png", island_image())
+    if stage == "render":  # as the preview's size limit fails, after the grid work
+
+        def fail(*args, **kwargs):
+            raise UsvError("--preview-resolution 0.001: the preview would be too large")
+
+        monkeypatch.setattr(preview, "render_preview", fail)
+    else:  # the disk fills while the preview is written, the grid's temporary being complete
+
+        def fail(path, rgb):
+            Path(path).write_bytes(b"\x89PNG half")
+            raise OSError(28, "No space left on device")
+
+        monkeypatch.setattr(preview, "write_png", fail)
+    r = usv("preprocess", src, "-o", grid, "--preview", prev, "--resolution", 2.5)
+    assert r.exit_code == 1
+    assert ("too large" if stage == "render" else "No space left") in one_line(r.stderr)
+    assert r.stdout == ""
+    assert_untouched(out)
+
+
+def test_sigterm_while_the_outputs_are_staged(tmp_path, usv, outputs, monkeypatch):
+    import usvtool.chart.preview as preview
+
+    out, grid, prev = outputs
+    src = write_png(tmp_path / "chart.png", island_image())
+
+    def write_then_signal(path, rgb):
+        Path(path).write_bytes(b"\x89PNG half")
+        os.kill(os.getpid(), signal.SIGTERM)
+
+    monkeypatch.setattr(preview, "write_png", write_then_signal)
+    r = usv("preprocess", src, "-o", grid, "--preview", prev, "--resolution", 2.5)
+    assert r.exit_code == 143 and r.stdout == ""
+    assert one_line(r.stderr) == "Error: interrupted by SIGTERM"
+    assert_untouched(out)
+
+
+def test_grid_and_preview_in_one_file_refused_before_the_work(tmp_path, usv, outputs):
+    out, grid, _ = outputs
+    src = write_png(tmp_path / "chart.png", island_image())
+    r = usv("preprocess", src, "-o", grid, "--preview", out / ".." / "out" / "grid.tif",
+            "--resolution", 2.5)
+    assert_one_line_error(r, 1, "--preview", "same file as -o")
+    assert_untouched(out)
+
+
+def chart_is_open(pid: int, chart: Path) -> bool:
+    """Whether process ``pid`` has ``chart`` open (Linux /proc)."""
+    fds = Path(f"/proc/{pid}/fd")
+    try:
+        return any(os.readlink(fd) == str(chart) for fd in fds.iterdir())
+    except OSError:  # an fd closed while looking, or the process gone
+        return False
+
+
+@pytest.mark.skipif(not Path("/proc/self/fd").is_dir(), reason="needs Linux /proc")
+@pytest.mark.parametrize("signum, status", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_a_signal_to_a_running_preprocess(charts, outputs, signum, status):
+    out, grid, prev = outputs
+    chart = (charts / "noaa" / "SanDiego_2.KAP").resolve()  # 29.5 Mpx: seconds of reading
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "usvtool.cli", "preprocess", chart, "-o", grid, "--preview", prev],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),  # even if we ignore it
+    )
+    try:
+        # the signal goes once the command is at work (reading the chart), not on a timer
+        while proc.poll() is None and not chart_is_open(proc.pid, chart):
+            time.sleep(0.005)
+        assert proc.poll() is None, "preprocess ended before it was seen reading the chart"
+        proc.send_signal(signum)
+        stdout, stderr = proc.communicate(timeout=120)
+    finally:
+        proc.kill()
+    assert proc.returncode == status, stderr
+    assert one_line(stderr) == f"Error: interrupted by {signal.Signals(signum).name}"
+    assert stdout == ""
+    assert_untouched(out)

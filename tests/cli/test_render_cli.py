@@ -55,7 +55,7 @@ def test_bad_cell_one_line_exit_1_nothing_written(tmp_path, bad_cell, kind):
         (["--resolution", "inf"], 2, "--resolution"),
         (["--shallow", "20"], 2, "shallow <= safety <= deep"),
         (["--deep", "5"], 2, "shallow <= safety <= deep"),
-        (["--resolution", "0.2"], 1, "m or coarser"),
+        (["--resolution", "0.2"], 1, "use --resolution 2.7 or more"),
         (["--truth", "nowhere/truth.tif"], 1, "--truth nowhere/truth.tif"),
     ],
 )

@@ -42,7 +42,11 @@ def test_every_algorithm_on_the_river_channel(river, algo, reference):
     assert reference(grid.blocked).route_free(cells(grid, route.points))
     assert route.collision_free
     assert route.length_m >= optimum * (1 - 1e-9)  # nothing beats the exact any-angle route
-    assert route.length_m <= optimum * 1.05  # a near-straight channel: all come close
+    # a near-straight channel: all come close; 8-connected moves can exceed a straight run by up
+    # to 1 / cos(22.5 deg) = 1.0824 (the octile metric's worst case), and the channel's lights
+    # and piles, hazards since the ink rule, bend the route
+    bound = 1 / np.cos(np.pi / 8) if algo == "astar" else 1.05
+    assert route.length_m <= optimum * bound
 
 
 @pytest.mark.parametrize("env", ["env1", "env2"])

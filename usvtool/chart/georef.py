@@ -77,6 +77,28 @@ class Frame:
         return (left, top - self.height * r, left + self.width * r, top)
 
 
+def scale_error(frame: Frame) -> float:
+    """The largest departure from true scale, in any direction, of a projected frame's CRS over
+    the frame: max |s - 1| for s the semi-axes of Tissot's indicatrix (pyproj ``get_factors``)
+    at the frame's centre, corners and edge midpoints; infinite where PROJ cannot say.
+
+    >>> from rasterio.crs import CRS
+    >>> f = Frame(Affine(10, 0, 495000, 0, -10, 3230000), 1000, 1000, CRS.from_epsg(32616))
+    >>> round(scale_error(f), 6)  # UTM's scale on its central meridian is 0.9996
+    0.0004
+    """
+    from pyproj import Proj
+
+    proj = Proj(_pyproj(frame.crs))
+    left, bottom, right, top = frame.bounds
+    x, y = np.meshgrid([left, (left + right) / 2, right], [bottom, (bottom + top) / 2, top])
+    lon, lat = proj(x.ravel(), y.ravel(), inverse=True)
+    factors = proj.get_factors(lon, lat)
+    axes = np.concatenate([factors.tissot_semimajor, factors.tissot_semiminor])
+    error = np.abs(axes - 1)
+    return float(error.max()) if np.isfinite(error).all() else math.inf
+
+
 def frame_for_bounds(bounds, resolution: float, crs=None) -> Frame:
     """The frame covering ``bounds`` (left, bottom, right, top) with square pixels.
 

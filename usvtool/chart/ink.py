@@ -25,9 +25,9 @@ follows the chart's own drawing rather than one chart's colours or resolution):
   largest inscribed radius (a disc gives 1, a square 1.27, a bar of aspect L/T about 1.27 L/T):
   structures, platforms, filled dots and filled rings. Bars (dashes) are not solids.
 - *structures drawn as strokes*: the parts at least ``w + 1`` thick (an opening) that come
-  within ``2 w + 1`` of land (piers, jetties, groins running out from the shore) or that are
-  straight bars (area at most 1.2 times box diagonal times thickness ``2 R``) at least ``25 w``
-  long (a detached breakwater: longer than any dash; a bold label's letters are not bars).
+  within ``2 w + 1`` of land: piers, jetties, groins running out from the shore. A thick stroke
+  standing free in water is clutter: on 11361_4 the thick range and mile lines cross the river,
+  so "long straight bar" cannot stand for a detached breakwater.
 - hazards are the solids and the structures, grown back by half a stroke inside the ink (the
   opening rounds corners off). Everything else in water (strokes of ordinary width, bold labels,
   dashes) is clutter and becomes water.
@@ -52,12 +52,6 @@ MODES = ("auto", "clutter", "obstacle")
 #: SOLID_AREA times their inscribed disc ``pi R^2``.
 SOLID_WIDTH = 2.0
 SOLID_AREA = 1.35
-#: Thick strokes at least this many ordinary widths long (bounding-box diagonal) are structures
-#: even when they do not touch land: longer than any glyph of a bold label or a dash.
-LONG = 25.0
-#: A straight bar covers at most this share more than its length times its thickness (the
-#: strokes of a letter N or G cover two to three times their box's diagonal).
-BAR_AREA = 1.2
 #: Holes filled as ring symbols: largest area in units of ``w^2``, and shape limits.
 RING_HOLE_AREA = 2.25 * np.pi  # holes up to 1.5 strokes across (pi (1.5 w)^2)
 RING_HOLE_ASPECT = 1.5
@@ -130,13 +124,10 @@ def resolve(ink: np.ndarray, land: np.ndarray, mode: str = "auto") -> tuple[np.n
     filled = (wet | _round_holes(wet, w)).astype(np.uint8)
     solids = _solids(filled, SOLID_WIDTH * w + 1)
     strokes = cv2.morphologyEx(filled, cv2.MORPH_OPEN, _disc(w + 1))
-    n, labels, stats, _ = cv2.connectedComponentsWithStats(strokes, connectivity=8)
+    n, labels = cv2.connectedComponents(strokes, connectivity=8)
     shore = cv2.dilate(land.astype(np.uint8), _disc(2 * w + 1)) > 0
     attached = np.bincount(labels[shore], minlength=n) > 0
-    extent = np.hypot(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT])
-    radius = ndimage.maximum(_distance(strokes > 0), labels, np.arange(n))
-    bar = stats[:, cv2.CC_STAT_AREA] <= BAR_AREA * extent * 2 * radius  # straight, not a glyph
-    structure = attached | ((extent >= LONG * w) & bar)
+    structure = attached
     structure[0] = False
     parts = (solids | structure[labels]).astype(np.uint8)
     # an opening rounds corners off: grow back by half a stroke, inside the ink

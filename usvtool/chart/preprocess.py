@@ -32,12 +32,14 @@ class Options:
     margin: float | None = None  # metres; default 0.5 cell (the paper's rule)
     swell: bool = True  # False: grid used as drawn (already swelled, or a grid environment)
     resolution: float | None = None  # metres per pixel of a plain image
+    cutline: str | None = None  # GeoJSON polygon: pixels of a raster chart outside it are outside
     bounds: tuple[float, float, float, float] | None = None  # GeoJSON extent
     clusters: int = 8
     land_colours: list[tuple[int, int, int]] = field(default_factory=list)
     channel: str = "membership"
     threshold: float | None = None  # fixed 0..255 threshold instead of Otsu (paper: 100)
     min_area: int = 16  # pixels: smaller land specks and water holes are clutter
+    ink: str = "auto"  # ink in water: auto (by stroke shape), clutter or obstacle (chart.ink)
     occupancy: float = 0.0  # obstacle share above which a cell blocks (0: any pixel)
     min_depth: float | None = None  # S-57: default s57.DEFAULT_MIN_DEPTH
     hazard_radius: float | None = None  # S-57: default s57.DEFAULT_HAZARD_RADIUS
@@ -73,7 +75,7 @@ def preprocess(path, options: Options | None = None) -> Result:
     chart = seg = None
     extra: dict = {}
     if kind in ("raster", "kap"):
-        chart = sources.read_raster(path, opts.resolution)
+        chart = sources.read_raster(path, opts.resolution, opts.cutline)
         timings["read"] = time.perf_counter() - t
         seg = _named(path, segment)(
             chart.rgb,
@@ -83,6 +85,7 @@ def preprocess(path, options: Options | None = None) -> Result:
             channel=opts.channel,
             threshold=opts.threshold,
             min_area=opts.min_area,
+            ink=opts.ink,
             seed=opts.seed,
         )
         timings.update({f"segment_{k}": v for k, v in seg.timings.items()})
@@ -96,8 +99,15 @@ def preprocess(path, options: Options | None = None) -> Result:
             "clusters": seg.clusters,
             "image_size": [int(chart.rgb.shape[1]), int(chart.rgb.shape[0])],
             "image_resolution_m": chart.frame.resolution,
+            "ink_hazard_fraction": round(float(seg.hazard.sum() / seg.hazard.size), 6),
         }
     else:
+        for option, value, use in (
+            ("--resolution", opts.resolution, "plain images"),
+            ("--cutline", opts.cutline, "raster charts"),
+        ):
+            if value is not None:
+                raise UsvError(f"{path}: {option} is for {use}; this is a {kind} source")
         if kind == "s57":
             from usvtool.chart import s57
 
@@ -106,7 +116,7 @@ def preprocess(path, options: Options | None = None) -> Result:
                 opts.hazard_radius if opts.hazard_radius is not None else s57.DEFAULT_HAZARD_RADIUS
             )
             vec = sources.read_s57(path, min_depth, radius)
-            extra = {"min_depth_m": min_depth, "hazard_radius_m": radius}
+            extra = {"min_depth_m": min_depth, "hazard_radius_m": radius, **s57.update_status(path)}
         else:
             vec = sources.read_geojson(path, opts.bounds)
         timings["read"] = time.perf_counter() - t
@@ -142,9 +152,12 @@ def preprocess(path, options: Options | None = None) -> Result:
             threshold=seg.threshold,
             threshold_rule="fixed" if opts.threshold is not None else "otsu",
             min_area_px=opts.min_area,
+            ink=opts.ink,
             land_colours=[list(c) for c in opts.land_colours],
             seed=opts.seed,
         )
+        if opts.cutline is not None:
+            params["cutline"] = str(opts.cutline)
     else:
         params.update(extra)
     grid = Grid(cells, frame.transform, crs, params)

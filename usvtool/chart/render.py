@@ -54,21 +54,42 @@ TEXT_MM = 2.0
 MIN_TEXT_PX = 8
 
 
-def chart_frame(cell: Cell, resolution: float) -> Frame:
-    """The UTM frame covering the cell's coverage at ``resolution`` metres per pixel."""
+def chart_frame(cell: Cell, resolution: float, option: str = "--resolution") -> Frame:
+    """The UTM frame covering the cell's coverage at ``resolution`` metres per pixel.
+
+    An image over :data:`MAX_PIXELS` is refused with the resolution that fits, named by
+    ``option`` (the command-line option that sets ``resolution``).
+    """
     if not math.isfinite(resolution) or resolution <= 0:
-        raise UsvError(f"resolution {resolution}: must be a finite number > 0")
+        raise UsvError(f"{option} {resolution}: must be a finite number > 0")
     crs = cell.utm
     bounds = reproject_geometries([cell.coverage], WGS84, crs)[0].bounds
+    return limited_frame(bounds, resolution, crs, cell.name, option)
+
+
+def limited_frame(bounds, resolution: float, crs, what: str, option: str) -> Frame:
+    """The frame over ``bounds`` at ``resolution``, refusing more than :data:`MAX_PIXELS`.
+
+    The error names ``option`` and the finest resolution, to 0.1 m, whose frame fits: the
+    estimate from the area, checked on the frame itself (whole pixels cover the edges) and
+    raised by 0.1 m until it fits.
+    """
     frame = frame_for_bounds(bounds, resolution, crs)
-    pixels = frame.width * frame.height
-    if pixels > MAX_PIXELS:
-        coarser = math.ceil(resolution * math.sqrt(pixels / MAX_PIXELS) * 10) / 10
-        raise UsvError(
-            f"resolution {resolution:g} m: {cell.name} would be {frame.width} x {frame.height}"
-            f" pixels (limit {MAX_PIXELS // 1_000_000} million); use {coarser:g} m or coarser"
-        )
-    return frame
+    if frame.width * frame.height <= MAX_PIXELS:
+        return frame
+    left, bottom, right, top = bounds
+    fits = math.ceil(math.sqrt((right - left) * (top - bottom) / MAX_PIXELS) * 10) / 10
+    while fits <= resolution or _pixels(bounds, fits) > MAX_PIXELS:
+        fits = (round(fits * 10) + 1) / 10
+    raise UsvError(
+        f"{option} {resolution:g} m: {what} would be {frame.width} x {frame.height} pixels"
+        f" (limit {MAX_PIXELS // 1_000_000} million); use {option} {fits:g} or more"
+    )
+
+
+def _pixels(bounds, resolution: float) -> int:
+    frame = frame_for_bounds(bounds, resolution)
+    return frame.width * frame.height
 
 
 def render_cell(

@@ -14,10 +14,14 @@ Layers read (see ``docs/s57.md``):
 - hazards: ``UWTROC``, ``WRECKS``, ``OBSTRN`` (with ``VALSOU`` where given), plus ``SLCONS``
   (piers, breakwaters, sea walls) and ``PILPNT`` (piles), which are solid obstructions too;
 - coastline ``COALNE``, depth contours ``DEPCNT`` (``VALDCO``), soundings ``SOUNDG`` (depth = Z).
+
+:func:`update_status` tells which edition and update were applied and which update files lie
+beside the cell, for the commands' summaries.
 """
 
 from __future__ import annotations
 
+import logging
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -41,6 +45,8 @@ DEFAULT_MIN_DEPTH = 1.2
 DEFAULT_HAZARD_RADIUS = 10.0
 
 _POLYGONAL = (3, 6)  # shapely type ids: Polygon, MultiPolygon
+
+log = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
@@ -71,15 +77,15 @@ class Cell:
     sounding_depths: np.ndarray
 
     @property
-    def centre(self) -> tuple[float, float]:
-        """(lon, lat) of the centre of the coverage's bounding box."""
-        left, bottom, right, top = self.coverage.bounds
-        return (left + right) / 2, (bottom + top) / 2
-
-    @property
     def utm(self):
         """The UTM zone CRS of the coverage's centre."""
-        return utm_crs(*self.centre)
+        return coverage_utm(self.coverage)
+
+
+def coverage_utm(coverage: shapely.Geometry):
+    """The UTM zone CRS of the centre of a coverage's bounding box (lon/lat)."""
+    left, bottom, right, top = coverage.bounds
+    return utm_crs((left + right) / 2, (bottom + top) / 2)
 
 
 def read_cell(path, updates: bool = True) -> Cell:
@@ -102,11 +108,6 @@ def read_cell(path, updates: bool = True) -> Cell:
     drval1 = np.concatenate(drval1)
     drval1 = np.where(np.isnan(drval1), -1.0, drval1)
 
-    geoms, attrs = reader.read("M_COVR", ["CATCOV"])
-    coverage = _polygons(geoms[attrs["CATCOV"] == 1])
-    if not len(coverage):
-        raise UsvError(f"{path}: no coverage polygon (M_COVR with CATCOV=1)")
-
     hazards, layers, valsou = [], [], []
     for name in HAZARD_LAYERS:
         geoms, attrs = reader.read(name, ["VALSOU"])
@@ -122,7 +123,7 @@ def read_cell(path, updates: bool = True) -> Cell:
     return Cell(
         path=path,
         **reader.identity(),
-        coverage=shapely.union_all(coverage),
+        coverage=reader.coverage(),
         land=land,
         depth_areas=depth_areas,
         drval1=drval1,
@@ -136,6 +137,52 @@ def read_cell(path, updates: bool = True) -> Cell:
         soundings=soundings,
         sounding_depths=depths,
     )
+
+
+def read_coverage(path, updates: bool = True) -> shapely.Geometry:
+    """The cell's coverage (lon/lat) alone: a quick read for checks made before the real work."""
+    path = Path(path)
+    check_input_file(path)
+    return _Reader(path, updates).coverage()
+
+
+def update_files(path) -> list[Path]:
+    """The update files beside the base cell ``path``: same name, extension .001 to .999, in
+    the order of their numbers."""
+    path = Path(path)
+    found = [
+        p for p in path.parent.iterdir()
+        if p.stem == path.stem and len(p.suffix) == 4 and p.suffix[1:].isdigit()
+        and p.suffix != ".000"
+    ]  # fmt: skip
+    return sorted(found, key=lambda p: int(p.suffix[1:]))
+
+
+def update_status(path) -> dict:
+    """Edition and update number applied (``DSID_EDTN``, ``DSID_UPDN``, with the update files
+    applied) and the names of the update files beside the cell.
+
+    Warns when the update files are not a contiguous run from .001: GDAL's driver applies
+    .001, .002, ... in turn and stops at the first one missing, so later files are ignored.
+    """
+    path = Path(path)
+    check_input_file(path)
+    identity = _Reader(path, True).identity()
+    files = update_files(path)
+    numbers = [int(p.suffix[1:]) for p in files]
+    missing = sorted(set(range(1, max(numbers, default=0) + 1)) - set(numbers))
+    if missing:
+        log.warning(
+            "%s: update files %s are not a contiguous run from .001 (missing %s): "
+            "update %s applied, the later files ignored",
+            path, ", ".join(p.suffix for p in files), ", ".join(f".{n:03d}" for n in missing),
+            identity["update"],
+        )  # fmt: skip
+    return {
+        "edition": identity["edition"],
+        "update": identity["update"],
+        "update_files": [p.name for p in files],
+    }
 
 
 def obstacles(
@@ -198,19 +245,35 @@ class _Reader:
         return geoms, attrs
 
     def identity(self) -> dict:
-        """Cell name, edition, update number and compilation scale from the DSID record."""
+        """Cell name, edition, update number and compilation scale from the DSID record (the
+        update number is the last update applied: 0 when updates are ignored)."""
         from pyogrio.raw import read
 
         fields = ["DSID_DSNM", "DSID_EDTN", "DSID_UPDN", "DSPM_CSCL"]
-        meta, _, _, values = read(self.path, layer="DSID", columns=fields, read_geometry=False)
+        meta, _, _, values = read(
+            self.path, layer="DSID", columns=fields, read_geometry=False, **self.options
+        )
         found = {f: v[0] for f, v in zip(meta["fields"], values, strict=True) if len(v)}
         scale = found.get("DSPM_CSCL")
         return {
             "name": str(found.get("DSID_DSNM") or self.path.name),
-            "edition": str(found.get("DSID_EDTN") or ""),
-            "update": str(found.get("DSID_UPDN") or ""),
+            "edition": _text(found.get("DSID_EDTN")),
+            "update": _text(found.get("DSID_UPDN")),
             "scale": int(scale) if scale else 0,
         }
+
+    def coverage(self) -> shapely.Geometry:
+        """Union of the ``M_COVR`` polygons with ``CATCOV=1``."""
+        geoms, attrs = self.read("M_COVR", ["CATCOV"])
+        coverage = _polygons(geoms[attrs["CATCOV"] == 1])
+        if not len(coverage):
+            raise UsvError(f"{self.path}: no coverage polygon (M_COVR with CATCOV=1)")
+        return shapely.union_all(coverage)
+
+
+def _text(value) -> str:
+    """A DSID field as text ('' when not given; a 0 stays '0')."""
+    return "" if value is None else str(value)
 
 
 def _polygons(geoms: np.ndarray) -> np.ndarray:

@@ -1,11 +1,15 @@
 """Reading chart inputs into one of two forms the pipeline grids.
 
-* :class:`RasterChart`: an RGB image in a north-up metric frame, with the mask of pixels inside
-  the chart. From plain images (PNG, JPEG, TIFF: local metre frame from ``--resolution``, origin
-  at the lower-left corner), georeferenced GeoTIFFs (RGB or palette) and BSB/KAP raster charts
-  (georeferenced from their GCPs, masked by ``BSB_CUTLINE``). Lon/lat and GCP-referenced sources
-  are warped to the UTM zone of their centre with nearest-neighbour resampling, so chart colours
-  stay pure.
+* :class:`RasterChart`: a chart image in a north-up frame whose units are metres on the ground,
+  held as colour indices into a palette of distinct colours, with the mask of pixels inside the
+  chart. From plain images (PNG, JPEG, TIFF: local metre frame from ``--resolution``, origin at
+  the lower-left corner), georeferenced GeoTIFFs (RGB(A), grey or palette, 8 or 16 bits) and
+  BSB/KAP raster charts (georeferenced from their GCPs, masked by ``BSB_CUTLINE``). A source is
+  kept in its own CRS only when that CRS is metric at the chart (:func:`keeps_frame`); every
+  other one (lon/lat, Web Mercator, a chart projection, a far UTM zone, GCPs) is warped to the
+  UTM zone of its centre. The warp moves the index band alone, nearest neighbour, so chart
+  colours stay pure. No-data, alpha and mask bands, and an optional cutline polygon, mark the
+  pixels outside the chart.
 * :class:`VectorChart`: obstacle geometries in a metric CRS and the polygon of the chart's
   extent. From S-57 cells (:mod:`usvtool.chart.s57`) and GeoJSON obstacle polygons.
 """
@@ -16,22 +20,63 @@ import json
 import os
 import warnings
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 
 import numpy as np
 
-from usvtool.chart.georef import WGS84, Frame, reproject_geometries, utm_crs
+from usvtool.chart.georef import WGS84, Frame, reproject_geometries, scale_error, utm_crs
 from usvtool.errors import UsvError, check_input_file
 
 MIN_PIXELS = 4  # an image narrower than this cannot hold a chart
+#: A projected CRS in metres is kept as the chart's frame when, at the chart, its point scale in
+#: every direction is within this of 1 (see :func:`keeps_frame`).
+MAX_SCALE_ERROR = 0.002
+WARP_THREADS = 2  # GDAL warper threads: 0.27 s against 0.46 s on SanDiego_2 (2 cores)
 
 
-@dataclass
 class RasterChart:
-    rgb: np.ndarray  # (H, W, 3) uint8
-    valid: np.ndarray  # (H, W) bool: inside the chart
-    frame: Frame
-    kind: str  # "image" | "geotiff" | "kap"
+    """A chart image in a north-up frame.
+
+    ``index`` (H, W) unsigned colour indices into ``palette`` (n, 3) uint8 distinct colours;
+    ``valid`` (H, W) bool, the pixels inside the chart (a pixel outside holds some in-range
+    index); ``frame``; ``kind`` ("image", "geotiff", "kap", or a caller's own such as "s57").
+    ``rgb`` is ``palette[index]``, made on first use and kept.
+
+    ``RasterChart(rgb, valid, frame, kind)`` takes an (H, W, 3) uint8 image and indexes its
+    colours on first use of ``index`` or ``palette``; ``RasterChart(index, valid, frame, kind,
+    palette=palette)`` takes indices already made.
+    """
+
+    def __init__(self, pixels: np.ndarray, valid: np.ndarray, frame: Frame, kind: str,
+                 palette: np.ndarray | None = None):
+        self.valid, self.frame, self.kind = valid, frame, kind
+        if palette is None:
+            self.__dict__["rgb"] = pixels
+        else:
+            self.__dict__["_indexed"] = (pixels, palette)
+
+    @cached_property
+    def _indexed(self) -> tuple[np.ndarray, np.ndarray]:
+        return colour_index(self.rgb)
+
+    @property
+    def index(self) -> np.ndarray:
+        return self._indexed[0]
+
+    @property
+    def palette(self) -> np.ndarray:
+        return self._indexed[1]
+
+    @cached_property
+    def rgb(self) -> np.ndarray:
+        """(H, W, 3) uint8 ``palette[index]``, one channel at a time (fancy indexing of the
+        whole palette needs a pixel-sized intp copy of the index and is slower)."""
+        index, palette = self._indexed
+        out = np.empty((*index.shape, 3), np.uint8)
+        for c in range(3):
+            out[..., c] = palette[:, c][index]
+        return out
 
 
 @dataclass
@@ -54,13 +99,23 @@ def chart_kind(path: str | os.PathLike) -> str:
     return "raster"
 
 
-def read_raster(path: str | os.PathLike, resolution: float | None = None) -> RasterChart:
-    """Read an image, GeoTIFF or KAP chart (see the module docstring)."""
+def read_raster(
+    path: str | os.PathLike,
+    resolution: float | None = None,
+    cutline: str | os.PathLike | None = None,
+) -> RasterChart:
+    """Read an image, GeoTIFF or KAP chart (see the module docstring).
+
+    ``resolution`` (metres per pixel) is for plain images and refused for a georeferenced
+    source; ``cutline`` is a GeoJSON polygon file (:func:`read_cutline`): pixels outside it are
+    outside the chart (for a KAP: outside both it and the chart's own cutline).
+    """
     import rasterio
     from rasterio.errors import NotGeoreferencedWarning, RasterioIOError
 
     check_input_file(path)
-    kind = "kap" if chart_kind(path) == "kap" else None
+    cutlines = [(*read_cutline(cutline), f"--cutline {cutline}")] if cutline is not None else []
+    kap = chart_kind(path) == "kap"
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", NotGeoreferencedWarning)
@@ -70,30 +125,108 @@ def read_raster(path: str | os.PathLike, resolution: float | None = None) -> Ras
                         f"{path}: {ds.width} x {ds.height} pixels is too small for a chart "
                         f"(at least {MIN_PIXELS} x {MIN_PIXELS})"
                     )
-                rgb, alpha = _read_rgb(ds, path)
                 gcps, gcp_crs = ds.gcps
                 crs, transform, tags = ds.crs, ds.transform, ds.tags()
+                if kap and not gcps:
+                    raise UsvError(f"{path}: no georeference (the chart has no GCPs)")
+                by_gcps = kap or bool(gcps and crs is None)
+                georeferenced = by_gcps or (crs is not None and not transform.is_identity)
+                if georeferenced and resolution is not None:
+                    raise UsvError(
+                        f"{path}: the chart is georeferenced; --resolution is for plain images "
+                        "only (drop it)"
+                    )
+                index, palette, valid = _read_pixels(ds, path)
     except RasterioIOError as exc:
         raise UsvError(f"{path}: not a readable chart image ({_first_line(exc)})") from None
 
-    height, width = rgb.shape[:2]
-    valid = np.ones((height, width), bool) if alpha is None else alpha > 0
-    if kind == "kap" or (gcps and crs is None):
-        if not gcps:
-            raise UsvError(f"{path}: no georeference (the chart has no GCPs)")
-        return _warp(rgb, valid, path, gcps=gcps, src_crs=gcp_crs, cutline=tags.get("BSB_CUTLINE"))
-    if crs is not None and not transform.is_identity:
-        if crs.is_projected and _is_metric(crs) and _square_north_up(transform):
-            return RasterChart(rgb, valid, Frame(transform, width, height, crs), "geotiff")
-        return _warp(rgb, valid, path, transform=transform, src_crs=crs)
-    if resolution is None:
-        raise UsvError(
-            f"{path}: no georeference; give --resolution (metres per pixel) for a plain image"
-        )
-    from affine import Affine
+    height, width = index.shape
+    if not georeferenced:
+        if cutlines:
+            raise UsvError(f"{path}: no georeference, so --cutline {cutline} cannot be placed")
+        if resolution is None:
+            raise UsvError(
+                f"{path}: no georeference; give --resolution (metres per pixel) for a plain image"
+            )
+        from affine import Affine
 
-    frame = Frame(Affine(resolution, 0, 0, 0, -resolution, height * resolution), width, height)
-    return RasterChart(rgb, valid, frame, "image")
+        frame = Frame(Affine(resolution, 0, 0, 0, -resolution, height * resolution), width, height)
+        valid = np.ones((height, width), bool) if valid is None else valid
+        return RasterChart(index, valid, frame, "image", palette=palette)
+
+    if by_gcps:
+        if tags.get("BSB_CUTLINE"):
+            own = _cutline_polygon(tags["BSB_CUTLINE"], path)
+            cutlines.append((own, WGS84, "its BSB_CUTLINE"))
+        index, valid, frame = _warp(index, valid, len(palette), gcps=gcps, src_crs=gcp_crs)
+    else:
+        frame = Frame(transform, width, height, crs)
+        if not keeps_frame(frame):
+            index, valid, frame = _warp(
+                index, valid, len(palette), transform=transform, src_crs=crs
+            )
+    if valid is None:
+        valid = np.ones(index.shape, bool)
+    if cutlines:
+        _clip(valid, frame, cutlines, path)
+    return RasterChart(index, valid, frame, "kap" if kap else "geotiff", palette=palette)
+
+
+def keeps_frame(frame: Frame) -> bool:
+    """Whether a georeferenced raster stays in its own frame (else it is warped to UTM).
+
+    Kept: a projected CRS in metres, a north-up square-pixelled transform, and a point scale
+    within :data:`MAX_SCALE_ERROR` (0.2 %) of 1 in every direction at the chart's centre,
+    corners and edge midpoints (:func:`usvtool.chart.georef.scale_error`, pyproj's Tissot
+    factors). Then the frame's metres are metres on the ground to 0.2 %, in every direction, so
+    the cell size, the ship-length rule and the margin hold, and the frame is conformal to
+    better than 0.23 degrees. The threshold keeps every UTM zone over the whole zone (scale
+    0.9996 to 1.001) and a little beyond its edges, State Plane and national grids in metres
+    (scale errors of 1:10 000), and a Mercator whose true-scale latitude runs through a harbour
+    chart; it warps EPSG:3857 (scale 1 / cos(latitude): 14 % at 29 N), a Mercator true at
+    another latitude, lon/lat CRSs, projections in feet, and UTM zones farther away (UTM 17N
+    at Head of Passes, in 16N: 0.77 %). Warping costs a nearest-neighbour resampling (features
+    move by up to half a pixel), so a frame already metric to 0.2 % is better kept.
+    """
+    crs, t = frame.crs, frame.transform
+    square_north_up = t.b == 0 and t.d == 0 and t.e < 0 and abs(t.a + t.e) <= 1e-9 * abs(t.a)
+    if crs is None or not crs.is_projected or not _is_metric(crs) or not square_north_up:
+        return False
+    return scale_error(frame) <= MAX_SCALE_ERROR
+
+
+def colour_index(rgb: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(index, palette): each pixel's index into the distinct colours of an (H, W, 3) uint8
+    image, and those colours (n, 3) in packed RGB order.
+
+    The index has the smallest unsigned dtype that also holds n (the value reserved for
+    pixels outside the chart while warping). One pass marks the colours seen in a 2^24 table,
+    one look-up gives the indices: no sort, linear in the pixels.
+    """
+    return _index_packed(_pack(rgb[..., 0], rgb[..., 1], rgb[..., 2]))
+
+
+def read_cutline(path: str | os.PathLike):
+    """The (multi)polygon of a ``--cutline`` GeoJSON file and its CRS: lon/lat per RFC 7946, or
+    the CRS a legacy ``crs`` member names. Several polygons are united. Refused, naming
+    ``--cutline``: a missing or unreadable file, no geometry, a geometry other than a polygon,
+    an invalid polygon."""
+    import shapely
+
+    what = f"--cutline {path}"
+    try:
+        check_input_file(path)
+    except UsvError as exc:
+        raise UsvError(f"--cutline {exc}") from None
+    doc, geoms = _parse_geojson(path, what, "polygon")
+    kinds = sorted({g.geom_type for g in geoms} - {"Polygon", "MultiPolygon"})
+    if kinds:
+        raise UsvError(f"{what}: not a polygon ({', '.join(kinds)})")
+    area = shapely.union_all(geoms)
+    if area.is_empty or not area.is_valid:
+        reason = "empty" if area.is_empty else shapely.is_valid_reason(area)
+        raise UsvError(f"{what}: not a valid polygon ({reason})")
+    return area, _geojson_crs(doc, what)
 
 
 def read_geojson(path: str | os.PathLike, bounds=None) -> VectorChart:
@@ -104,25 +237,14 @@ def read_geojson(path: str | os.PathLike, bounds=None) -> VectorChart:
     (synthetic maps). The extent is ``bounds``, else the file's ``bbox``, else the obstacles'.
     """
     import shapely
-    from shapely.geometry import box, shape
+    from shapely.geometry import box
 
     check_input_file(path)
-    try:
-        doc = json.loads(Path(path).read_text(encoding="utf-8"))
-        features = doc["features"] if doc.get("type") == "FeatureCollection" else [doc]
-        geoms = [shape(f["geometry"] if f.get("type") == "Feature" else f) for f in features]
-    except (ValueError, KeyError, TypeError, AttributeError, UnicodeDecodeError) as exc:
-        raise UsvError(f"{path}: not a GeoJSON file of obstacles ({_first_line(exc)})") from None
-    geoms = np.array([g for g in geoms if not g.is_empty], dtype=object)
+    doc, geoms = _parse_geojson(path, str(path), "file of obstacles")
+    geoms = np.array(geoms, dtype=object)
     if geoms.size == 0:
         raise UsvError(f"{path}: no obstacle geometries")
-    if doc.get("frame") == "local":
-        crs = None
-    else:
-        from rasterio.crs import CRS
-
-        name = (doc.get("crs") or {}).get("properties", {}).get("name", WGS84)
-        crs = CRS.from_user_input(name)
+    crs = None if doc.get("frame") == "local" else _geojson_crs(doc, str(path))
     extent_bounds = bounds or doc.get("bbox") or shapely.total_bounds(geoms)
     extent = box(*extent_bounds)
     if crs is not None and not crs.is_projected:
@@ -148,58 +270,222 @@ def read_s57(path: str | os.PathLike, min_depth: float, hazard_radius: float) ->
     )
 
 
-def _read_rgb(ds, path):
-    """The RGB pixels (H, W, 3) and alpha (or None) of a dataset: RGB(A), palette or grey.
+def _parse_geojson(path, what: str, expected: str) -> tuple[dict, list]:
+    """The document and its non-empty shapely geometries (FeatureCollection, Feature or bare
+    geometry); refused as "not a GeoJSON {expected}" naming ``what``."""
+    from shapely.geometry import shape
 
-    PNG and JPEG pixels are decoded by OpenCV, which refuses a truncated file where GDAL's
-    drivers only log the libpng/libjpeg error and return partial pixels.
+    try:
+        doc = json.loads(Path(path).read_text(encoding="utf-8"))
+        features = doc["features"] if doc.get("type") == "FeatureCollection" else [doc]
+        geoms = [shape(f["geometry"] if f.get("type") == "Feature" else f) for f in features]
+    except (ValueError, KeyError, TypeError, AttributeError, UnicodeDecodeError) as exc:
+        raise UsvError(f"{what}: not a GeoJSON {expected} ({_first_line(exc)})") from None
+    return doc, [g for g in geoms if not g.is_empty]
+
+
+def _geojson_crs(doc: dict, what: str):
+    """The CRS a GeoJSON document's legacy ``crs`` member names, else lon/lat (RFC 7946)."""
+    from rasterio.crs import CRS
+    from rasterio.errors import CRSError
+
+    try:
+        return CRS.from_user_input((doc.get("crs") or {}).get("properties", {}).get("name", WGS84))
+    except (CRSError, TypeError, ValueError, AttributeError) as exc:
+        raise UsvError(f"{what}: unknown crs member ({_first_line(exc)})") from None
+
+
+# --- pixels --------------------------------------------------------------------------------
+
+
+def _read_pixels(ds, path) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """(index, palette, valid) of a dataset; ``valid`` None when every pixel is inside.
+
+    16-bit and other NBITS colour is scaled to 8 bits (:func:`_to_8bit`); alpha 0 is outside
+    the chart and partial alpha is composited over white (charts are printed on white). PNG
+    and JPEG pixels are decoded by OpenCV, which refuses a truncated file where GDAL's drivers
+    only log the libpng/libjpeg error and return partial pixels; their transparency is
+    OpenCV's alpha (an alpha channel, or a PNG tRNS chunk).
     """
+    bits = int(ds.tags(1, ns="IMAGE_STRUCTURE").get("NBITS", 0)) or None
     if ds.driver in ("PNG", "JPEG"):
-        return _decode_with_opencv(path, ds.driver)
-    if ds.count >= 3:
-        data = ds.read()
-        rgb = np.moveaxis(data[:3], 0, -1)
-        alpha = data[3] if ds.count >= 4 else None
+        (colour, alpha), table, valid = _decode_with_opencv(path, ds.driver), None, None
     else:
-        band = ds.read(1)
-        try:
-            cmap = ds.colormap(1)
-        except ValueError:
-            cmap = None
-        if cmap:
-            lut = np.zeros((256, 4), np.uint8)
-            for k, c in cmap.items():
-                lut[k] = c
-            rgb, alpha = lut[band, :3], None
-        else:
-            rgb, alpha = np.repeat(band[..., None], 3, axis=2), None
-    if rgb.dtype != np.uint8:
-        raise UsvError(f"{path}: expected 8-bit colour, found {rgb.dtype}")
-    return np.ascontiguousarray(rgb), alpha
+        colour, alpha, table, valid = _read_bands(ds, path)
+    if table is not None and alpha is not None:  # a palette with an alpha band: colour it
+        colour, table = [table[colour[0], c] for c in range(3)], None
+    elif table is None:
+        colour = [_to_8bit(c, bits) for c in colour]
+    if alpha is not None:
+        outside = alpha == 0
+        valid = ~outside if valid is None else valid & ~outside
+        alpha8 = _to_8bit(alpha, bits)
+        colour = [_over_white(c, alpha8) for c in colour]
+    if len(colour) == 3:
+        index, palette = _index_packed(_pack(*colour))
+        return index, palette, valid
+    if table is None:  # grey levels
+        table = np.repeat(np.arange(256, dtype=np.uint8)[:, None], 4, axis=1)
+        table[:, 3] = 255
+    index, palette, inside = _index_table(colour[0], table, path)
+    if inside is not None:
+        valid = inside if valid is None else valid & inside
+    return index, palette, valid
 
 
-def _decode_with_opencv(path, driver: str):
+def _read_bands(ds, path):
+    """(colour bands, alpha band or None, colour table or None, valid or None) read by GDAL.
+
+    Colour is the first three non-alpha bands (RGB), else band 1 (palette when it has a colour
+    table, else grey); the alpha band is the one GDAL calls alpha, else the 4th of four. GDAL's
+    dataset mask gives the no-data values and mask bands.
+    """
+    from rasterio.enums import ColorInterp
+
+    interp = list(ds.colorinterp)
+    a = interp.index(ColorInterp.alpha) + 1 if ColorInterp.alpha in interp else None
+    a = a or (4 if ds.count == 4 else None)
+    bands = [i for i in range(1, ds.count + 1) if i != a]
+    bands = bands[:3] if len(bands) >= 3 else bands[:1]
+    for i in [*bands, a] if a else bands:
+        _check_depth(ds.dtypes[i - 1], path)
+    table = _colour_table(ds) if len(bands) == 1 else None
+    valid = ds.dataset_mask() > 0 if _declares_mask(ds) else None
+    return list(ds.read(bands)), (ds.read(a) if a else None), table, valid
+
+
+def _decode_with_opencv(path, driver: str) -> tuple[list[np.ndarray], np.ndarray | None]:
+    """The colour channels (R, G, B or grey) and alpha channel of a PNG or JPEG."""
     import cv2
 
     data = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
     if data is None:
         raise UsvError(f"{path}: truncated or corrupt {driver} image")
-    if data.dtype != np.uint8:
-        raise UsvError(f"{path}: expected 8-bit colour, found {data.dtype}")
+    _check_depth(data.dtype, path)
     if data.ndim == 2:
-        return np.ascontiguousarray(np.repeat(data[..., None], 3, axis=2)), None
-    if data.shape[2] == 4:
-        return cv2.cvtColor(data, cv2.COLOR_BGRA2RGB), data[..., 3]
-    return cv2.cvtColor(data, cv2.COLOR_BGR2RGB), None
+        return [data], None
+    return [data[..., 2], data[..., 1], data[..., 0]], data[..., 3] if data.shape[2] == 4 else None
 
 
-def _warp(rgb, valid, path, *, src_crs, gcps=None, transform=None, cutline=None) -> RasterChart:
-    """Warp to the UTM zone of the chart's centre (nearest neighbour), masking the cutline."""
-    from rasterio import features
+def _check_depth(dtype, path) -> None:
+    if np.dtype(dtype) not in (np.uint8, np.uint16):
+        raise UsvError(f"{path}: expected 8- or 16-bit colour, found {np.dtype(dtype)}")
+
+
+def _colour_table(ds) -> np.ndarray | None:
+    """Band 1's colour table as (m, 4) RGBA rows covering every value of its data type (entries
+    it leaves out are opaque black), or None."""
+    try:
+        cmap = ds.colormap(1)
+    except ValueError:
+        return None
+    if not cmap:
+        return None
+    table = np.zeros((256 if ds.dtypes[0] == "uint8" else 65536, 4), np.uint8)
+    table[:, 3] = 255
+    for k, c in cmap.items():
+        table[k] = c
+    return table
+
+
+def _declares_mask(ds) -> bool:
+    """Whether some band has no-data or a mask band (an alpha band is read directly)."""
+    from rasterio.enums import MaskFlags
+
+    return any(
+        MaskFlags.nodata in f or (MaskFlags.per_dataset in f and MaskFlags.alpha not in f)
+        for f in ds.mask_flag_enums
+    )
+
+
+def _to_8bit(a: np.ndarray, bits: int | None) -> np.ndarray:
+    """Colour or alpha values scaled to 0..255: ``round(v * 255 / (2**bits - 1))``.
+
+    ``bits`` is the NBITS the file declares (GDAL's IMAGE_STRUCTURE metadata, e.g. 12 for a
+    12-bit TIFF), else the data type's width. Full-range 16-bit data are so divided by 257,
+    which recovers 8-bit colours stored as v * 257 exactly. The observed maximum is not used:
+    a chart without pure white would be brightened and its colours would no longer match the
+    reference chart colours.
+    """
+    bits = bits or 8 * a.dtype.itemsize
+    if a.dtype == np.uint8 and bits == 8:
+        return a
+    full = (1 << bits) - 1
+    scaled = (a.astype(np.uint32) * 255 + full // 2) // full
+    return np.minimum(scaled, 255).astype(np.uint8)
+
+
+def _over_white(c: np.ndarray, alpha: np.ndarray) -> np.ndarray:
+    """8-bit colour ``c`` of opacity ``alpha`` composited over white, rounded."""
+    a = alpha.astype(np.uint16)
+    return ((c * a + 255 * (255 - a) + 127) // 255).astype(np.uint8)
+
+
+def _pack(r: np.ndarray, g: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return (r.astype(np.uint32) << 16) | (g.astype(np.uint32) << 8) | b
+
+
+def _index_dtype(n: int):
+    """The smallest unsigned dtype holding 0..n."""
+    return next(t for t in (np.uint8, np.uint16, np.uint32) if n <= np.iinfo(t).max)
+
+
+def _index_packed(packed: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    seen = np.zeros(1 << 24, bool)
+    seen[packed] = True
+    colours = np.flatnonzero(seen)
+    lut = np.zeros(1 << 24, _index_dtype(colours.size))
+    lut[colours] = np.arange(colours.size)
+    palette = np.stack([colours >> 16, (colours >> 8) & 255, colours & 255], 1).astype(np.uint8)
+    return lut[packed], palette
+
+
+def _index_table(band: np.ndarray, table: np.ndarray, path):
+    """(index, palette, valid or None) of a band of colour-table entries (m, 4 RGBA).
+
+    Entries of alpha 0 are outside the chart; partial alpha is composited over white. Entries
+    sharing a colour are merged and unused ones dropped, so the palette holds distinct colours
+    in entry order; when that leaves every used entry where it was (a KAP's table) the band is
+    the index as it is, without a pass over the pixels.
+    """
+    import cv2
+
+    m = len(table)
+    seen = cv2.calcHist([band], [0], None, [m], [0, m]).ravel() > 0  # 8x a numpy scatter's speed
+    opaque = table[:, 3] > 0
+    keep = np.flatnonzero(seen & opaque)
+    if keep.size == 0:
+        raise UsvError(f"{path}: every pixel is transparent")
+    colours = _over_white(table[keep, :3], table[keep, 3:])
+    _, first, inverse = np.unique(
+        _pack(*colours.T), return_index=True, return_inverse=True
+    )
+    order = np.argsort(first)
+    rank = np.empty_like(order)
+    rank[order] = np.arange(order.size)
+    lut = np.zeros(len(table), _index_dtype(order.size))
+    lut[keep] = rank[inverse]
+    palette = colours[first[order]]
+    same = band.dtype == lut.dtype and np.array_equal(lut[keep], keep)
+    index = band if same else lut[band]
+    valid = None if opaque[seen].all() else opaque[band]
+    return index, palette, valid
+
+
+# --- georeference --------------------------------------------------------------------------
+
+
+def _warp(index, valid, nodata: int, *, src_crs, gcps=None, transform=None):
+    """(index, valid, frame) warped to the UTM zone of the chart's centre.
+
+    Only the index band moves (nearest neighbour, GDAL's warper on :data:`WARP_THREADS`
+    threads); ``nodata``, one past the last palette index, carries the pixels outside the chart
+    and marks those outside the source; they get index 0 afterwards.
+    """
     from rasterio.transform import from_gcps
     from rasterio.warp import Resampling, calculate_default_transform, reproject, transform_bounds
 
-    height, width = rgb.shape[:2]
+    height, width = index.shape
     src_transform = from_gcps(gcps) if gcps else transform
     left, top = src_transform @ (0, 0)
     right, bottom = src_transform @ (width, height)
@@ -212,26 +498,44 @@ def _warp(rgb, valid, path, *, src_crs, gcps=None, transform=None, cutline=None)
     dst_transform, w, h = calculate_default_transform(
         src_crs, dst_crs, width, height, resolution=res, **kwargs
     )
-    src = np.concatenate([np.moveaxis(rgb, -1, 0), valid[None].astype(np.uint8)])
-    out = np.zeros((4, h, w), np.uint8)
+    if nodata > np.iinfo(index.dtype).max:
+        index = index.astype(_index_dtype(nodata))
+    if valid is not None:
+        index = np.where(valid, index, index.dtype.type(nodata))
+    out = np.empty((h, w), index.dtype)
     reproject(
-        src,
+        index,
         out,
         src_transform=None if gcps else src_transform,
         gcps=gcps,
         src_crs=src_crs,
+        src_nodata=None if valid is None else nodata,
         dst_transform=dst_transform,
         dst_crs=dst_crs,
+        dst_nodata=nodata,
         resampling=Resampling.nearest,
+        num_threads=WARP_THREADS,
     )
-    valid_out = out[3] > 0
-    if cutline:
-        poly = reproject_geometries([_cutline_polygon(cutline, path)], WGS84, dst_crs)[0]
-        inside = features.geometry_mask([poly], (h, w), dst_transform, invert=True)
-        valid_out &= inside
-    rgb_out = np.ascontiguousarray(np.moveaxis(out[:3], 0, -1))
-    kind = "kap" if chart_kind(path) == "kap" else "geotiff"
-    return RasterChart(rgb_out, valid_out, Frame(dst_transform, w, h, dst_crs), kind)
+    inside = out != nodata
+    np.multiply(out, inside, out=out, casting="unsafe")
+    return out, inside, Frame(dst_transform, w, h, dst_crs)
+
+
+def _clip(valid: np.ndarray, frame: Frame, cutlines, path) -> None:
+    """Clear, in place, the pixels of ``valid`` whose centre is outside any of the cutlines,
+    (polygon, crs, name) triples; refused when no pixel is left."""
+    import shapely
+    from rasterio import features
+
+    area = shapely.intersection_all(
+        [reproject_geometries([poly], crs, frame.crs)[0] for poly, crs, _ in cutlines]
+    )
+    if not area.is_empty:
+        shape = (frame.height, frame.width)
+        valid &= features.geometry_mask([area], shape, frame.transform, invert=True)
+    if area.is_empty or not valid.any():
+        names = " and ".join(name for _, _, name in cutlines)
+        raise UsvError(f"{path}: no part of the chart lies inside {names}")
 
 
 def _cutline_polygon(wkt: str, path):
@@ -257,10 +561,6 @@ def _centre_lonlat(src_crs, left, bottom, right, top, transform_bounds):
 def _is_metric(crs) -> bool:
     units = (crs.linear_units or "").lower()
     return units in ("metre", "meter", "m", "metres", "meters")
-
-
-def _square_north_up(t) -> bool:
-    return t.b == 0 and t.d == 0 and t.e < 0 and abs(t.a + t.e) <= 1e-9 * abs(t.a)
 
 
 def _first_line(exc: Exception) -> str:

@@ -2,17 +2,20 @@
 
 Subcommands live one per module and are imported only when invoked, so ``usvtool --help`` and
 quick commands do not pay for heavy imports. Library errors (:class:`usvtool.errors.UsvError`)
-become one-line messages with exit status 1; usage errors exit 2 (click's convention).
+become one-line messages with exit status 1; usage errors exit 2 (click's convention). SIGINT
+and SIGTERM give one line and exit 130 or 143, once the outputs being written are cleaned up.
 """
 
 from __future__ import annotations
 
 import importlib
 import logging
+import signal
 
 import click
 
 from usvtool import __version__
+from usvtool.atomic import catch_signals
 from usvtool.errors import UsvError
 
 SUBCOMMANDS = {
@@ -42,7 +45,12 @@ class LazyGroup(click.Group):
 
     def invoke(self, ctx: click.Context):
         try:
-            return super().invoke(ctx)
+            with catch_signals():  # SIGTERM too becomes an exception: outputs are cleaned up
+                return super().invoke(ctx)
+        except KeyboardInterrupt as exc:  # 128 + signal number, the shell's convention
+            signum = getattr(exc, "signum", signal.SIGINT)
+            click.echo(f"Error: interrupted by {signal.Signals(signum).name}", err=True)
+            raise click.exceptions.Exit(128 + signum) from None
         except UsvError as exc:
             raise click.ClickException(str(exc)) from None
         except (click.ClickException, click.exceptions.Exit, click.Abort):

@@ -28,6 +28,9 @@ class Colour(click.ParamType):
 @click.argument("chart", type=click.Path(dir_okay=False))
 @output_option("Output grid GeoTIFF.")
 @click.option("--preview", type=click.Path(dir_okay=False), help="Also write a preview PNG.")
+@click.option("--preview-resolution", type=POSITIVE, metavar="METRES",
+              help="Metres per preview pixel [default: longest side 1200 pixels; an S-57 "
+              "cell's background drawn at half a cell].")
 @click.option("--ship-length", type=POSITIVE, default=2.5, show_default=True,
               help="Ship length in metres (cell = 1.5 x ship length).")
 @click.option("--cell-size", type=POSITIVE, help="Cell size in metres (overrides the rule).")
@@ -35,7 +38,11 @@ class Colour(click.ParamType):
               help="Safety margin in metres around obstacles [default: 0.5 cell].")
 @click.option("--swell/--no-swell", default=True, show_default=True,
               help="Swell obstacles by the margin (--no-swell: use the grid as drawn).")
-@click.option("--resolution", type=POSITIVE, help="Metres per pixel of a plain chart image.")
+@click.option("--resolution", type=POSITIVE,
+              help="Metres per pixel of a plain chart image (refused for a georeferenced one).")
+@click.option("--cutline", type=click.Path(dir_okay=False), metavar="FILE.geojson",
+              help="Polygon (lon/lat) of a raster chart's area: pixels outside it are outside the "
+              "chart (a KAP: also outside its own cutline).")
 @click.option("--bounds", type=float, nargs=4, metavar="L B R T",
               help="Extent of a GeoJSON obstacle map (default: its bbox or its obstacles').")
 @click.option("--clusters", type=click.IntRange(2, 32), default=8, show_default=True,
@@ -48,6 +55,11 @@ class Colour(click.ParamType):
               help="Fixed threshold 0..255 instead of Otsu's (the paper: 100).")
 @click.option("--min-area", type=click.IntRange(1), default=16, show_default=True,
               help="Land specks and water holes smaller than this many pixels are clutter.")
+@click.option("--ink", type=click.Choice(["auto", "clutter", "obstacle"]), default="auto",
+              show_default=True,
+              help="Ink in water: auto (solid and ring symbols and thick strokes from the shore "
+              "are hazards; thin strokes are clutter), clutter (all becomes water) or obstacle "
+              "(all blocks, the conservative choice).")
 @click.option("--occupancy", type=click.FloatRange(0, 1, max_open=True), default=0.0,
               show_default=True, help="Obstacle share of a cell above which it blocks.")
 @click.option("--min-depth", type=float,
@@ -58,39 +70,47 @@ class Colour(click.ParamType):
 @seed_option
 def preprocess(chart, output, preview, ship_length, cell_size, margin, swell, resolution, bounds,
                clusters, land_colours, channel, threshold, min_area, occupancy, min_depth,
-               hazard_radius, seed):
+               hazard_radius, seed, preview_resolution, ink, cutline):
     """Turn CHART (image, GeoTIFF, BSB/KAP, S-57 cell or GeoJSON) into a navigation grid.
 
     Fuzzy C-means colour clustering, Otsu binarisation, clutter removal, gridding at
     1.5 x ship length and obstacle swelling, as in the ISSA paper (section 3).
     """
-    from usvtool.atomic import check_output_path
+    from usvtool.atomic import check_outputs, staged
     from usvtool.chart.preprocess import Options
     from usvtool.chart.preprocess import preprocess as run
+    from usvtool.chart.sources import chart_kind
     from usvtool.grid import write_grid
 
-    check_output_path(output)
-    if preview:
-        check_output_path(preview, "--preview")
+    check_outputs([("-o", output), ("--preview", preview)])
+    if not preview and preview_resolution is not None:
+        raise click.UsageError("--preview-resolution: give --preview too")
     opts = Options(
         ship_length=ship_length, cell_size=cell_size, margin=margin, swell=swell,
-        resolution=resolution,
+        resolution=resolution, cutline=cutline,
         bounds=tuple(bounds) if bounds else None, clusters=clusters,
         land_colours=list(land_colours), channel=channel, threshold=threshold,
-        min_area=min_area, occupancy=occupancy, min_depth=min_depth,
+        min_area=min_area, ink=ink, occupancy=occupancy, min_depth=min_depth,
         hazard_radius=hazard_radius, seed=seed,
     )
+    if preview and chart_kind(chart) == "s57":
+        from usvtool.chart.preview import check_s57_preview
+
+        check_s57_preview(chart, opts.cell, preview_resolution)  # fail before the grid work
     result = run(chart, opts)
-    write_grid(output, result.grid)
     summary = dict(result.summary, output=output)
     if preview:
         from usvtool.chart.preview import render_preview, s57_background, write_png
 
         background = result.chart
         if background is None and result.summary["source_kind"] == "s57":
-            background = s57_background(chart, result.grid.cell_size / 2)
-        write_png(preview, render_preview(result.grid, background))
+            background = s57_background(chart, preview_resolution or result.grid.cell_size / 2)
+        image = render_preview(result.grid, background, preview_resolution)  # before any file
         summary["preview"] = preview
+    with staged(output, preview) as (grid_tmp, preview_tmp):  # renamed together at the end
+        write_grid(grid_tmp, result.grid)
+        if preview_tmp:
+            write_png(preview_tmp, image)
     log.info("%s: %d x %d cells of %g m", output, result.grid.width, result.grid.height,
              result.grid.cell_size)
     emit(summary)

@@ -36,9 +36,9 @@ def render(
     soundings: bool,
 ) -> None:
     """Draw the S-57 CELL (.000, updates beside it applied) in the S-52 day colours."""
-    from usvtool.atomic import check_output_path
+    from usvtool.atomic import check_output_path, staged
     from usvtool.chart.render import TRUTH_LAND, TRUTH_NODATA, render_cell, write_chart, write_truth
-    from usvtool.chart.s57 import read_cell
+    from usvtool.chart.s57 import read_cell, update_status
 
     if not shallow <= safety <= deep:
         raise click.UsageError(
@@ -51,6 +51,7 @@ def render(
         raise click.UsageError(f"--truth {truth}: same file as -o")
 
     start = time.perf_counter()
+    status = update_status(cell)
     chart = read_cell(cell)
     read_s = time.perf_counter() - start
     rgb, land_truth, frame = render_cell(chart, resolution, shallow, safety, deep, soundings)
@@ -64,17 +65,17 @@ def render(
         "safety_m": safety,
         "deep_m": deep,
     }
-    write_chart(out, rgb, frame, tags)
-    if truth_path:
-        write_truth(truth_path, land_truth, frame, tags)
+    with staged(out, truth_path) as (chart_tmp, truth_tmp):  # renamed together at the end
+        write_chart(chart_tmp, rgb, frame, tags)
+        if truth_tmp:
+            write_truth(truth_tmp, land_truth, frame, tags)
     total_s = time.perf_counter() - start
     covered = land_truth != TRUTH_NODATA
     land_fraction = float((land_truth[covered] == TRUTH_LAND).mean()) if covered.any() else 0.0
     emit(
         {
             "cell": chart.name,
-            "edition": chart.edition,
-            "update": chart.update,
+            **status,
             "output": str(out),
             "truth": str(truth_path) if truth_path else None,
             "width": frame.width,
