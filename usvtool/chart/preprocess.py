@@ -78,7 +78,7 @@ def preprocess(path, options: Options | None = None) -> Result:
         chart = sources.read_raster(path, opts.resolution, opts.cutline)
         timings["read"] = time.perf_counter() - t
         seg = _named(path, segment)(
-            chart.rgb,
+            (chart.index, chart.palette),
             chart.valid,
             clusters=opts.clusters,
             land_colours=opts.land_colours,
@@ -97,7 +97,7 @@ def preprocess(path, options: Options | None = None) -> Result:
         extra = {
             "threshold": seg.threshold,
             "clusters": seg.clusters,
-            "image_size": [int(chart.rgb.shape[1]), int(chart.rgb.shape[0])],
+            "image_size": [int(chart.index.shape[1]), int(chart.index.shape[0])],
             "image_resolution_m": chart.frame.resolution,
             "ink_hazard_fraction": round(float(seg.hazard.sum() / seg.hazard.size), 6),
         }

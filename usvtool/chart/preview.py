@@ -157,7 +157,7 @@ def _sample(chart, xs: np.ndarray, ys: np.ndarray):
     inside = inside & (cc[None, :] >= 0) & (cc[None, :] < chart.frame.width)
     rows = np.clip(cr, 0, chart.frame.height - 1)
     cols = np.clip(cc, 0, chart.frame.width - 1)
-    img = chart.rgb.take(rows, axis=0).take(cols, axis=1)
+    img = chart.palette[chart.index.take(rows, axis=0).take(cols, axis=1)]
     img[~inside] = 255
     return img, chart.valid.take(rows, axis=0).take(cols, axis=1) & inside
 

@@ -28,6 +28,7 @@ import cv2
 import numpy as np
 
 from usvtool.chart import ink as ink_rule
+from usvtool.chart.colours import colour_index
 from usvtool.errors import UsvError
 
 LAND, WATER, DRYING, NODATA, INK = "land", "water", "drying", "nodata", "ink"
@@ -68,7 +69,7 @@ class Segmentation:
 
 
 def segment(
-    rgb: np.ndarray,
+    image: np.ndarray | tuple[np.ndarray, np.ndarray],
     valid: np.ndarray | None = None,
     *,
     clusters: int = 8,
@@ -81,13 +82,15 @@ def segment(
     seed: int = 0,
     m: float = 2.0,
 ) -> Segmentation:
-    """Segment an RGB chart image (H, W, 3 uint8) into land and water.
+    """Segment a chart image into land and water.
 
-    ``valid`` marks the pixels inside the chart (default: all). ``threshold`` (0..255) replaces
-    Otsu's; ``min_area`` is in pixels; ``ink`` is the ink rule (``auto``, ``clutter`` or
-    ``obstacle``, see :mod:`usvtool.chart.ink`). ``sample`` pixels are clustered; ``None``
-    clusters every pixel (the slow reference the benchmark compares against). Raises
-    :class:`UsvError` when the image holds no water or no land.
+    ``image`` is an RGB array (H, W, 3 uint8) or, as raster sources give it, ``(index,
+    palette)``: colour indices (H, W) into distinct colours (n, 3 uint8)
+    (:mod:`usvtool.chart.colours`). ``valid`` marks the pixels inside the chart (default: all).
+    ``threshold`` (0..255) replaces Otsu's; ``min_area`` is in pixels; ``ink`` is the ink rule
+    (``auto``, ``clutter`` or ``obstacle``, see :mod:`usvtool.chart.ink`). ``sample`` pixels
+    are clustered; ``None`` clusters every pixel (the slow reference the benchmark compares
+    against). Raises :class:`UsvError` when the image holds no water or no land.
     """
     if channel not in CHANNELS:
         raise ValueError(f"channel must be one of {CHANNELS}")
@@ -95,30 +98,20 @@ def segment(
         raise ValueError(f"ink must be one of {ink_rule.MODES}")
     timings: dict[str, float] = {}
     t = time.perf_counter()
-    h, w = rgb.shape[:2]
-    valid = np.ones((h, w), bool) if valid is None else valid
+    index, colours_rgb = image if isinstance(image, tuple) else colour_index(image)
+    valid = np.ones(index.shape, bool) if valid is None else valid
     if not valid.any():
         raise UsvError("the chart has no pixels inside its valid area")
-
-    # distinct colours and, for every pixel, the index of its colour
-    packed = (
-        (rgb[..., 0].astype(np.uint32) << 16) | (rgb[..., 1].astype(np.uint32) << 8) | rgb[..., 2]
-    )
-    counts = np.bincount(packed[valid], minlength=1 << 24)
-    colours = np.flatnonzero(counts)
-    if colours.size < 2:
+    valid_index = index[valid]
+    counts = np.bincount(valid_index, minlength=len(colours_rgb))
+    if np.count_nonzero(counts) < 2:
         raise UsvError("the chart has a single colour: no land/water contrast to segment")
-    lut = np.zeros(1 << 24, np.int32)
-    lut[colours] = np.arange(colours.size, dtype=np.int32)
-    index = lut[packed]
-    colours_rgb = np.stack([(colours >> 16) & 255, (colours >> 8) & 255, colours & 255], 1)
-    colours_lab = _lab(colours_rgb.astype(np.uint8))
+    colours_lab = _lab(colours_rgb)
     timings["colours"] = time.perf_counter() - t
 
     t = time.perf_counter()
     rng = np.random.default_rng(seed)
-    n_clusters = int(min(clusters, colours.size))
-    valid_index = index[valid]
+    n_clusters = int(min(clusters, np.count_nonzero(counts)))
     if sample is None or sample >= valid_index.size:
         picks = valid_index
     else:
@@ -153,7 +146,7 @@ def segment(
     blocked = land | other | hazard | ~valid
     timings["clutter"] = time.perf_counter() - t
 
-    share = np.bincount(np.argmax(u, axis=0), weights=counts[colours], minlength=n_clusters)
+    share = np.bincount(np.argmax(u, axis=0), weights=counts, minlength=n_clusters)
     info = [
         {
             "rgb": [int(v) for v in _rgb(centres[k : k + 1])[0]],

@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from usvtool.chart.colours import colour_index, index_dtype, index_packed, pack
 from usvtool.chart.georef import WGS84, Frame, reproject_geometries, scale_error, utm_crs
 from usvtool.errors import UsvError, check_input_file
 
@@ -195,17 +196,6 @@ def keeps_frame(frame: Frame) -> bool:
     return scale_error(frame) <= MAX_SCALE_ERROR
 
 
-def colour_index(rgb: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(index, palette): each pixel's index into the distinct colours of an (H, W, 3) uint8
-    image, and those colours (n, 3) in packed RGB order.
-
-    The index has the smallest unsigned dtype that also holds n (the value reserved for
-    pixels outside the chart while warping). One pass marks the colours seen in a 2^24 table,
-    one look-up gives the indices: no sort, linear in the pixels.
-    """
-    return _index_packed(_pack(rgb[..., 0], rgb[..., 1], rgb[..., 2]))
-
-
 def read_cutline(path: str | os.PathLike):
     """The (multi)polygon of a ``--cutline`` GeoJSON file and its CRS: lon/lat per RFC 7946, or
     the CRS a legacy ``crs`` member names. Several polygons are united. Refused, naming
@@ -322,7 +312,7 @@ def _read_pixels(ds, path) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
         alpha8 = _to_8bit(alpha, bits)
         colour = [_over_white(c, alpha8) for c in colour]
     if len(colour) == 3:
-        index, palette = _index_packed(_pack(*colour))
+        index, palette = index_packed(pack(*colour))
         return index, palette, valid
     if table is None:  # grey levels
         table = np.repeat(np.arange(256, dtype=np.uint8)[:, None], 4, axis=1)
@@ -421,25 +411,6 @@ def _over_white(c: np.ndarray, alpha: np.ndarray) -> np.ndarray:
     return ((c * a + 255 * (255 - a) + 127) // 255).astype(np.uint8)
 
 
-def _pack(r: np.ndarray, g: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return (r.astype(np.uint32) << 16) | (g.astype(np.uint32) << 8) | b
-
-
-def _index_dtype(n: int):
-    """The smallest unsigned dtype holding 0..n."""
-    return next(t for t in (np.uint8, np.uint16, np.uint32) if n <= np.iinfo(t).max)
-
-
-def _index_packed(packed: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    seen = np.zeros(1 << 24, bool)
-    seen[packed] = True
-    colours = np.flatnonzero(seen)
-    lut = np.zeros(1 << 24, _index_dtype(colours.size))
-    lut[colours] = np.arange(colours.size)
-    palette = np.stack([colours >> 16, (colours >> 8) & 255, colours & 255], 1).astype(np.uint8)
-    return lut[packed], palette
-
-
 def _index_table(band: np.ndarray, table: np.ndarray, path):
     """(index, palette, valid or None) of a band of colour-table entries (m, 4 RGBA).
 
@@ -458,12 +429,12 @@ def _index_table(band: np.ndarray, table: np.ndarray, path):
         raise UsvError(f"{path}: every pixel is transparent")
     colours = _over_white(table[keep, :3], table[keep, 3:])
     _, first, inverse = np.unique(
-        _pack(*colours.T), return_index=True, return_inverse=True
+        pack(*colours.T), return_index=True, return_inverse=True
     )
     order = np.argsort(first)
     rank = np.empty_like(order)
     rank[order] = np.arange(order.size)
-    lut = np.zeros(len(table), _index_dtype(order.size))
+    lut = np.zeros(len(table), index_dtype(order.size))
     lut[keep] = rank[inverse]
     palette = colours[first[order]]
     same = band.dtype == lut.dtype and np.array_equal(lut[keep], keep)
@@ -499,7 +470,7 @@ def _warp(index, valid, nodata: int, *, src_crs, gcps=None, transform=None):
         src_crs, dst_crs, width, height, resolution=res, **kwargs
     )
     if nodata > np.iinfo(index.dtype).max:
-        index = index.astype(_index_dtype(nodata))
+        index = index.astype(index_dtype(nodata))
     if valid is not None:
         index = np.where(valid, index, index.dtype.type(nodata))
     out = np.empty((h, w), index.dtype)
