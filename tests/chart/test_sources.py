@@ -19,9 +19,9 @@ from rasterio import features
 from rasterio.warp import Resampling, calculate_default_transform, reproject
 from shapely.geometry import Polygon, box, mapping
 
+from usvtool.chart.colours import colour_index
 from usvtool.chart.georef import WGS84, reproject_geometries, transformer
 from usvtool.chart.preprocess import Options, preprocess
-from usvtool.chart.colours import colour_index
 from usvtool.chart.sources import RasterChart, read_raster
 from usvtool.errors import UsvError
 from usvtool.grid import OBSTACLE, read_grid
