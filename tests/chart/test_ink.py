@@ -49,6 +49,8 @@ def test_text_and_soundings_are_clutter():
         ("solid square", lambda im: cv2.rectangle(im, (150, 120), (161, 131), 1, -1)),
         ("filled dot", lambda im: cv2.circle(im, (150, 150), 5, 1, -1)),
         ("pile ring", lambda im: cv2.circle(im, (150, 150), 3, 1, 1)),
+        # a wreck's hull: a filled triangle, twice as long as high (tapered, not a disc)
+        ("hull", lambda im: cv2.fillPoly(im, [np.array([[138, 160], [162, 160], [150, 148]])], 1)),
         ("thick pier from the shore", lambda im: cv2.line(im, (30, 150), (90, 150), 1, 4)),
     ],
 )
@@ -71,6 +73,8 @@ def test_a_pile_ring_blocks_its_inside():
         # a dashed limit: thick dashes, each shorter than 25 strokes, off the shore
         ("dashes", lambda im: [cv2.line(im, (x, 150), (x + 20, 150), 1, 4)
                                for x in range(80, 260, 30)]),
+        ("short dashes", lambda im: [cv2.line(im, (x, 150), (x + 10, 150), 1, 4)
+                                     for x in range(80, 260, 20)]),
         # a thick line standing free in water: a range or limit line, which crosses channels
         ("free thick line", lambda im: cv2.line(im, (80, 200), (200, 200), 1, 4)),
         ("a zero", lambda im: cv2.ellipse(im, (150, 150), (4, 7), 0, 0, 360, 1, 1)),

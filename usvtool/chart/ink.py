@@ -23,7 +23,10 @@ follows the chart's own drawing rather than one chart's colours or resolution):
 - *solids*: the parts of the filled ink in water at least ``2 w + 1`` thick (a morphological
   opening by a disc of that diameter) whose area ``A`` is at most ``1.35 pi R^2``, ``R`` their
   largest inscribed radius (a disc gives 1, a square 1.27, a bar of aspect L/T about 1.27 L/T):
-  structures, platforms, filled dots and filled rings. Bars (dashes) are not solids.
+  structures, platforms, filled dots and filled rings; or that taper, like a triangle or a
+  teardrop (a wreck's hull, a light's flare): area at most ``4 pi R^2`` and at most a tenth of
+  it at ``0.75 R`` or deeper (a bar's deep core is a strip along its length, a quarter of it for
+  long bars; a tapering shape's is a small copy of itself, 1/16). Bars (dashes) are not solids.
 - *structures drawn as strokes*: the parts at least ``w + 1`` thick (an opening) that come
   within ``2 w + 1`` of land: piers, jetties, groins running out from the shore. A thick stroke
   standing free in water is clutter: on 11361_4 the thick range and mile lines cross the river,
@@ -52,6 +55,13 @@ MODES = ("auto", "clutter", "obstacle")
 #: SOLID_AREA times their inscribed disc ``pi R^2``.
 SOLID_WIDTH = 2.0
 SOLID_AREA = 1.35
+#: Tapered solids (a wreck's hull, a light's flare): area up to TAPERED_AREA inscribed discs, and
+#: at most CORE_SHARE of it at CORE_DEPTH of the largest inscribed radius or deeper. A bar's
+#: core is a strip along its length (share 0.25 (1 - 0.75 T / L)), a disc's, a square's or a
+#: triangle's a small copy of itself (share 1/16).
+TAPERED_AREA = 4.0
+CORE_DEPTH = 0.75
+CORE_SHARE = 0.1
 #: Holes filled as ring symbols: largest area in units of ``w^2``, and shape limits.
 RING_HOLE_AREA = 2.25 * np.pi  # holes up to 1.5 strokes across (pi (1.5 w)^2)
 RING_HOLE_ASPECT = 1.5
@@ -145,8 +155,14 @@ def _solids(filled: np.ndarray, width: float) -> np.ndarray:
     n, labels, stats, _ = cv2.connectedComponentsWithStats(thick, connectivity=8)
     if n == 1:
         return thick
-    radius = _max_per_label(_distance(thick.view(bool)), labels, n)
-    solid = stats[:, cv2.CC_STAT_AREA] <= SOLID_AREA * np.pi * np.square(radius)
+    dist = _distance(thick.view(bool))
+    radius = _max_per_label(dist, labels, n)
+    area = stats[:, cv2.CC_STAT_AREA]
+    disc = np.pi * np.square(radius)
+    core = cv2.compare(dist, (CORE_DEPTH * radius)[labels].astype(np.float32), cv2.CMP_GE)
+    core_share = np.bincount(labels[core > 0], minlength=n) / np.maximum(area, 1)
+    tapered = (area <= TAPERED_AREA * disc) & (core_share <= CORE_SHARE)
+    solid = (area <= SOLID_AREA * disc) | tapered
     solid[0] = False
     return solid.view(np.uint8)[labels]
 
