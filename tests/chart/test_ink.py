@@ -60,6 +60,32 @@ def test_hazards_are_obstacles_at_their_footprint(name, draw):
     assert not (hazard & ~symbol).any() or name == "pile ring"  # a ring also blocks its inside
 
 
+def comb(im):
+    """A marina's docks in ordinary 2-pixel strokes: a spine from the shore, fingers 30 pixels
+    long every 8 pixels (ink about 4.5 times its box diagonal times the stroke width)."""
+    im[120:122, 31:141] = 1
+    for x in range(40, 141, 8):
+        im[106:136, x : x + 2] = 1
+
+
+def meander(im):
+    """A winding contour leaving the shore: a sine of 10 pixels amplitude and 19 pixels period (ink
+    1.6 times its box diagonal times the stroke width)."""
+    x = np.arange(31, 151)
+    pts = np.column_stack([x, 200 + 10 * np.sin((x - 31) / 3.0)]).astype(np.int32)
+    cv2.polylines(im, [pts, pts + [0, 1]], False, 1, 1)  # 2 pixels wide, like the text
+
+
+def test_a_dock_network_from_the_shore_is_a_hazard():
+    symbol, hazard, _ = classify(comb)
+    assert hazard[symbol].mean() > 0.95
+
+
+def test_a_winding_contour_from_the_shore_stays_clutter():
+    symbol, hazard, _ = classify(meander)
+    assert not hazard[symbol].any()
+
+
 def test_a_pile_ring_blocks_its_inside():
     symbol, hazard, _ = classify(lambda im: cv2.circle(im, (150, 150), 3, 1, 1))
     assert hazard[150, 150] and not symbol[150, 150]

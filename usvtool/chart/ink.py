@@ -31,17 +31,24 @@ follows the chart's own drawing rather than one chart's colours or resolution):
   within ``2 w + 1`` of land: piers, jetties, groins running out from the shore. A thick stroke
   standing free in water is clutter: on 11361_4 the thick range and mile lines cross the river,
   so "long straight bar" cannot stand for a detached breakwater.
-- hazards are the solids and the structures, grown back by half a stroke inside the ink (the
-  opening rounds corners off). Everything else in water (strokes of ordinary width, bold labels,
-  dashes) is clutter and becomes water.
+- *dock networks* drawn in ordinary strokes (marina finger piers): the ink of one colour layer
+  more than ``2 w + 1`` from land, cut where layers meet, in 8-connected networks that come
+  within ``4 w + 3`` of land, are at least ``25 w`` across (box diagonal ``D``), hold at least
+  ``3.5 D w`` of ink and fill at least a twentieth of their box. A comb of fingers as long as
+  their spacing along a spine holds about ``2 L w`` along its own length ``L`` and more with
+  longer fingers; a single line holds ``D w``; the shore-attached networks of the bundled
+  charts that are not docks hold at most 3.3 ``D w`` (a contour with digits and piers in Lake
+  Wesley, before the layers were cut apart), and a chart-wide graticule fills a hundredth of its
+  box. The marinas of SanDiego_2 hold 4.4 to 9.5.
+- hazards are these, with the solids and the structures grown back by half a stroke inside the
+  ink (the opening rounds corners off). Everything else in water (strokes of ordinary width,
+  bold labels, dashes) is clutter and becomes water.
 
 Modes: ``auto`` (the rule above), ``clutter`` (every ink pixel takes the class of its nearest
 non-ink pixel: the first version's rule) and ``obstacle`` (every ink pixel in water is a hazard:
 the conservative choice).
 
-Known limits (docs/preprocess.md, Ink): docks drawn with ordinary thin strokes (marina
-finger piers) are clutter under ``auto``; a lower-case ``o`` standing alone in water reads as a
-ring symbol and becomes a small hazard.
+Known limits: docs/preprocess.md, Ink.
 """
 
 from __future__ import annotations
@@ -62,6 +69,12 @@ SOLID_AREA = 1.35
 TAPERED_AREA = 4.0
 CORE_DEPTH = 0.75
 CORE_SHARE = 0.1
+#: Dock networks: thin-stroked ink of one layer, attached to land (within 4 w + 3), at least
+#: DOCK_EXTENT strokes across (its box's diagonal), holding at least DOCK_INK times as much ink
+#: as a single stroke along that diagonal, and filling at least DOCK_FILL of its box.
+DOCK_EXTENT = 25.0
+DOCK_INK = 3.5
+DOCK_FILL = 0.05
 #: Holes filled as ring symbols: largest area in units of ``w^2``, and shape limits.
 RING_HOLE_AREA = 2.25 * np.pi  # holes up to 1.5 strokes across (pi (1.5 w)^2)
 RING_HOLE_ASPECT = 1.5
@@ -95,13 +108,17 @@ def stroke_width(ink: np.ndarray, dist: np.ndarray | None = None) -> float:
     return max(2.0, 2.0 * float(np.median(dist[ridge > 0])))
 
 
-def resolve(ink: np.ndarray, land: np.ndarray, mode: str = "auto") -> tuple[np.ndarray, np.ndarray]:
+def resolve(
+    ink: np.ndarray, land: np.ndarray, mode: str = "auto", layers: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """Land after the ink is resolved, and the ink hazards in water, by ``mode``.
 
     ``ink`` marks the ink pixels, ``land`` the land pixels among the others (its value on ink
     pixels is ignored). Returns ``(land, hazard)``: ink on the land side joins the land; the
     ``hazard`` pixels are ink in water that stands for a structure (none with ``clutter``, all
-    ink in water with ``obstacle``).
+    ink in water with ``obstacle``). ``layers`` (H, W) gives each ink pixel its ink colour (a
+    small integer: black linework, grey contours, magenta aids are separate layers of a chart);
+    without it all ink is one layer.
 
     >>> ink = np.zeros((30, 30), bool); ink[10:19, 10:19] = True  # a solid square in water
     >>> ink[24:26, 5:25] = True  # and a stroke of text, 2 pixels wide
@@ -129,7 +146,39 @@ def resolve(ink: np.ndarray, land: np.ndarray, mode: str = "auto") -> tuple[np.n
     )
     # an opening rounds corners off: grow back by half a stroke, inside the ink
     grown = cv2.dilate(cv2.bitwise_or(solids, structures), _disc(w + 1))
-    return land, cv2.bitwise_and(grown, filled).view(bool)
+    hazard = cv2.bitwise_and(grown, filled).view(bool)
+    return land, hazard | _docks(wet, land, layers, w)
+
+
+def _docks(wet: np.ndarray, land: np.ndarray, layers: np.ndarray | None, w: float) -> np.ndarray:
+    """Dock networks drawn in ordinary strokes (marina finger piers): see the module docstring.
+
+    Ink within ``2 w + 1`` of land is set aside first (the coastline's own stroke would join
+    every network along the shore), and so are the pixels where two ink layers meet, so that a
+    grey contour touching a black pier stays a network of its own.
+    """
+    band = cv2.dilate(land.view(np.uint8), _disc(2 * w + 1)) > 0
+    core = wet & ~band
+    if layers is not None:
+        tag = np.where(core, layers.astype(np.int16) + 1, 0).astype(np.int16)
+        highest = cv2.dilate(tag, np.ones((3, 3), np.uint8))
+        lowest = cv2.erode(np.where(core, tag, 32767).astype(np.int16), np.ones((3, 3), np.uint8))
+        core &= highest == lowest
+    n, labels, stats, _ = cv2.connectedComponentsWithStats(core.view(np.uint8), connectivity=8)
+    near = cv2.dilate(land.view(np.uint8), _disc(4 * w + 3))
+    attached = np.zeros(n, bool)
+    attached[labels.ravel()[np.flatnonzero(cv2.bitwise_and(near, core.view(np.uint8)))]] = True
+    bw, bh = stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT]
+    area, extent = stats[:, cv2.CC_STAT_AREA], np.hypot(bw, bh)
+    dock = attached & (extent >= DOCK_EXTENT * w) & (area >= DOCK_INK * extent * w)
+    dock &= area >= DOCK_FILL * bw * bh
+    dock[0] = False
+    if not dock.any():
+        return np.zeros_like(wet)
+    body = dock[labels]
+    # the pier roots in the shore band and the pixels set aside where layers meet
+    roots = cv2.dilate(body.view(np.uint8), _disc(2 * w + 3)) > 0
+    return body | (roots & wet & ~core)
 
 
 def _sides(ink: np.ndarray, land: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:

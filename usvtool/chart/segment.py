@@ -138,7 +138,8 @@ def segment(
 
     t = time.perf_counter()
     inked = (colour_class == INK)[index] & valid
-    land, hazard = ink_rule.resolve(inked, land, ink)
+    layers = np.argmax(u, axis=0).astype(np.uint8)[index]  # each pixel's colour cluster
+    land, hazard = ink_rule.resolve(inked, land, ink, layers)
     land = _remove_small(land, min_area) & valid
     other = np.isin(colour_class, (DRYING, NODATA))[index]
     other = _remove_small(other & ~land & valid, min_area)
