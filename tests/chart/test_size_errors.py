@@ -5,6 +5,7 @@ import json
 import re
 from pathlib import Path
 
+import cv2
 import pytest
 
 from usvtool.chart import gridding, s57
@@ -65,20 +66,15 @@ def no_grid_work(monkeypatch):
     monkeypatch.setattr("usvtool.chart.preprocess.preprocess", refuse)
 
 
-def test_default_preview_too_large_fails_before_the_grid(tmp_path, usv, monkeypatch):
-    """US4MD81M at 12.1 m cells: its background at half a cell (6.05 m) would be 98 M pixels;
-    8.5 m gives 5767 x 8663 = 49.96 M (8.4 m: 51.2 M), over the grid's bounds."""
-    no_grid_work(monkeypatch)
+def test_default_preview_of_a_large_cell_fits(tmp_path, usv):
+    """US4MD81M at 12.1 m cells: a background at half a cell (6.05 m) would be 98 M pixels, over
+    the 50 M limit; by default it is drawn at the map's own pixel, 73 622 m / 1200 = 61.4 m, so
+    the map is round(4051 x 1200 / 6085) = 799 x 1200 pixels above its strip."""
     out, png = tmp_path / "grid.tif", tmp_path / "grid.png"
     r = usv("preprocess", BIG, "-o", out, "--cell-size", 12.1, "--preview", png)
-    assert r.exit_code == 1 and not out.exists() and not png.exists()
-    assert "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1
-    assert "--preview-resolution 6.05 m" in r.stderr and "half a cell" in r.stderr
-    value = suggestion(r.stderr, "--preview-resolution")
-    assert value == 8.5
-    check_s57_preview(BIG, 12.1, value)  # works: passes the same check the command makes
-    with pytest.raises(UsvError):
-        check_s57_preview(BIG, 12.1, value - 0.1)
+    assert r.exit_code == 0, r.stderr
+    image = cv2.imread(str(png))
+    assert image.shape[1] == 799 and 1200 < image.shape[0] < 1300
 
 
 def test_given_preview_resolution_too_fine_fails_before_the_grid(tmp_path, usv, monkeypatch):

@@ -90,14 +90,29 @@ def preview_frame(bounds, resolution: float, what: str):
     return limited_frame(bounds, resolution, None, what, "--preview-resolution")
 
 
-def check_s57_preview(path, cell_size: float, resolution: float | None) -> None:
-    """Refuse an S-57 preview over the size limit from the cell's coverage alone, before the
-    grid is made.
+def background_resolution(bounds, cell_size: float) -> float:
+    """Metres per pixel of an S-57 cell's background by default: half a cell, or the map's own
+    pixel (the longest side :data:`MAX_SIDE` pixels) when that is coarser, since the map is
+    sampled at that pixel anyway. A default preview therefore never exceeds the size limit.
 
-    The background is drawn at ``resolution`` (default half a cell), over the coverage's
-    bounds; the check uses the grid's bounds (the coverage grown to whole cells), which hold
-    both the background's and the map's, so the value suggested works for both.
+    >>> background_resolution((0, 0, 1200, 600), 10.0)
+    5.0
+    >>> background_resolution((0, 0, 60000, 100), 10.0)  # 60 km over 1200 pixels
+    50.0
     """
+    left, bottom, right, top = bounds
+    return max(cell_size / 2, max(right - left, top - bottom) / MAX_SIDE)
+
+
+def check_s57_preview(path, cell_size: float, resolution: float | None) -> None:
+    """Refuse an S-57 preview at ``resolution`` over the size limit from the cell's coverage
+    alone, before the grid is made (the default resolution always fits).
+
+    The check uses the grid's bounds (the coverage grown to whole cells), which hold both the
+    background's and the map's, so the value suggested works for both.
+    """
+    if resolution is None:
+        return
     from usvtool.chart import gridding, s57
     from usvtool.chart.georef import WGS84, reproject_geometries
 
@@ -105,10 +120,7 @@ def check_s57_preview(path, cell_size: float, resolution: float | None) -> None:
     crs = s57.coverage_utm(coverage)
     bounds = reproject_geometries([coverage], WGS84, crs)[0].bounds
     grid_bounds = gridding.grid_frame(bounds, cell_size, crs).bounds
-    what = f"the preview of {Path(path).name}"
-    if resolution is None:
-        resolution, what = cell_size / 2, f"{what} (its background drawn by default at half a cell)"
-    preview_frame(grid_bounds, resolution, what)
+    preview_frame(grid_bounds, resolution, f"the preview of {Path(path).name}")
 
 
 def s57_background(path, resolution: float):

@@ -30,7 +30,7 @@ class Colour(click.ParamType):
 @click.option("--preview", type=click.Path(dir_okay=False), help="Also write a preview PNG.")
 @click.option("--preview-resolution", type=POSITIVE, metavar="METRES",
               help="Metres per preview pixel [default: longest side 1200 pixels; an S-57 "
-              "cell's background drawn at half a cell].")
+              "cell's background drawn at half a cell, or coarser to match].")
 @click.option("--ship-length", type=POSITIVE, default=2.5, show_default=True,
               help="Ship length in metres (cell = 1.5 x ship length).")
 @click.option("--cell-size", type=POSITIVE, help="Cell size in metres (overrides the rule).")
@@ -100,11 +100,17 @@ def preprocess(chart, output, preview, ship_length, cell_size, margin, swell, re
     result = run(chart, opts)
     summary = dict(result.summary, output=output)
     if preview:
-        from usvtool.chart.preview import render_preview, s57_background, write_png
+        from usvtool.chart.preview import (
+            background_resolution,
+            render_preview,
+            s57_background,
+            write_png,
+        )
 
         background = result.chart
         if background is None and result.summary["source_kind"] == "s57":
-            background = s57_background(chart, preview_resolution or result.grid.cell_size / 2)
+            px = preview_resolution or background_resolution(result.grid.bounds, opts.cell)
+            background = s57_background(chart, px)
         image = render_preview(result.grid, background, preview_resolution)  # before any file
         summary["preview"] = preview
     with staged(output, preview) as (grid_tmp, preview_tmp):  # renamed together at the end
