@@ -6,7 +6,7 @@ OUT := build/grids
 # every output depends on the code that makes it: a change re-runs the stages
 SRC := $(shell find usvtool -name '*.py')
 
-GRIDS := env1 env2 grid20 grid50 us5ma12m head_of_passes
+GRIDS := env1 env2 grid20 grid50 us5ma12m head_of_passes rudee_inlet south_san_diego us4md81m
 all: $(GRIDS:%=$(OUT)/%.tif)
 
 $(OUT):
@@ -24,3 +24,12 @@ $(OUT)/us5ma12m.tif: charts/noaa/US5MA12M.000 $(SRC) | $(OUT)
 # NOAA raster chart (BSB/KAP, Head of Passes): the paper's rule, 1.5 x ship length
 $(OUT)/head_of_passes.tif: charts/noaa/11361_4.KAP $(SRC) | $(OUT)
 	$(USV) preprocess $< -o $@ --preview $(@:.tif=.png) > $(@:.tif=.json)
+# NOAA raster charts with ink hazards (piers, piles, docks, wrecks): the paper's rule
+$(OUT)/rudee_inlet.tif: charts/noaa/12205_2.KAP $(SRC) | $(OUT)
+	$(USV) preprocess $< -o $@ --preview $(@:.tif=.png) > $(@:.tif=.json)
+$(OUT)/south_san_diego.tif: charts/noaa/SanDiego_2.KAP $(SRC) | $(OUT)
+	$(USV) preprocess $< -o $@ --preview $(@:.tif=.png) > $(@:.tif=.json)
+# NOAA ENC approach cell (55 x 78 km) with its three updates: the cell size its size error
+# suggests for the 25-million-cell limit
+$(OUT)/us4md81m.tif: charts/noaa/US4MD81M/US4MD81M.000 $(wildcard charts/noaa/US4MD81M/*) $(SRC) | $(OUT)
+	$(USV) preprocess $< -o $@ --preview $(@:.tif=.png) --cell-size 12.1 > $(@:.tif=.json)
