@@ -141,28 +141,31 @@ def resolve(
     w = stroke_width(ink, dist)
     del dist
     filled = (wet | _round_holes(wet, w)).view(np.uint8)
-    solids, structures = _concurrently(
-        lambda: _solids(filled, SOLID_WIDTH * w + 1), lambda: _structures(filled, land, w)
+    shore = cv2.dilate(land.view(np.uint8), _disc(2 * w + 1))  # within 2 w + 1 of land
+    solids, structures, docks = _concurrently(
+        lambda: _solids(filled, SOLID_WIDTH * w + 1),
+        lambda: _structures(filled, shore, w),
+        lambda: _docks(wet, land, shore, layers, w),
     )
     # an opening rounds corners off: grow back by half a stroke, inside the ink
     grown = cv2.dilate(cv2.bitwise_or(solids, structures), _disc(w + 1))
-    hazard = cv2.bitwise_and(grown, filled).view(bool)
-    return land, hazard | _docks(wet, land, layers, w)
+    return land, cv2.bitwise_and(grown, filled).view(bool) | docks
 
 
-def _docks(wet: np.ndarray, land: np.ndarray, layers: np.ndarray | None, w: float) -> np.ndarray:
+def _docks(
+    wet: np.ndarray, land: np.ndarray, shore: np.ndarray, layers: np.ndarray | None, w: float
+) -> np.ndarray:
     """Dock networks drawn in ordinary strokes (marina finger piers): see the module docstring.
 
     Ink within ``2 w + 1`` of land is set aside first (the coastline's own stroke would join
     every network along the shore), and so are the pixels where two ink layers meet, so that a
     grey contour touching a black pier stays a network of its own.
     """
-    band = cv2.dilate(land.view(np.uint8), _disc(2 * w + 1)) > 0
-    core = wet & ~band
-    if layers is not None:
-        tag = np.where(core, layers.astype(np.int16) + 1, 0).astype(np.int16)
+    core = wet & (shore == 0)
+    if layers is not None:  # layer numbers below 255
+        tag = np.where(core, layers + np.uint8(1), np.uint8(0))
         highest = cv2.dilate(tag, np.ones((3, 3), np.uint8))
-        lowest = cv2.erode(np.where(core, tag, 32767).astype(np.int16), np.ones((3, 3), np.uint8))
+        lowest = cv2.erode(np.where(core, tag, np.uint8(255)), np.ones((3, 3), np.uint8))
         core &= highest == lowest
     n, labels, stats, _ = cv2.connectedComponentsWithStats(core.view(np.uint8), connectivity=8)
     near = cv2.dilate(land.view(np.uint8), _disc(4 * w + 3))
@@ -175,7 +178,7 @@ def _docks(wet: np.ndarray, land: np.ndarray, layers: np.ndarray | None, w: floa
     dock[0] = False
     if not dock.any():
         return np.zeros_like(wet)
-    body = dock[labels]
+    body = _pick(labels, dock) > 0
     # the pier roots in the shore band and the pixels set aside where layers meet
     roots = cv2.dilate(body.view(np.uint8), _disc(2 * w + 3)) > 0
     return body | (roots & wet & ~core)
@@ -204,29 +207,32 @@ def _solids(filled: np.ndarray, width: float) -> np.ndarray:
     n, labels, stats, _ = cv2.connectedComponentsWithStats(thick, connectivity=8)
     if n == 1:
         return thick
-    dist = _distance(thick.view(bool))
-    radius = _max_per_label(dist, labels, n)
+    at = np.flatnonzero(thick)  # the thick pixels: a small share of the chart
+    label_at, dist_at = labels.ravel()[at], _distance(thick.view(bool)).ravel()[at]
+    radius = np.zeros(n)
+    radius[1:] = ndimage.maximum(dist_at, label_at, np.arange(1, n))
     area = stats[:, cv2.CC_STAT_AREA]
     disc = np.pi * np.square(radius)
-    core = cv2.compare(dist, (CORE_DEPTH * radius)[labels].astype(np.float32), cv2.CMP_GE)
-    core_share = np.bincount(labels[core > 0], minlength=n) / np.maximum(area, 1)
+    deep = label_at[dist_at >= CORE_DEPTH * radius[label_at]]
+    core_share = np.bincount(deep, minlength=n) / np.maximum(area, 1)
     tapered = (area <= TAPERED_AREA * disc) & (core_share <= CORE_SHARE)
     solid = (area <= SOLID_AREA * disc) | tapered
     solid[0] = False
-    return solid.view(np.uint8)[labels]
+    out = np.zeros_like(thick)
+    out.ravel()[at] = solid[label_at]
+    return out
 
 
-def _structures(filled: np.ndarray, land: np.ndarray, w: float) -> np.ndarray:
-    """The parts of ``filled`` at least ``w + 1`` thick that come within ``2 w + 1`` of land:
-    piers, jetties, groins (uint8 0/1)."""
+def _structures(filled: np.ndarray, shore: np.ndarray, w: float) -> np.ndarray:
+    """The parts of ``filled`` at least ``w + 1`` thick that reach the ``shore`` band: piers,
+    jetties, groins (uint8 0/1)."""
     strokes = cv2.morphologyEx(filled, cv2.MORPH_OPEN, _disc(w + 1))
     n, labels = cv2.connectedComponents(strokes, connectivity=8)
-    shore = cv2.dilate(land.view(np.uint8), _disc(2 * w + 1))
     touching = np.flatnonzero(cv2.bitwise_and(strokes, shore))
     attached = np.zeros(n, np.uint8)
     attached[labels.ravel()[touching]] = 1
     attached[0] = 0
-    return attached[labels]
+    return _pick(labels, attached)
 
 
 def _concurrently(*calls):
@@ -265,13 +271,12 @@ def _round_holes(wet: np.ndarray, w: float) -> np.ndarray:
     return ring[labels]
 
 
-def _max_per_label(values: np.ndarray, labels: np.ndarray, n: int) -> np.ndarray:
-    """The largest of ``values`` in each label 0..n-1 (0 for label 0), over the labelled pixels
-    only (``ndimage.maximum`` over the whole image is ten times slower)."""
+def _pick(labels: np.ndarray, keep: np.ndarray) -> np.ndarray:
+    """uint8 mask of the pixels whose label is kept (label 0 never), looking up the labelled
+    pixels only: they are a small share of a chart."""
+    out = np.zeros(labels.shape, np.uint8)
     at = np.flatnonzero(labels)
-    out = np.zeros(n)
-    if at.size:
-        out[1:] = ndimage.maximum(values.ravel()[at], labels.ravel()[at], np.arange(1, n))
+    out.ravel()[at] = keep[labels.ravel()[at]]
     return out
 
 
