@@ -1,7 +1,9 @@
 """The ink rule on small drawn charts: each symbol's expected class is known by construction.
 
 A 300 x 300 water image with a strip of land on the west, ordinary text (OpenCV's plain font,
-2-pixel strokes, so the chart's stroke width is 2 px) and one symbol per test.
+1-pixel strokes; the chart's stroke width is then its floor, 2 px) and one symbol per test. The
+same drawings scaled 2 and 3 times (every pixel a 2 x 2 or 3 x 3 block, as a chart scanned at a
+higher resolution) must be read the same: the rule measures the chart's own strokes.
 """
 
 import cv2
@@ -23,13 +25,16 @@ def chart():
     return ink, land
 
 
-def classify(draw, mode="auto"):
+def classify(draw, mode="auto", scale=1):
     ink, land = chart()
     symbol = np.zeros_like(ink)
     draw(symbol)
     ink = (ink | symbol).astype(bool)
+    block = np.ones((scale, scale), np.uint8)
+    ink, land, symbol = (np.kron(a.astype(np.uint8), block).astype(bool)
+                         for a in (ink, land, symbol))  # fmt: skip
     new_land, hazard = resolve(ink, land, mode)
-    return symbol.astype(bool), hazard, new_land
+    return symbol, hazard, new_land
 
 
 def test_the_text_sets_a_two_pixel_stroke():
@@ -54,8 +59,9 @@ def test_text_and_soundings_are_clutter():
         ("thick pier from the shore", lambda im: cv2.line(im, (30, 150), (90, 150), 1, 4)),
     ],
 )
-def test_hazards_are_obstacles_at_their_footprint(name, draw):
-    symbol, hazard, _ = classify(draw)
+@pytest.mark.parametrize("scale", [1, 2, 3])
+def test_hazards_are_obstacles_at_their_footprint(name, draw, scale):
+    symbol, hazard, _ = classify(draw, scale=scale)
     assert hazard[symbol].mean() > 0.95, name
     assert not (hazard & ~symbol).any() or name == "pile ring"  # a ring also blocks its inside
 
@@ -76,13 +82,15 @@ def meander(im):
     cv2.polylines(im, [pts, pts + [0, 1]], False, 1, 1)  # 2 pixels wide, like the text
 
 
-def test_a_dock_network_from_the_shore_is_a_hazard():
-    symbol, hazard, _ = classify(comb)
+@pytest.mark.parametrize("scale", [1, 2, 3])
+def test_a_dock_network_from_the_shore_is_a_hazard(scale):
+    symbol, hazard, _ = classify(comb, scale=scale)
     assert hazard[symbol].mean() > 0.95
 
 
-def test_a_winding_contour_from_the_shore_stays_clutter():
-    symbol, hazard, _ = classify(meander)
+@pytest.mark.parametrize("scale", [1, 2, 3])
+def test_a_winding_contour_from_the_shore_stays_clutter(scale):
+    symbol, hazard, _ = classify(meander, scale=scale)
     assert not hazard[symbol].any()
 
 
@@ -106,8 +114,9 @@ def test_a_pile_ring_blocks_its_inside():
         ("a zero", lambda im: cv2.ellipse(im, (150, 150), (4, 7), 0, 0, 360, 1, 1)),
     ],
 )
-def test_clutter_stays_water(name, draw):
-    symbol, hazard, new_land = classify(draw)
+@pytest.mark.parametrize("scale", [1, 2, 3])
+def test_clutter_stays_water(name, draw, scale):
+    symbol, hazard, new_land = classify(draw, scale=scale)
     assert not hazard[symbol].any(), name
     assert not new_land[symbol].any()
 
