@@ -23,7 +23,8 @@ def bench():
 
 def test_every_bundled_chart_has_its_route(bench):
     ends = bench.bundled_ends()
-    assert set(ends) == {"env1", "env2", "grid20", "grid50", "us5ma12m", "head_of_passes"}
+    assert set(ends) == {"env1", "env2", "grid20", "grid50", "us5ma12m", "head_of_passes",
+                         "rudee_inlet", "south_san_diego"}  # fmt: skip
     assert ends["grid20"] == ["--start", "0.5", "0.5", "--goal", "19.5", "19.5"]
     assert ends["us5ma12m"][0] == "--start-lonlat" and ends["us5ma12m"][3] == "--goal-lonlat"
 
