@@ -55,7 +55,6 @@ from __future__ import annotations
 
 import cv2
 import numpy as np
-from scipy import ndimage
 
 MODES = ("auto", "clutter", "obstacle")
 #: Solids are at least this many ordinary stroke widths thick, and their area is at most
@@ -209,8 +208,7 @@ def _solids(filled: np.ndarray, width: float) -> np.ndarray:
         return thick
     at = np.flatnonzero(thick)  # the thick pixels: a small share of the chart
     label_at, dist_at = labels.ravel()[at], _distance(thick.view(bool)).ravel()[at]
-    radius = np.zeros(n)
-    radius[1:] = ndimage.maximum(dist_at, label_at, np.arange(1, n))
+    radius = _max_by_label(dist_at, label_at, n)
     area = stats[:, cv2.CC_STAT_AREA]
     disc = np.pi * np.square(radius)
     deep = label_at[dist_at >= CORE_DEPTH * radius[label_at]]
@@ -269,6 +267,20 @@ def _round_holes(wet: np.ndarray, w: float) -> np.ndarray:
             & (ink_stats[above, cv2.CC_STAT_HEIGHT] <= bh[holes] + grown)
         )
     return ring[labels]
+
+
+def _max_by_label(values: np.ndarray, labels: np.ndarray, n: int) -> np.ndarray:
+    """The largest value of each label 0..n-1 (0 where a label has none).
+
+    >>> _max_by_label(np.array([3.0, 1.0, 2.0, 5.0]), np.array([2, 1, 2, 1]), 4).tolist()
+    [0.0, 5.0, 3.0, 0.0]
+    """
+    out = np.zeros(n)
+    if values.size:
+        order = np.argsort(labels, kind="stable")
+        ids, starts = np.unique(labels[order], return_index=True)
+        out[ids] = np.maximum.reduceat(values[order], starts)
+    return out
 
 
 def _pick(labels: np.ndarray, keep: np.ndarray) -> np.ndarray:
