@@ -166,18 +166,19 @@ def _docks(
         highest = cv2.dilate(tag, np.ones((3, 3), np.uint8))
         lowest = cv2.erode(np.where(core, tag, np.uint8(255)), np.ones((3, 3), np.uint8))
         core &= highest == lowest
-    n, labels, stats, _ = cv2.connectedComponentsWithStats(core.view(np.uint8), connectivity=8)
+    n, labels, at, label_at = _label(core, 8)
     near = cv2.dilate(land.view(np.uint8), _disc(4 * w + 3))
     attached = np.zeros(n, bool)
     attached[labels.ravel()[np.flatnonzero(cv2.bitwise_and(near, core.view(np.uint8)))]] = True
-    bw, bh = stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT]
-    area, extent = stats[:, cv2.CC_STAT_AREA], np.hypot(bw, bh)
+    area, _, _, bw, bh = _boxes(n, at, label_at, core.shape[1])
+    extent = np.hypot(bw, bh)
     dock = attached & (extent >= DOCK_EXTENT * w) & (area >= DOCK_INK * extent * w)
     dock &= area >= DOCK_FILL * bw * bh
     dock[0] = False
     if not dock.any():
         return np.zeros_like(wet)
-    body = _pick(labels, dock) > 0
+    body = np.zeros_like(wet)
+    body.ravel()[at] = dock[label_at]
     # the pier roots in the shore band and the pixels set aside where layers meet
     roots = cv2.dilate(body.view(np.uint8), _disc(2 * w + 3)) > 0
     return body | (roots & wet & ~core)
@@ -203,13 +204,12 @@ def _solids(filled: np.ndarray, width: float) -> np.ndarray:
     at most ``SOLID_AREA`` times their inscribed disc: discs, squares, blobs, not bars (uint8
     0/1)."""
     thick = cv2.morphologyEx(filled, cv2.MORPH_OPEN, _disc(width))
-    n, labels, stats, _ = cv2.connectedComponentsWithStats(thick, connectivity=8)
+    n, labels, at, label_at = _label(thick, 8)  # the thick pixels: a small share of the chart
     if n == 1:
         return thick
-    at = np.flatnonzero(thick)  # the thick pixels: a small share of the chart
-    label_at, dist_at = labels.ravel()[at], _distance(thick.view(bool)).ravel()[at]
+    dist_at = _distance(thick.view(bool)).ravel()[at]
     radius = _max_by_label(dist_at, label_at, n)
-    area = stats[:, cv2.CC_STAT_AREA]
+    area = np.bincount(label_at, minlength=n)
     disc = np.pi * np.square(radius)
     deep = label_at[dist_at >= CORE_DEPTH * radius[label_at]]
     core_share = np.bincount(deep, minlength=n) / np.maximum(area, 1)
@@ -225,12 +225,13 @@ def _structures(filled: np.ndarray, shore: np.ndarray, w: float) -> np.ndarray:
     """The parts of ``filled`` at least ``w + 1`` thick that reach the ``shore`` band: piers,
     jetties, groins (uint8 0/1)."""
     strokes = cv2.morphologyEx(filled, cv2.MORPH_OPEN, _disc(w + 1))
-    n, labels = cv2.connectedComponents(strokes, connectivity=8)
-    touching = np.flatnonzero(cv2.bitwise_and(strokes, shore))
+    n, labels, at, label_at = _label(strokes, 8)
     attached = np.zeros(n, np.uint8)
-    attached[labels.ravel()[touching]] = 1
+    attached[labels.ravel()[np.flatnonzero(cv2.bitwise_and(strokes, shore))]] = 1
     attached[0] = 0
-    return _pick(labels, attached)
+    out = np.zeros_like(strokes)
+    out.ravel()[at] = attached[label_at]
+    return out
 
 
 def _concurrently(*calls):
@@ -244,29 +245,66 @@ def _concurrently(*calls):
 
 def _round_holes(wet: np.ndarray, w: float) -> np.ndarray:
     """Ring symbols' insides: small, round background holes in ``wet`` ink whose ring is a
-    component of its own (not the loop of a 6, 9 or 4, whose tail makes its box larger)."""
-    (n, labels, stats, centroids), (_, ink_labels, ink_stats, _) = _concurrently(
-        lambda: cv2.connectedComponentsWithStats((~wet).view(np.uint8), connectivity=4),
-        lambda: cv2.connectedComponentsWithStats(wet.view(np.uint8), connectivity=8),
-    )
-    x, y = stats[:, cv2.CC_STAT_LEFT], stats[:, cv2.CC_STAT_TOP]
-    bw, bh = stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT]
-    area = stats[:, cv2.CC_STAT_AREA]
-    rows, cols = wet.shape
-    ring = (x > 0) & (y > 0) & (x + bw < cols) & (y + bh < rows)
-    ring &= np.maximum(bw, bh) <= RING_HOLE_ASPECT * np.minimum(bw, bh)
+    component of its own (not the loop of a 6, 9 or 4, whose tail makes its box larger).
+
+    The background reachable from the chart's edge is flood-filled first, so only the holes
+    (a small share of the chart) are labelled.
+    """
+    cols = wet.shape[1]
+    edge = cv2.copyMakeBorder(wet.view(np.uint8), 1, 1, 1, 1, cv2.BORDER_CONSTANT, value=0)
+    cv2.floodFill(edge, None, (0, 0), 1, flags=4)
+    n, labels, at, label_at = _label(edge[1:-1, 1:-1] == 0, 4)
+    if n == 1:
+        return np.zeros_like(wet)
+    area, x, y, bw, bh = _boxes(n, at, label_at, cols)
+    ring = np.maximum(bw, bh) <= RING_HOLE_ASPECT * np.minimum(bw, bh)
     ring &= (area >= RING_HOLE_FILL * bw * bh) & (area <= RING_HOLE_AREA * w * w)
-    ring[0] = False  # label 0: the ink itself
+    ring[0] = False
     holes = np.flatnonzero(ring)
     if holes.size:
-        above = ink_labels[y[holes] - 1, np.round(centroids[holes, 0]).astype(int)]
+        # the ring: the ink component just above the hole's top row, at its middle column
+        n_ink, ink_labels, ink_at, ink_label_at = _label(wet, 8)
+        above = ink_labels[y[holes] - 1, x[holes] + bw[holes] // 2]
+        keep = np.isin(ink_label_at, above[above > 0])
+        _, _, _, ring_w, ring_h = _boxes(n_ink, ink_at[keep], ink_label_at[keep], cols)
         grown = 2 * (w + 1)  # a ring adds at most a stroke and a pixel on each side
         ring[holes] = (
             (above > 0)
-            & (ink_stats[above, cv2.CC_STAT_WIDTH] <= bw[holes] + grown)
-            & (ink_stats[above, cv2.CC_STAT_HEIGHT] <= bh[holes] + grown)
+            & (ring_w[above] <= bw[holes] + grown)
+            & (ring_h[above] <= bh[holes] + grown)
         )
-    return ring[labels]
+    out = np.zeros_like(wet)
+    out.ravel()[at] = ring[label_at]
+    return out
+
+
+def _label(mask: np.ndarray, connectivity: int):
+    """(n, labels, at, label_at): OpenCV's labelling of ``mask`` (without its statistics pass,
+    which costs several times the labelling on a chart), the flat positions of the labelled
+    pixels and their labels."""
+    n, labels = cv2.connectedComponents(mask.view(np.uint8), connectivity=connectivity)
+    at = np.flatnonzero(mask)  # a boolean scan, much faster than one of the int32 labels
+    return n, labels, at, labels.ravel()[at]
+
+
+def _boxes(n: int, at: np.ndarray, label_at: np.ndarray, width: int):
+    """(area, left, top, box width, box height) of labels 0..n-1 from their pixels' flat
+    positions ``at`` in an image ``width`` wide (zeros for labels without pixels).
+
+    >>> _boxes(3, np.array([1, 2, 5, 8]), np.array([1, 1, 2, 2]), 3)[0].tolist()
+    [0, 2, 2]
+    """
+    area, left, top, box_w, box_h = (np.zeros(n, np.int64) for _ in range(5))
+    if at.size:
+        rows, cols = np.divmod(at, width)
+        order = np.argsort(label_at, kind="stable")
+        ids, starts = np.unique(label_at[order], return_index=True)
+        area[ids] = np.diff(np.append(starts, order.size))
+        r, c = rows[order], cols[order]
+        left[ids], top[ids] = np.minimum.reduceat(c, starts), np.minimum.reduceat(r, starts)
+        box_w[ids] = np.maximum.reduceat(c, starts) - left[ids] + 1
+        box_h[ids] = np.maximum.reduceat(r, starts) - top[ids] + 1
+    return area, left, top, box_w, box_h
 
 
 def _max_by_label(values: np.ndarray, labels: np.ndarray, n: int) -> np.ndarray:
@@ -280,15 +318,6 @@ def _max_by_label(values: np.ndarray, labels: np.ndarray, n: int) -> np.ndarray:
         order = np.argsort(labels, kind="stable")
         ids, starts = np.unique(labels[order], return_index=True)
         out[ids] = np.maximum.reduceat(values[order], starts)
-    return out
-
-
-def _pick(labels: np.ndarray, keep: np.ndarray) -> np.ndarray:
-    """uint8 mask of the pixels whose label is kept (label 0 never), looking up the labelled
-    pixels only: they are a small share of a chart."""
-    out = np.zeros(labels.shape, np.uint8)
-    at = np.flatnonzero(labels)
-    out.ravel()[at] = keep[labels.ravel()[at]]
     return out
 
 
