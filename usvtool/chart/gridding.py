@@ -24,6 +24,7 @@ from usvtool.chart.georef import Frame, frame_for_bounds
 from usvtool.grid import MARGIN, NAVIGABLE, OBSTACLE
 
 MAX_CELLS = 25_000_000
+BAND = 1024  # chart columns per step of the occupancy product
 
 
 def grid_frame(bounds, cell_size: float, crs=None) -> Frame:
@@ -61,8 +62,13 @@ def occupancy_fraction(blocked: np.ndarray, src: Frame, dst: Frame) -> np.ndarra
     oy = _overlaps(src.height, src.resolution, -src.bounds[3], dst.height, dst.resolution,
                    -dst.bounds[3])  # fmt: skip
     # rows first: the sparse-by-dense product runs along the image's rows, ten times faster
-    # than along its transposed columns
-    area = ((oy @ blocked.astype(np.float32)) @ ox.T).astype(float)  # rows x cols, m^2
+    # than along its transposed columns; in bands of columns, so that no float copy of the
+    # whole chart is made
+    area = np.zeros((dst.height, dst.width))  # m^2
+    ox_columns = ox.tocsc()  # sliced by chart column below
+    for c in range(0, src.width, BAND):
+        band = blocked[:, c : c + BAND].astype(np.float32)
+        area += (oy @ band) @ ox_columns[:, c : c + BAND].T
     inside = np.outer(oy.sum(axis=1), ox.sum(axis=1))
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.where(inside > 0, area / inside, 1.0)

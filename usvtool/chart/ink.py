@@ -57,6 +57,7 @@ import cv2
 import numpy as np
 
 MODES = ("auto", "clutter", "obstacle")
+BAND = 1024  # image rows per step where a whole-image temporary is not needed
 #: Solids are at least this many ordinary stroke widths thick, and their area is at most
 #: SOLID_AREA times their inscribed disc ``pi R^2``.
 SOLID_WIDTH = 2.0
@@ -102,9 +103,15 @@ def stroke_width(ink: np.ndarray, dist: np.ndarray | None = None) -> float:
     if not ink.any():
         return 2.0
     dist = _distance(ink) if dist is None else dist
-    ridge = cv2.compare(dist, cv2.dilate(dist, np.ones((3, 3), np.uint8)), cv2.CMP_GE)
-    ridge &= cv2.compare(dist, 0, cv2.CMP_GT)
-    return max(2.0, 2.0 * float(np.median(dist[ridge > 0])))
+    ridges = []
+    for r in range(0, dist.shape[0], BAND):  # bands of rows, each with its neighbours' rows
+        top, bottom = max(0, r - 1), min(dist.shape[0], r + BAND + 1)
+        part = dist[top:bottom]
+        ridge = cv2.compare(part, cv2.dilate(part, np.ones((3, 3), np.uint8)), cv2.CMP_GE)
+        ridge &= cv2.compare(part, 0, cv2.CMP_GT)
+        inner = slice(r - top, r - top + min(BAND, dist.shape[0] - r))
+        ridges.append(part[inner][ridge[inner] > 0])
+    return max(2.0, 2.0 * float(np.median(np.concatenate(ridges))))
 
 
 def resolve(
@@ -141,14 +148,10 @@ def resolve(
     del dist
     filled = (wet | _round_holes(wet, w)).view(np.uint8)
     shore = cv2.dilate(land.view(np.uint8), _disc(2 * w + 1))  # within 2 w + 1 of land
-    solids, structures, docks = _concurrently(
-        lambda: _solids(filled, SOLID_WIDTH * w + 1),
-        lambda: _structures(filled, shore, w),
-        lambda: _docks(wet, land, shore, layers, w),
-    )
+    parts = cv2.bitwise_or(_solids(filled, SOLID_WIDTH * w + 1), _structures(filled, shore, w))
     # an opening rounds corners off: grow back by half a stroke, inside the ink
-    grown = cv2.dilate(cv2.bitwise_or(solids, structures), _disc(w + 1))
-    return land, cv2.bitwise_and(grown, filled).view(bool) | docks
+    grown = cv2.bitwise_and(cv2.dilate(parts, _disc(w + 1)), filled).view(bool)
+    return land, grown | _docks(wet, land, shore, layers, w)
 
 
 def _docks(
@@ -163,9 +166,11 @@ def _docks(
     core = wet & (shore == 0)
     if layers is not None:  # layer numbers below 255
         tag = np.where(core, layers + np.uint8(1), np.uint8(0))
-        highest = cv2.dilate(tag, np.ones((3, 3), np.uint8))
-        lowest = cv2.erode(np.where(core, tag, np.uint8(255)), np.ones((3, 3), np.uint8))
-        core &= highest == lowest
+        mixed = cv2.dilate(tag, np.ones((3, 3), np.uint8))
+        tag[~core] = 255
+        mixed = cv2.compare(mixed, cv2.erode(tag, np.ones((3, 3), np.uint8)), cv2.CMP_NE)
+        del tag
+        core[mixed > 0] = False
     n, labels, at, label_at = _label(core, 8)
     near = cv2.dilate(land.view(np.uint8), _disc(4 * w + 3))
     attached = np.zeros(n, bool)
@@ -188,14 +193,15 @@ def _sides(ink: np.ndarray, land: np.ndarray) -> tuple[np.ndarray, np.ndarray | 
     """(ink on the land side, the ink's distance transform).
 
     The distance to the nearest non-ink pixel and the distance to the nearest non-ink land
-    pixel, two exact Euclidean transforms run side by side: an ink pixel is on the land side
-    when the two are equal. The same answer as one transform with labels, but for ties, at a
-    fraction of the time and memory.
+    pixel, two exact Euclidean transforms: an ink pixel is on the land side when the two are
+    equal. The same answer as one transform with labels, but for ties, at a fraction of the time
+    and memory.
     """
     if not ink.any() or ink.all():
         return np.zeros_like(ink), None
-    dist, to_land = _concurrently(lambda: _distance(ink), lambda: _distance(~(land & ~ink)))
-    on_land = (cv2.compare(to_land, dist, cv2.CMP_LE) > 0) & ink
+    dist = _distance(ink)
+    on_land = cv2.compare(_distance(~(land & ~ink)), dist, cv2.CMP_LE).view(bool)
+    on_land &= ink  # compare gives 255 for true: the and makes it a proper boolean
     return on_land, dist
 
 
@@ -232,15 +238,6 @@ def _structures(filled: np.ndarray, shore: np.ndarray, w: float) -> np.ndarray:
     out = np.zeros_like(strokes)
     out.ravel()[at] = attached[label_at]
     return out
-
-
-def _concurrently(*calls):
-    """The results of ``calls``, run in threads side by side (OpenCV releases the GIL; on two
-    cores two transforms take the time of one)."""
-    from concurrent.futures import ThreadPoolExecutor
-
-    with ThreadPoolExecutor(len(calls)) as pool:
-        return [f.result() for f in [pool.submit(c) for c in calls]]
 
 
 def _round_holes(wet: np.ndarray, w: float) -> np.ndarray:
@@ -282,7 +279,10 @@ def _label(mask: np.ndarray, connectivity: int):
     """(n, labels, at, label_at): OpenCV's labelling of ``mask`` (without its statistics pass,
     which costs several times the labelling on a chart), the flat positions of the labelled
     pixels and their labels."""
-    n, labels = cv2.connectedComponents(mask.view(np.uint8), connectivity=connectivity)
+    try:  # 16-bit labels halve the memory when there are fewer than 65536 components
+        n, labels = cv2.connectedComponents(mask.view(np.uint8), None, connectivity, cv2.CV_16U)
+    except cv2.error:
+        n, labels = cv2.connectedComponents(mask.view(np.uint8), None, connectivity, cv2.CV_32S)
     at = np.flatnonzero(mask)  # a boolean scan, much faster than one of the int32 labels
     return n, labels, at, labels.ravel()[at]
 

@@ -133,6 +133,7 @@ def segment(
     else:
         thr = float(threshold)
     land = (chan > thr) if thr_colour_side else (chan <= thr)
+    del chan
     land &= valid
     timings["binarise"] = time.perf_counter() - t
 
