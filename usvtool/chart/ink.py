@@ -137,21 +137,20 @@ def resolve(
     """
     if mode not in MODES:
         raise ValueError(f"ink mode must be one of {MODES}")
-    on_land, dist = _sides(ink, land)
+    on_land, w = _sides(ink, land, width=mode == "auto")
     land = (land & ~ink) | on_land
     wet = ink & ~on_land
     if mode == "clutter" or not wet.any():
         return land, np.zeros_like(ink)
     if mode == "obstacle":
         return land, wet
-    w = stroke_width(ink, dist)
-    del dist
-    filled = (wet | _round_holes(wet, w)).view(np.uint8)
     shore = cv2.dilate(land.view(np.uint8), _disc(2 * w + 1))  # within 2 w + 1 of land
+    hazard = _docks(wet, land, shore, layers, w)
+    filled = (wet | _round_holes(wet, w)).view(np.uint8)
     parts = cv2.bitwise_or(_solids(filled, SOLID_WIDTH * w + 1), _structures(filled, shore, w))
     # an opening rounds corners off: grow back by half a stroke, inside the ink
-    grown = cv2.bitwise_and(cv2.dilate(parts, _disc(w + 1)), filled).view(bool)
-    return land, grown | _docks(wet, land, shore, layers, w)
+    hazard |= cv2.bitwise_and(cv2.dilate(parts, _disc(w + 1)), filled).view(bool)
+    return land, hazard
 
 
 def _docks(
@@ -163,46 +162,56 @@ def _docks(
     every network along the shore), and so are the pixels where two ink layers meet, so that a
     grey contour touching a black pier stays a network of its own.
     """
-    core = wet & (shore == 0)
+    core = cv2.bitwise_and(wet.view(np.uint8), cv2.compare(shore, 0, cv2.CMP_EQ)).view(bool)
     if layers is not None:  # layer numbers below 255
-        tag = np.where(core, layers + np.uint8(1), np.uint8(0))
+        tag = cv2.add(layers, 1, mask=core.view(np.uint8), dst=np.zeros_like(layers))
         mixed = cv2.dilate(tag, np.ones((3, 3), np.uint8))
         tag[~core] = 255
-        mixed = cv2.compare(mixed, cv2.erode(tag, np.ones((3, 3), np.uint8)), cv2.CMP_NE)
+        cv2.compare(mixed, cv2.erode(tag, np.ones((3, 3), np.uint8)), cv2.CMP_NE, dst=mixed)
         del tag
         core[mixed > 0] = False
+        del mixed
     n, labels, at, label_at = _label(core, 8)
     near = cv2.dilate(land.view(np.uint8), _disc(4 * w + 3))
+    cv2.bitwise_and(near, core.view(np.uint8), dst=near)
     attached = np.zeros(n, bool)
-    attached[labels.ravel()[np.flatnonzero(cv2.bitwise_and(near, core.view(np.uint8)))]] = True
+    attached[labels.ravel()[np.flatnonzero(near)]] = True
+    del near, labels
     area, _, _, bw, bh = _boxes(n, at, label_at, core.shape[1])
     extent = np.hypot(bw, bh)
     dock = attached & (extent >= DOCK_EXTENT * w) & (area >= DOCK_INK * extent * w)
     dock &= area >= DOCK_FILL * bw * bh
     dock[0] = False
-    if not dock.any():
-        return np.zeros_like(wet)
     body = np.zeros_like(wet)
+    if not dock.any():
+        return body
     body.ravel()[at] = dock[label_at]
     # the pier roots in the shore band and the pixels set aside where layers meet
-    roots = cv2.dilate(body.view(np.uint8), _disc(2 * w + 3)) > 0
-    return body | (roots & wet & ~core)
+    roots = cv2.dilate(body.view(np.uint8), _disc(2 * w + 3)).view(bool)
+    roots &= wet
+    roots &= ~core
+    return body | roots
 
 
-def _sides(ink: np.ndarray, land: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
-    """(ink on the land side, the ink's distance transform).
+def _sides(ink: np.ndarray, land: np.ndarray, width: bool = False) -> tuple[np.ndarray, float]:
+    """(ink on the land side, the chart's stroke width when ``width`` is asked for, else 2).
 
     The distance to the nearest non-ink pixel and the distance to the nearest non-ink land
-    pixel, two exact Euclidean transforms: an ink pixel is on the land side when the two are
-    equal. The same answer as one transform with labels, but for ties, at a fraction of the time
-    and memory.
+    pixel, two exact Euclidean transforms one after the other, kept at the ink pixels only: an
+    ink pixel is on the land side when the two are equal. The same answer as one transform with
+    labels, but for ties, at a fraction of the time and memory.
     """
     if not ink.any() or ink.all():
-        return np.zeros_like(ink), None
+        return np.zeros_like(ink), 2.0
     dist = _distance(ink)
-    on_land = cv2.compare(_distance(~(land & ~ink)), dist, cv2.CMP_LE).view(bool)
-    on_land &= ink  # compare gives 255 for true: the and makes it a proper boolean
-    return on_land, dist
+    w = stroke_width(ink, dist) if width else 2.0
+    at = np.flatnonzero(ink)
+    dist_at = dist.ravel()[at]
+    del dist
+    to_land_at = _distance(~(land & ~ink)).ravel()[at]
+    on_land = np.zeros_like(ink)
+    on_land.ravel()[at] = to_land_at <= dist_at
+    return on_land, w
 
 
 def _solids(filled: np.ndarray, width: float) -> np.ndarray:

@@ -235,9 +235,7 @@ def _remove_small(mask: np.ndarray, min_area: int) -> np.ndarray:
     out = mask.copy()
     part = out[box]
     for value in (True, False):
-        n, labels, stats, _ = cv2.connectedComponentsWithStats(
-            (part == value).view(np.uint8), connectivity=8
-        )
+        n, labels, stats = _components((part == value).view(np.uint8))
         small = np.flatnonzero(stats[:, cv2.CC_STAT_AREA] < min_area)
         small = small[small > 0]
         if small.size:
@@ -245,6 +243,15 @@ def _remove_small(mask: np.ndarray, min_area: int) -> np.ndarray:
             flip[small] = True
             part[flip[labels]] = not value
     return out
+
+
+def _components(mask: np.ndarray):
+    """(n, labels, stats) of OpenCV's 8-connected labelling, in 16-bit labels when there are
+    fewer than 65 536 components (half the memory; OpenCV refuses an overflow)."""
+    try:
+        return cv2.connectedComponentsWithStats(mask, None, 8, cv2.CV_16U)[:3]
+    except cv2.error:
+        return cv2.connectedComponentsWithStats(mask, None, 8, cv2.CV_32S)[:3]
 
 
 def _lab(rgb: np.ndarray) -> np.ndarray:
