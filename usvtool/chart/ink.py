@@ -18,8 +18,9 @@ follows the chart's own drawing rather than one chart's colours or resolution):
 - *ring symbols* (piles, dolphins drawn as small circles) are filled first: a background hole
   (4-connected) enclosed by ink in water is filled when it is small (area at most
   ``pi (1.5 w)^2``), round (bounding box of aspect at most 1.5, at least half filled) and its
-  ring is a component of its own (box at most ``2 (w + 1)`` larger than the hole's), so the
-  loops of 4, 6 and 9 and the elongated hole of 0 stay open.
+  ring is a component of its own, round outside too (box at most ``2 (w + 1)`` larger than the
+  hole's, of aspect at most 1.25), so the loops of 4, 6, 9, b, d, p and q and the elongated
+  hole of 0 stay open.
 - *solids*: the parts of the filled ink in water at least ``2 w + 1`` thick (a morphological
   opening by a disc of that diameter) whose area ``A`` is at most ``1.35 pi R^2``, ``R`` their
   largest inscribed radius (a disc gives 1, a square 1.27, a bar of aspect L/T about 1.27 L/T):
@@ -79,6 +80,8 @@ DOCK_FILL = 0.05
 RING_HOLE_AREA = 2.25 * np.pi  # holes up to 1.5 strokes across (pi (1.5 w)^2)
 RING_HOLE_ASPECT = 1.5
 RING_HOLE_FILL = 0.5
+#: ... and the ring around it as round outside (the loops of b, d, p, q stand on a stem).
+RING_ASPECT = 1.25
 
 
 def land_side(ink: np.ndarray, land: np.ndarray) -> np.ndarray:
@@ -274,10 +277,12 @@ def _round_holes(wet: np.ndarray, w: float) -> np.ndarray:
         keep = np.isin(ink_label_at, above[above > 0])
         _, _, _, ring_w, ring_h = _boxes(n_ink, ink_at[keep], ink_label_at[keep], cols)
         grown = 2 * (w + 1)  # a ring adds at most a stroke and a pixel on each side
+        ring_w, ring_h = ring_w[above], ring_h[above]
         ring[holes] = (
             (above > 0)
-            & (ring_w[above] <= bw[holes] + grown)
-            & (ring_h[above] <= bh[holes] + grown)
+            & (ring_w <= bw[holes] + grown)
+            & (ring_h <= bh[holes] + grown)
+            & (np.maximum(ring_w, ring_h) <= RING_ASPECT * np.minimum(ring_w, ring_h))
         )
     out = np.zeros_like(wet)
     out.ravel()[at] = ring[label_at]
