@@ -235,23 +235,28 @@ def _remove_small(mask: np.ndarray, min_area: int) -> np.ndarray:
     out = mask.copy()
     part = out[box]
     for value in (True, False):
-        n, labels, stats = _components((part == value).view(np.uint8))
-        small = np.flatnonzero(stats[:, cv2.CC_STAT_AREA] < min_area)
-        small = small[small > 0]
-        if small.size:
-            flip = np.zeros(n, bool)
-            flip[small] = True
+        n, labels, area = _components((part == value).view(np.uint8))
+        flip = area < min_area
+        flip[0] = False
+        if flip.any():
             part[flip[labels]] = not value
     return out
 
 
 def _components(mask: np.ndarray):
-    """(n, labels, stats) of OpenCV's 8-connected labelling, in 16-bit labels when there are
-    fewer than 65 536 components (half the memory; OpenCV refuses an overflow)."""
+    """(n, labels, area) of the 8-connected components of a uint8 0/1 mask.
+
+    16-bit labels when there are fewer than 65 536 components (OpenCV refuses an overflow):
+    half the memory, and OpenCV's histogram counts their areas (exactly up to 2^24 pixels, far
+    above any threshold they are compared with) several times faster than its statistics pass.
+    """
     try:
-        return cv2.connectedComponentsWithStats(mask, None, 8, cv2.CV_16U)[:3]
+        n, labels = cv2.connectedComponents(mask, None, 8, cv2.CV_16U)
     except cv2.error:
-        return cv2.connectedComponentsWithStats(mask, None, 8, cv2.CV_32S)[:3]
+        n, labels, stats, _ = cv2.connectedComponentsWithStats(mask, None, 8, cv2.CV_32S)
+        return n, labels, stats[:, cv2.CC_STAT_AREA]
+    area = cv2.calcHist([labels], [0], None, [n], [0, n]).ravel()
+    return n, labels, area
 
 
 def _lab(rgb: np.ndarray) -> np.ndarray:
