@@ -56,6 +56,8 @@ def test_text_and_soundings_are_clutter():
         ("pile ring", lambda im: cv2.circle(im, (150, 150), 3, 1, 1)),
         # a wreck's hull: a filled triangle, twice as long as high (tapered, not a disc)
         ("hull", lambda im: cv2.fillPoly(im, [np.array([[138, 160], [162, 160], [150, 148]])], 1)),
+        # a detached breakwater: a long straight thick bar of dark ink standing free
+        ("breakwater", lambda im: cv2.line(im, (80, 200), (200, 200), 1, 4)),
         ("thick pier from the shore", lambda im: cv2.line(im, (30, 150), (90, 150), 1, 4)),
     ],
 )
@@ -109,8 +111,6 @@ def test_a_pile_ring_blocks_its_inside():
                                for x in range(80, 260, 30)]),
         ("short dashes", lambda im: [cv2.line(im, (x, 150), (x + 10, 150), 1, 4)
                                      for x in range(80, 260, 20)]),
-        # a thick line standing free in water: a range or limit line, which crosses channels
-        ("free thick line", lambda im: cv2.line(im, (80, 200), (200, 200), 1, 4)),
         ("a zero", lambda im: cv2.ellipse(im, (150, 150), (4, 7), 0, 0, 360, 1, 1)),
     ],
 )
@@ -119,6 +119,23 @@ def test_clutter_stays_water(name, draw, scale):
     symbol, hazard, new_land = classify(draw, scale=scale)
     assert not hazard[symbol].any(), name
     assert not new_land[symbol].any()
+
+
+@pytest.mark.parametrize("scale", [1, 2, 3])
+def test_a_free_thick_line_of_a_light_ink_is_clutter(scale):
+    """The same bar drawn in a lighter ink than the text (a range or limit line in magenta,
+    which crosses channels) stays clutter."""
+    ink, land = chart()
+    bar = np.zeros_like(ink)
+    cv2.line(bar, (80, 200), (200, 200), 1, 4)
+    block = np.ones((scale, scale), np.uint8)
+    ink, land, bar = (np.kron(a.astype(np.uint8), block).astype(bool)
+                      for a in (ink | bar, land, bar))  # fmt: skip
+    layers = bar.astype(np.uint8)  # the text in layer 0 (dark), the bar in layer 1
+    _, hazard = resolve(ink, land, "auto", layers, dark_layers=[0])
+    assert not hazard[bar].any()
+    _, hazard = resolve(ink, land, "auto", layers, dark_layers=[0, 1])
+    assert hazard[bar].mean() > 0.95
 
 
 def test_modes():

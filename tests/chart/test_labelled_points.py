@@ -37,11 +37,9 @@ _THIN_DOCK = "a small dock comb, 42 px across: under the 25 w = 50 px a dock net
 _TOUCHING_RING = "pile circle touching other ink is not a ring of its own"
 _NOT_DISC = "light dot whose discrete disc is neither round enough nor tapered"
 _BOLD = "bold label letter read as a structure (thick strokes near land, or a solid part)"
-_FREE_STROKE = "thick pier or jetty stroke standing free in water (not within 2 w + 1 of land)"
 KNOWN_MISSES = {
     **dict.fromkeys((8, 10, 12), _TOUCHING_RING),
     **dict.fromkeys((50,), _NOT_DISC),
-    **dict.fromkeys((1, 3, 46), _FREE_STROKE),
     **dict.fromkeys((62,), _THIN_DOCK),
     **dict.fromkeys((29, 41), _BOLD),
 }

@@ -29,9 +29,12 @@ follows the chart's own drawing rather than one chart's colours or resolution):
   it at ``0.75 R`` or deeper (a bar's deep core is a strip along its length, a quarter of it for
   long bars; a tapering shape's is a small copy of itself, 1/16). Bars (dashes) are not solids.
 - *structures drawn as strokes*: the parts at least ``w + 1`` thick (an opening) that come
-  within ``2 w + 1`` of land: piers, jetties, groins running out from the shore. A thick stroke
-  standing free in water is clutter: on 11361_4 the thick range and mile lines cross the river,
-  so "long straight bar" cannot stand for a detached breakwater.
+  within ``2 w + 1`` of land (piers, jetties, groins running out from the shore), or that stand
+  free as long straight bars of dark ink (detached piers and breakwaters): at least ``25 w``
+  across (box diagonal ``D``), holding between 0.75 and 1 times ``D 2 R`` of ink, in a layer
+  the caller names dark (``dark_layers``; all ink when no layers are given). Charts draw
+  structures in black, ranges and limits in magenta: on 11361_4 thick magenta range lines cross
+  the river, and without the darkness test they became walls.
 - *dock networks* drawn in ordinary strokes (marina finger piers): the ink of one colour layer
   more than ``2 w + 1`` from land, cut where layers meet, in 8-connected networks that come
   within ``4 w + 3`` of land, are at least ``25 w`` across (box diagonal ``D``), hold at least
@@ -76,6 +79,11 @@ CORE_SHARE = 0.1
 DOCK_EXTENT = 25.0
 DOCK_INK = 3.5
 DOCK_FILL = 0.05
+#: A free-standing thick stroke is a structure (a detached pier, jetty or breakwater) when it is
+#: of dark ink, at least BAR_LENGTH strokes long and a straight bar: its ink between BAR_FILL
+#: times its length times its thickness.
+BAR_LENGTH = 25.0
+BAR_FILL = (0.75, 1.0)
 #: Holes filled as ring symbols: largest area in units of ``w^2``, and shape limits.
 RING_HOLE_AREA = 2.25 * np.pi  # holes up to 1.5 strokes across (pi (1.5 w)^2)
 RING_HOLE_ASPECT = 1.5
@@ -118,7 +126,11 @@ def stroke_width(ink: np.ndarray, dist: np.ndarray | None = None) -> float:
 
 
 def resolve(
-    ink: np.ndarray, land: np.ndarray, mode: str = "auto", layers: np.ndarray | None = None
+    ink: np.ndarray,
+    land: np.ndarray,
+    mode: str = "auto",
+    layers: np.ndarray | None = None,
+    dark_layers: list[int] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Land after the ink is resolved, and the ink hazards in water, by ``mode``.
 
@@ -150,7 +162,10 @@ def resolve(
     shore = cv2.dilate(land.view(np.uint8), _disc(2 * w + 1))  # within 2 w + 1 of land
     hazard = _docks(wet, land, shore, layers, w)
     filled = (wet | _round_holes(wet, w)).view(np.uint8)
-    parts = cv2.bitwise_or(_solids(filled, SOLID_WIDTH * w + 1), _structures(filled, shore, w))
+    dark = None if layers is None or dark_layers is None else np.isin(layers, dark_layers)
+    parts = cv2.bitwise_or(
+        _solids(filled, SOLID_WIDTH * w + 1), _structures(filled, shore, w, dark)
+    )
     # an opening rounds corners off: grow back by half a stroke, inside the ink
     hazard |= cv2.bitwise_and(cv2.dilate(parts, _disc(w + 1)), filled).view(bool)
     return land, hazard
@@ -239,16 +254,28 @@ def _solids(filled: np.ndarray, width: float) -> np.ndarray:
     return out
 
 
-def _structures(filled: np.ndarray, shore: np.ndarray, w: float) -> np.ndarray:
-    """The parts of ``filled`` at least ``w + 1`` thick that reach the ``shore`` band: piers,
-    jetties, groins (uint8 0/1)."""
+def _structures(
+    filled: np.ndarray, shore: np.ndarray, w: float, dark: np.ndarray | None
+) -> np.ndarray:
+    """The parts of ``filled`` at least ``w + 1`` thick that reach the ``shore`` band (piers,
+    jetties, groins), or that stand free as long straight bars of dark ink (uint8 0/1)."""
     strokes = cv2.morphologyEx(filled, cv2.MORPH_OPEN, _disc(w + 1))
     n, labels, at, label_at = _label(strokes, 8)
-    attached = np.zeros(n, np.uint8)
-    attached[labels.ravel()[np.flatnonzero(cv2.bitwise_and(strokes, shore))]] = 1
-    attached[0] = 0
+    attached = np.zeros(n, bool)
+    attached[labels.ravel()[np.flatnonzero(cv2.bitwise_and(strokes, shore))]] = True
+    area, _, _, bw, bh = _boxes(n, at, label_at, strokes.shape[1])
+    extent = np.hypot(bw, bh)
+    long_ = ~attached & (extent >= BAR_LENGTH * w)
+    if dark is not None:
+        long_ &= np.bincount(label_at, weights=dark.ravel()[at], minlength=n) > 0.5 * area
+    if long_[1:].any():
+        radius = _max_by_label(_distance(strokes.view(bool)).ravel()[at], label_at, n)
+        ink_per_length = area / np.maximum(extent * 2 * radius, 1)
+        long_ &= (ink_per_length >= BAR_FILL[0]) & (ink_per_length <= BAR_FILL[1])
+    keep = (attached | long_).astype(np.uint8)
+    keep[0] = 0
     out = np.zeros_like(strokes)
-    out.ravel()[at] = attached[label_at]
+    out.ravel()[at] = keep[label_at]
     return out
 
 

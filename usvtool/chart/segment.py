@@ -54,6 +54,9 @@ PALETTE: list[tuple[tuple[int, int, int], str]] = [
 ]
 
 CHANNELS = ("membership", "chromatic", "grey")
+#: Ink clusters darker than this CIE L* are the chart's black linework (structures are drawn in
+#: it; grey contours and magenta aids and limits are lighter).
+DARK = 35.0
 
 
 @dataclass
@@ -140,7 +143,8 @@ def segment(
     t = time.perf_counter()
     inked = (colour_class == INK)[index] & valid
     layers = np.argmax(u, axis=0).astype(np.uint8)[index]  # each pixel's colour cluster
-    land, hazard = ink_rule.resolve(inked, land, ink, layers)
+    dark = [k for k in range(n_clusters) if cluster_class[k] == INK and centres[k, 0] < DARK]
+    land, hazard = ink_rule.resolve(inked, land, ink, layers, dark)
     land = _remove_small(land, min_area) & valid
     other = np.isin(colour_class, (DRYING, NODATA))[index]
     other = _remove_small(other & ~land & valid, min_area)
