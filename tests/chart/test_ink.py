@@ -138,6 +138,21 @@ def test_a_free_thick_line_of_a_light_ink_is_clutter(scale):
     assert hazard[bar].mean() > 0.95
 
 
+def test_a_pile_ring_on_a_contour_of_another_ink_is_a_hazard():
+    """A black pile ring drawn where a grey depth contour passes: cut apart where the two inks
+    meet, the ring stands alone; drawn in one ink, ring and line are one symbol and stay open."""
+    ink, land = chart()
+    ring, contour = np.zeros_like(ink), np.zeros_like(ink)
+    cv2.circle(ring, (150, 150), 3, 1, 1)
+    cv2.line(contour, (100, 146), (200, 146), 1, 1)  # touches the ring's top
+    ink = (ink | ring | contour).astype(bool)
+    layers = contour.astype(np.uint8)  # text and ring in layer 0, the contour in layer 1
+    _, hazard = resolve(ink, land, "auto", layers, dark_layers=[0])
+    assert hazard[150, 150]
+    _, hazard = resolve(ink, land, "auto", np.zeros_like(layers), dark_layers=[0])
+    assert not hazard[150, 150]
+
+
 def test_modes():
     draw = lambda im: cv2.line(im, (30, 150), (120, 150), 1, 1)  # noqa: E731
     symbol, hazard, _ = classify(draw, "obstacle")

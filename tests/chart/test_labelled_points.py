@@ -38,7 +38,7 @@ _TOUCHING_RING = "pile circle touching other ink is not a ring of its own"
 _NOT_DISC = "light dot whose discrete disc is neither round enough nor tapered"
 _BOLD = "bold label letter read as a structure (thick strokes near land, or a solid part)"
 KNOWN_MISSES = {
-    **dict.fromkeys((8, 10, 12), _TOUCHING_RING),
+    **dict.fromkeys((8, 12), _TOUCHING_RING),
     **dict.fromkeys((50,), _NOT_DISC),
     **dict.fromkeys((62,), _THIN_DOCK),
     **dict.fromkeys((29, 41), _BOLD),

@@ -160,8 +160,9 @@ def resolve(
     if mode == "obstacle":
         return land, wet
     shore = cv2.dilate(land.view(np.uint8), _disc(2 * w + 1))  # within 2 w + 1 of land
-    hazard = _docks(wet, land, shore, layers, w)
-    filled = (wet | _round_holes(wet, w)).view(np.uint8)
+    separate = _cut_layers(wet, layers)  # a grey contour touching a black pier: two symbols
+    hazard = _docks(separate, wet, land, shore, w)
+    filled = (wet | _round_holes(wet, separate, w)).view(np.uint8)
     dark = None if layers is None or dark_layers is None else np.isin(layers, dark_layers)
     parts = cv2.bitwise_or(
         _solids(filled, SOLID_WIDTH * w + 1), _structures(filled, shore, w, dark)
@@ -171,24 +172,32 @@ def resolve(
     return land, hazard
 
 
+def _cut_layers(wet: np.ndarray, layers: np.ndarray | None) -> np.ndarray:
+    """``wet`` less the pixels next to ``wet`` ink of another layer (8-neighbours), so that
+    symbols of different inks touching each other are labelled apart. Layer numbers below 255.
+    """
+    if layers is None:
+        return wet
+    tag = cv2.add(layers, 1, mask=wet.view(np.uint8), dst=np.zeros_like(layers))
+    mixed = cv2.dilate(tag, np.ones((3, 3), np.uint8))
+    tag[~wet] = 255
+    cv2.compare(mixed, cv2.erode(tag, np.ones((3, 3), np.uint8)), cv2.CMP_NE, dst=mixed)
+    del tag
+    out = wet.copy()
+    out[mixed > 0] = False
+    return out
+
+
 def _docks(
-    wet: np.ndarray, land: np.ndarray, shore: np.ndarray, layers: np.ndarray | None, w: float
+    separate: np.ndarray, wet: np.ndarray, land: np.ndarray, shore: np.ndarray, w: float
 ) -> np.ndarray:
     """Dock networks drawn in ordinary strokes (marina finger piers): see the module docstring.
 
-    Ink within ``2 w + 1`` of land is set aside first (the coastline's own stroke would join
-    every network along the shore), and so are the pixels where two ink layers meet, so that a
-    grey contour touching a black pier stays a network of its own.
+    ``separate`` is the ink in water cut where layers meet (:func:`_cut_layers`); its ink within
+    ``2 w + 1`` of land is set aside too (the coastline's own stroke would join every network
+    along the shore).
     """
-    core = cv2.bitwise_and(wet.view(np.uint8), cv2.compare(shore, 0, cv2.CMP_EQ)).view(bool)
-    if layers is not None:  # layer numbers below 255
-        tag = cv2.add(layers, 1, mask=core.view(np.uint8), dst=np.zeros_like(layers))
-        mixed = cv2.dilate(tag, np.ones((3, 3), np.uint8))
-        tag[~core] = 255
-        cv2.compare(mixed, cv2.erode(tag, np.ones((3, 3), np.uint8)), cv2.CMP_NE, dst=mixed)
-        del tag
-        core[mixed > 0] = False
-        del mixed
+    core = cv2.bitwise_and(separate.view(np.uint8), cv2.compare(shore, 0, cv2.CMP_EQ)).view(bool)
     n, labels, at, label_at = _label(core, 8)
     near = cv2.dilate(land.view(np.uint8), _disc(4 * w + 3))
     cv2.bitwise_and(near, core.view(np.uint8), dst=near)
@@ -279,9 +288,10 @@ def _structures(
     return out
 
 
-def _round_holes(wet: np.ndarray, w: float) -> np.ndarray:
+def _round_holes(wet: np.ndarray, separate: np.ndarray, w: float) -> np.ndarray:
     """Ring symbols' insides: small, round background holes in ``wet`` ink whose ring is a
-    component of its own (not the loop of a 6, 9 or 4, whose tail makes its box larger).
+    component of its own in ``separate`` (the ink cut where layers meet), round outside too (not
+    the loop of a 6, 9, 4 or p, whose tail makes its box larger).
 
     The background reachable from the chart's edge is flood-filled first, so only the holes
     (a small share of the chart) are labelled.
@@ -298,17 +308,29 @@ def _round_holes(wet: np.ndarray, w: float) -> np.ndarray:
     ring[0] = False
     holes = np.flatnonzero(ring)
     if holes.size:
-        # the ring: the ink component just above the hole's top row, at its middle column
-        n_ink, ink_labels, ink_at, ink_label_at = _label(wet, 8)
-        above = ink_labels[y[holes] - 1, x[holes] + bw[holes] // 2]
-        keep = np.isin(ink_label_at, above[above > 0])
-        _, _, _, ring_w, ring_h = _boxes(n_ink, ink_at[keep], ink_label_at[keep], cols)
+        # the ring: the ink components just outside the hole's box at the middle of each side
+        # (a ring cut where a foreign ink touches it comes in pieces: their boxes are united)
+        n_ink, ink_labels, ink_at, ink_label_at = _label(separate, 8)
+        hx, hy, hw, hh = x[holes], y[holes], bw[holes], bh[holes]
+        mx, my = hx + hw // 2, hy + hh // 2
+        sides = np.stack([  # holes lie inside the image: their sides too
+            ink_labels[hy - 1, mx], ink_labels[hy + hh, mx],
+            ink_labels[my, hx - 1], ink_labels[my, hx + hw],
+        ])  # fmt: skip
+        keep = np.isin(ink_label_at, sides[sides > 0])
+        _, left, top, box_w, box_h = _boxes(n_ink, ink_at[keep], ink_label_at[keep], cols)
+        found = sides > 0
+        big = np.iinfo(np.int64).max
+        x0 = np.where(found, left[sides], big).min(axis=0)
+        y0 = np.where(found, top[sides], big).min(axis=0)
+        x1 = np.where(found, left[sides] + box_w[sides], -1).max(axis=0)
+        y1 = np.where(found, top[sides] + box_h[sides], -1).max(axis=0)
+        ring_w, ring_h = x1 - x0, y1 - y0
         grown = 2 * (w + 1)  # a ring adds at most a stroke and a pixel on each side
-        ring_w, ring_h = ring_w[above], ring_h[above]
         ring[holes] = (
-            (above > 0)
-            & (ring_w <= bw[holes] + grown)
-            & (ring_h <= bh[holes] + grown)
+            found.any(axis=0)
+            & (ring_w <= hw + grown)
+            & (ring_h <= hh + grown)
             & (np.maximum(ring_w, ring_h) <= RING_ASPECT * np.minimum(ring_w, ring_h))
         )
     out = np.zeros_like(wet)
