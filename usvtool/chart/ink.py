@@ -37,7 +37,7 @@ follows the chart's own drawing rather than one chart's colours or resolution):
   the river, and without the darkness test they became walls.
 - *dock networks* drawn in ordinary strokes (marina finger piers): the ink of one colour layer
   more than ``2 w + 1`` from land, cut where layers meet, in 8-connected networks that come
-  within ``4 w + 3`` of land, are at least ``25 w`` across (box diagonal ``D``), hold at least
+  within ``4 w + 3`` of land, are at least ``20 w`` across (box diagonal ``D``), hold at least
   ``3.5 D w`` of ink and fill at least a twentieth of their box. A comb of fingers as long as
   their spacing along a spine holds about ``2 L w`` along its own length ``L`` and more with
   longer fingers; a single line holds ``D w``; the shore-attached networks of the bundled
@@ -76,7 +76,7 @@ CORE_SHARE = 0.1
 #: Dock networks: thin-stroked ink of one layer, attached to land (within 4 w + 3), at least
 #: DOCK_EXTENT strokes across (its box's diagonal), holding at least DOCK_INK times as much ink
 #: as a single stroke along that diagonal, and filling at least DOCK_FILL of its box.
-DOCK_EXTENT = 25.0
+DOCK_EXTENT = 20.0
 DOCK_INK = 3.5
 DOCK_FILL = 0.05
 #: A free-standing thick stroke is a structure (a detached pier, jetty or breakwater) when it is
