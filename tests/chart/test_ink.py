@@ -171,3 +171,21 @@ def test_ink_takes_the_side_of_its_nearest_non_ink_pixel():
     land[:, :4] = True
     side = land_side(ink, land)
     assert side[:, 4:7].all() and not side[:, 7:10].any()
+
+
+def test_banded_distances_equal_the_whole_image_transform(monkeypatch):
+    """Distances at the blobs' pixels, computed in bands of 16 rows grown by the tallest blob's
+    height, are those of one transform over the whole image (blobs straddle the bands)."""
+    import usvtool.chart.ink as ink_module
+
+    rng = np.random.default_rng(3)
+    mask = np.zeros((200, 150), np.uint8)
+    for _ in range(40):
+        x, y, r = int(rng.integers(5, 145)), int(rng.integers(5, 195)), int(rng.integers(1, 9))
+        cv2.circle(mask, (x, y), r, 1, -1)
+    mask = mask.astype(bool)
+    at = np.flatnonzero(mask)
+    monkeypatch.setattr(ink_module, "BAND", 16)
+    banded = ink_module._distance_at(mask, at, 20)  # blobs are at most 17 rows high
+    whole = ink_module._distance(mask).ravel()[at]
+    assert np.array_equal(banded, whole)

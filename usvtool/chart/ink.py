@@ -155,6 +155,7 @@ def resolve(
     on_land, w = _sides(ink, land, width=mode == "auto")
     land = (land & ~ink) | on_land
     wet = ink & ~on_land
+    del on_land
     if mode == "clutter" or not wet.any():
         return land, np.zeros_like(ink)
     if mode == "obstacle":
@@ -163,10 +164,11 @@ def resolve(
     separate = _cut_layers(wet, layers)  # a grey contour touching a black pier: two symbols
     hazard = _docks(separate, wet, land, shore, w)
     filled = (wet | _round_holes(wet, separate, w)).view(np.uint8)
+    del separate
+    parts = _solids(filled, SOLID_WIDTH * w + 1)
     dark = None if layers is None or dark_layers is None else np.isin(layers, dark_layers)
-    parts = cv2.bitwise_or(
-        _solids(filled, SOLID_WIDTH * w + 1), _structures(filled, shore, w, dark)
-    )
+    cv2.bitwise_or(parts, _structures(filled, shore, w, dark), dst=parts)
+    del dark
     # an opening rounds corners off: grow back by half a stroke, inside the ink
     hazard |= cv2.bitwise_and(cv2.dilate(parts, _disc(w + 1)), filled).view(bool)
     return land, hazard
@@ -249,9 +251,9 @@ def _solids(filled: np.ndarray, width: float) -> np.ndarray:
     n, labels, at, label_at = _label(thick, 8)  # the thick pixels: a small share of the chart
     if n == 1:
         return thick
-    dist_at = _distance(thick.view(bool)).ravel()[at]
+    area, _, _, _, box_h = _boxes(n, at, label_at, thick.shape[1])
+    dist_at = _distance_at(thick.view(bool), at, int(box_h.max()) + 1)
     radius = _max_by_label(dist_at, label_at, n)
-    area = np.bincount(label_at, minlength=n)
     disc = np.pi * np.square(radius)
     deep = label_at[dist_at >= CORE_DEPTH * radius[label_at]]
     core_share = np.bincount(deep, minlength=n) / np.maximum(area, 1)
@@ -272,15 +274,15 @@ def _structures(
     n, labels, at, label_at = _label(strokes, 8)
     attached = np.zeros(n, bool)
     attached[labels.ravel()[np.flatnonzero(cv2.bitwise_and(strokes, shore))]] = True
-    area, _, _, bw, bh = _boxes(n, at, label_at, strokes.shape[1])
+    area, left, top, bw, bh = _boxes(n, at, label_at, strokes.shape[1])
     extent = np.hypot(bw, bh)
     long_ = ~attached & (extent >= BAR_LENGTH * w)
     if dark is not None:
         long_ &= np.bincount(label_at, weights=dark.ravel()[at], minlength=n) > 0.5 * area
-    if long_[1:].any():
-        radius = _max_by_label(_distance(strokes.view(bool)).ravel()[at], label_at, n)
-        ink_per_length = area / np.maximum(extent * 2 * radius, 1)
-        long_ &= (ink_per_length >= BAR_FILL[0]) & (ink_per_length <= BAR_FILL[1])
+    for k in np.flatnonzero(long_):  # few candidates: each one's thickness on its own box
+        box = np.s_[top[k] : top[k] + bh[k], left[k] : left[k] + bw[k]]
+        radius = _distance(np.pad(labels[box] == k, 1)).max()
+        long_[k] = BAR_FILL[0] <= area[k] / (extent[k] * 2 * radius) <= BAR_FILL[1]
     keep = (attached | long_).astype(np.uint8)
     keep[0] = 0
     out = np.zeros_like(strokes)
@@ -381,6 +383,25 @@ def _max_by_label(values: np.ndarray, labels: np.ndarray, n: int) -> np.ndarray:
         order = np.argsort(labels, kind="stable")
         ids, starts = np.unique(labels[order], return_index=True)
         out[ids] = np.maximum.reduceat(values[order], starts)
+    return out
+
+
+def _distance_at(mask: np.ndarray, at: np.ndarray, reach: int) -> np.ndarray:
+    """:func:`_distance` at the flat positions ``at`` (increasing), computed in bands of rows
+    grown by ``reach`` rows on each side: exact when every component of ``mask`` is less than
+    ``reach`` rows high (its nearest background pixel then lies in the grown band), and without
+    a whole-image float array.
+    """
+    rows, cols = mask.shape
+    out = np.empty(at.size, np.float32)
+    row_at = at // cols
+    for r in range(0, rows, BAND):
+        sel = np.flatnonzero((row_at >= r) & (row_at < r + BAND))
+        if not sel.size:
+            continue
+        top = max(0, r - reach)
+        band = _distance(np.ascontiguousarray(mask[top : min(rows, r + BAND + reach)]))
+        out[sel] = band.ravel()[at[sel] - top * cols]
     return out
 
 
