@@ -188,4 +188,27 @@ def test_banded_distances_equal_the_whole_image_transform(monkeypatch):
     monkeypatch.setattr(ink_module, "BAND", 16)
     banded = ink_module._distance_at(mask, at, 20)  # blobs are at most 17 rows high
     whole = ink_module._distance(mask).ravel()[at]
-    assert np.array_equal(banded, whole)
+    # OpenCV's transform can differ in the last bit of a float between calls in a process
+    assert np.allclose(banded, whole, rtol=0, atol=1e-5)
+
+
+def test_banded_sides_equal_the_whole_image_transforms(monkeypatch):
+    """The ink's side and the stroke width from bands of 16 rows grown by 8 equal those of the
+    whole-image transforms; ink deeper than the bands reach (a 30-pixel solid) takes the
+    whole-image path and gives the same answer."""
+    import usvtool.chart.ink as ink_module
+
+    ink, land = chart()
+    ink = ink.astype(bool)
+    ink[60:70, 40:140] = True  # a thick stroke leaving the shore band: both sides
+    deep = ink.copy()
+    deep[150:180, 150:180] = True
+    for image in (ink, deep):
+        dist = ink_module._distance(image)
+        expected = (ink_module._distance(~(land & ~image)) <= dist) & image
+        for band, reach in ((16, 8), (4096, 64)):
+            monkeypatch.setattr(ink_module, "BAND", band)
+            monkeypatch.setattr(ink_module, "REACH", reach)
+            on_land, w = ink_module._sides(image, land, width=True)
+            assert np.array_equal(on_land, expected)
+            assert w == stroke_width(image)

@@ -62,6 +62,7 @@ import numpy as np
 
 MODES = ("auto", "clutter", "obstacle")
 BAND = 1024  # image rows per step where a whole-image temporary is not needed
+REACH = 64  # rows a band is grown by on each side for the ink's distances (see _sides)
 #: Solids are at least this many ordinary stroke widths thick, and their area is at most
 #: SOLID_AREA times their inscribed disc ``pi R^2``.
 SOLID_WIDTH = 2.0
@@ -114,15 +115,19 @@ def stroke_width(ink: np.ndarray, dist: np.ndarray | None = None) -> float:
     if not ink.any():
         return 2.0
     dist = _distance(ink) if dist is None else dist
-    ridges = []
-    for r in range(0, dist.shape[0], BAND):  # bands of rows, each with its neighbours' rows
-        top, bottom = max(0, r - 1), min(dist.shape[0], r + BAND + 1)
-        part = dist[top:bottom]
-        ridge = cv2.compare(part, cv2.dilate(part, np.ones((3, 3), np.uint8)), cv2.CMP_GE)
-        ridge &= cv2.compare(part, 0, cv2.CMP_GT)
-        inner = slice(r - top, r - top + min(BAND, dist.shape[0] - r))
-        ridges.append(part[inner][ridge[inner] > 0])
-    return max(2.0, 2.0 * float(np.median(np.concatenate(ridges))))
+    return _width(_ridge(dist, slice(0, dist.shape[0])))
+
+
+def _ridge(dist: np.ndarray, inner: slice) -> np.ndarray:
+    """The distances at the ridge pixels (local maxima of ``dist``, 8-neighbours) of the rows
+    ``inner`` of ``dist``, whose other rows are neighbours only."""
+    ridge = cv2.compare(dist, cv2.dilate(dist, np.ones((3, 3), np.uint8)), cv2.CMP_GE)
+    ridge &= cv2.compare(dist, 0, cv2.CMP_GT)
+    return dist[inner][ridge[inner] > 0]
+
+
+def _width(ridges: np.ndarray) -> float:
+    return max(2.0, 2.0 * float(np.median(ridges))) if ridges.size else 2.0
 
 
 def resolve(
@@ -226,21 +231,40 @@ def _sides(ink: np.ndarray, land: np.ndarray, width: bool = False) -> tuple[np.n
     """(ink on the land side, the chart's stroke width when ``width`` is asked for, else 2).
 
     The distance to the nearest non-ink pixel and the distance to the nearest non-ink land
-    pixel, two exact Euclidean transforms one after the other, kept at the ink pixels only: an
-    ink pixel is on the land side when the two are equal. The same answer as one transform with
-    labels, but for ties, at a fraction of the time and memory.
+    pixel, two exact Euclidean transforms: an ink pixel is on the land side when the two are
+    equal. The same answer as one transform with labels, but for ties, at a fraction of the time
+    and memory. Both are computed in bands of rows grown by :data:`REACH` rows, kept at the ink
+    pixels only: a distance up to ``REACH`` is exact in its band (its nearest pixel lies within
+    that many rows), and a distance to land beyond it is beyond the distance to water too;
+    should some ink lie deeper than ``REACH`` inside its strokes, the whole image is done at
+    once.
     """
     if not ink.any() or ink.all():
         return np.zeros_like(ink), 2.0
-    dist = _distance(ink)
-    w = stroke_width(ink, dist) if width else 2.0
+    rows, cols = ink.shape
     at = np.flatnonzero(ink)
-    dist_at = dist.ravel()[at]
-    del dist
-    to_land_at = _distance(~(land & ~ink)).ravel()[at]
+    row_at = at // cols
+    dry = ~(land & ~ink)  # zero on the non-ink land
+    on_land_at = np.empty(at.size, bool)
+    ridges = []
+    for r in range(0, rows, BAND):
+        top, bottom = max(0, r - REACH), min(rows, r + BAND + REACH)
+        dist = _distance(ink[top:bottom])
+        if width:
+            ridges.append(_ridge(dist, slice(r - top, r - top + min(BAND, rows - r))))
+        sel = np.flatnonzero((row_at >= r) & (row_at < r + BAND))
+        where = at[sel] - top * cols
+        dist_at = dist.ravel()[where]
+        if dist_at.size and dist_at.max() > REACH:  # ink deeper than the bands reach
+            dist = _distance(ink)
+            to_land = _distance(dry).ravel()[at]
+            on_land = np.zeros_like(ink)
+            on_land.ravel()[at] = to_land <= dist.ravel()[at]
+            return on_land, stroke_width(ink, dist) if width else 2.0
+        on_land_at[sel] = _distance(dry[top:bottom]).ravel()[where] <= dist_at
     on_land = np.zeros_like(ink)
-    on_land.ravel()[at] = to_land_at <= dist_at
-    return on_land, w
+    on_land.ravel()[at] = on_land_at
+    return on_land, _width(np.concatenate(ridges)) if width else 2.0
 
 
 def _solids(filled: np.ndarray, width: float) -> np.ndarray:
