@@ -325,7 +325,8 @@ def _round_holes(wet: np.ndarray, separate: np.ndarray, w: float) -> np.ndarray:
     cols = wet.shape[1]
     edge = cv2.copyMakeBorder(wet.view(np.uint8), 1, 1, 1, 1, cv2.BORDER_CONSTANT, value=0)
     cv2.floodFill(edge, None, (0, 0), 1, flags=4)
-    n, labels, at, label_at = _label(edge[1:-1, 1:-1] == 0, 4)
+    n, _, at, label_at = _label(edge[1:-1, 1:-1] == 0, 4)  # the holes' pixels suffice
+    del edge
     if n == 1:
         return np.zeros_like(wet)
     area, x, y, bw, bh = _boxes(n, at, label_at, cols)
@@ -343,6 +344,7 @@ def _round_holes(wet: np.ndarray, separate: np.ndarray, w: float) -> np.ndarray:
             ink_labels[hy - 1, mx], ink_labels[hy + hh, mx],
             ink_labels[my, hx - 1], ink_labels[my, hx + hw],
         ])  # fmt: skip
+        del ink_labels
         keep = np.isin(ink_label_at, sides[sides > 0])
         _, left, top, box_w, box_h = _boxes(n_ink, ink_at[keep], ink_label_at[keep], cols)
         found = sides > 0
