@@ -45,7 +45,8 @@ def scene():
     rgb[:] = COLOURS[NAVIGABLE]
     valid = np.ones((120, 160), bool)
     valid[:, :40] = False
-    chart = RasterChart(rgb, valid, Frame(Affine(2.5, 0, 0, 0, -2.5, 300), 160, 120), "image")
+    chart = RasterChart.from_rgb(rgb, valid, Frame(Affine(2.5, 0, 0, 0, -2.5, 300), 160, 120),
+                                 "image")  # fmt: skip
     return grid, chart, render_preview(grid, chart, RES)
 
 

@@ -137,10 +137,10 @@ def test_colour_index_of_a_small_image():
 def test_raster_chart_from_rgb_or_from_indices():
     rgb = np.moveaxis(island(), 0, -1)
     valid = np.ones(rgb.shape[:2], bool)
-    a = RasterChart(rgb, valid, None, "image")
+    a = RasterChart.from_rgb(rgb, valid, None, "image")
     assert sorted(map(tuple, a.palette.tolist())) == sorted([DEPDW, LANDA])
     assert np.array_equal(a.palette[a.index], rgb)
-    b = RasterChart(a.index, valid, None, "image", palette=a.palette)
+    b = RasterChart(a.index, a.palette, valid, None, "image")
     assert np.array_equal(b.rgb, rgb) and b.rgb is b.rgb  # made once
 
 

@@ -130,7 +130,7 @@ def s57_background(path, resolution: float):
     from usvtool.chart.sources import RasterChart
 
     rgb, truth, frame = render_cell(read_cell(path), resolution, soundings=False)
-    return RasterChart(np.ascontiguousarray(np.moveaxis(rgb, 0, -1)), truth != 255, frame, "s57")
+    return RasterChart.from_rgb(np.moveaxis(rgb, 0, -1), truth != 255, frame, "s57")
 
 
 def tint(img: np.ndarray, cells: np.ndarray) -> np.ndarray:

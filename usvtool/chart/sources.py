@@ -36,47 +36,33 @@ MAX_SCALE_ERROR = 0.002
 WARP_THREADS = 2  # GDAL warper threads: 0.27 s against 0.46 s on SanDiego_2 (2 cores)
 
 
+@dataclass
 class RasterChart:
-    """A chart image in a north-up frame.
+    """A chart image in a north-up frame, as indexed colour (:mod:`usvtool.chart.colours`).
 
     ``index`` (H, W) unsigned colour indices into ``palette`` (n, 3) uint8 distinct colours;
     ``valid`` (H, W) bool, the pixels inside the chart (a pixel outside holds some in-range
     index); ``frame``; ``kind`` ("image", "geotiff", "kap", or a caller's own such as "s57").
-    ``rgb`` is ``palette[index]``, made on first use and kept.
-
-    ``RasterChart(rgb, valid, frame, kind)`` takes an (H, W, 3) uint8 image and indexes its
-    colours on first use of ``index`` or ``palette``; ``RasterChart(index, valid, frame, kind,
-    palette=palette)`` takes indices already made.
+    :meth:`from_rgb` indexes an RGB image; ``rgb`` is ``palette[index]``, made on first use.
     """
 
-    def __init__(self, pixels: np.ndarray, valid: np.ndarray, frame: Frame, kind: str,
-                 palette: np.ndarray | None = None):
-        self.valid, self.frame, self.kind = valid, frame, kind
-        if palette is None:
-            self.__dict__["rgb"] = pixels
-        else:
-            self.__dict__["_indexed"] = (pixels, palette)
+    index: np.ndarray
+    palette: np.ndarray
+    valid: np.ndarray
+    frame: Frame | None
+    kind: str
 
-    @cached_property
-    def _indexed(self) -> tuple[np.ndarray, np.ndarray]:
-        return colour_index(self.rgb)
-
-    @property
-    def index(self) -> np.ndarray:
-        return self._indexed[0]
-
-    @property
-    def palette(self) -> np.ndarray:
-        return self._indexed[1]
+    @classmethod
+    def from_rgb(cls, rgb: np.ndarray, valid: np.ndarray, frame: Frame | None, kind: str):
+        return cls(*colour_index(rgb), valid, frame, kind)
 
     @cached_property
     def rgb(self) -> np.ndarray:
         """(H, W, 3) uint8 ``palette[index]``, one channel at a time (fancy indexing of the
         whole palette needs a pixel-sized intp copy of the index and is slower)."""
-        index, palette = self._indexed
-        out = np.empty((*index.shape, 3), np.uint8)
+        out = np.empty((*self.index.shape, 3), np.uint8)
         for c in range(3):
-            out[..., c] = palette[:, c][index]
+            out[..., c] = self.palette[:, c][self.index]
         return out
 
 
@@ -153,7 +139,7 @@ def read_raster(
 
         frame = Frame(Affine(resolution, 0, 0, 0, -resolution, height * resolution), width, height)
         valid = np.ones((height, width), bool) if valid is None else valid
-        return RasterChart(index, valid, frame, "image", palette=palette)
+        return RasterChart(index, palette, valid, frame, "image")
 
     if by_gcps:
         if tags.get("BSB_CUTLINE"):
@@ -170,7 +156,7 @@ def read_raster(
         valid = np.ones(index.shape, bool)
     if cutlines:
         _clip(valid, frame, cutlines, path)
-    return RasterChart(index, valid, frame, "kap" if kap else "geotiff", palette=palette)
+    return RasterChart(index, palette, valid, frame, "kap" if kap else "geotiff")
 
 
 def keeps_frame(frame: Frame) -> bool:
