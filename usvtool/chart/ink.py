@@ -142,9 +142,10 @@ def resolve(
     ``ink`` marks the ink pixels, ``land`` the land pixels among the others (its value on ink
     pixels is ignored). Returns ``(land, hazard)``: ink on the land side joins the land; the
     ``hazard`` pixels are ink in water that stands for a structure (none with ``clutter``, all
-    ink in water with ``obstacle``). ``layers`` (H, W) gives each ink pixel its ink colour (a
-    small integer: black linework, grey contours, magenta aids are separate layers of a chart);
-    without it all ink is one layer.
+    ink in water with ``obstacle``). ``layers`` (H, W) gives each ink pixel its ink colour, an
+    integer below 255 (black linework, grey contours, magenta aids are separate layers of a
+    chart), and ``dark_layers`` the layers of black linework; without them all ink is one dark
+    layer.
 
     >>> ink = np.zeros((30, 30), bool); ink[10:19, 10:19] = True  # a solid square in water
     >>> ink[24:26, 5:25] = True  # and a stroke of text, 2 pixels wide
@@ -185,6 +186,7 @@ def _cut_layers(wet: np.ndarray, layers: np.ndarray | None) -> np.ndarray:
     """
     if layers is None:
         return wet
+    layers = layers.astype(np.uint8, copy=False)
     tag = cv2.add(layers, 1, mask=wet.view(np.uint8), dst=np.zeros_like(layers))
     mixed = cv2.dilate(tag, np.ones((3, 3), np.uint8))
     tag[~wet] = 255
