@@ -92,13 +92,13 @@ def test_every_generated_hazard_is_an_obstacle(seed):
 
 
 def test_generated_text_stays_water():
-    """At most 2 % of the text's ink becomes obstacle over all the charts (1.2 % measured over
+    """At most 1 % of the text's ink becomes obstacle over all the charts (0.57 % measured over
     40 seeds: blobs where the strokes of small glyphs meet at an apex or a crossing, M, N, W,
-    A, 4, H, read as small solids; docs/preprocess.md, Ink)."""
+    A, 4, H, deep enough to read as small solids; docs/preprocess.md, Ink)."""
     total = flagged = 0
     for seed in SEEDS:
         items, _ = read(seed)
         text = [v for name, v in items.items() if name.startswith("text")]
         total += sum(v.size for v in text)
         flagged += sum(int(v.sum()) for v in text)
-    assert flagged / total <= 0.02
+    assert flagged / total <= 0.01

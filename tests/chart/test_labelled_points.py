@@ -35,11 +35,9 @@ CLEAR_M = 15.0  # navigable points are this far from anything but water and clut
 # expected failures, so a fix shows as an unexpected pass and the row is taken off this list.
 _TOUCHING_RING = "pile circle touching other ink is not a ring of its own"
 _NOT_DISC = "light dot whose discrete disc is neither round enough nor tapered"
-_BOLD = "bold label letter: where its strokes meet, the ink holds the solid disc"
 KNOWN_MISSES = {
     **dict.fromkeys((8, 12), _TOUCHING_RING),
     **dict.fromkeys((50,), _NOT_DISC),
-    **dict.fromkeys((29, 41), _BOLD),
 }
 
 
