@@ -7,7 +7,8 @@ stand in it. The ISSA paper's pipeline (section 3) has no notion of either; this
 usvtool's rule, written by hand because no library classifies chart symbols.
 
 Definitions (all lengths in pixels of the chart image, measured on the chart itself, so the rule
-follows the chart's own drawing rather than one chart's colours or resolution):
+follows the chart's own drawing rather than one chart's resolution; the ink's colour layers only
+keep touching symbols of different inks apart and tell black structures from magenta lines):
 
 - *ink side*: an ink pixel belongs to the class (land or water) of its nearest non-ink pixel
   (Euclidean; ties go to land). *Ink in water* is the ink whose nearest non-ink pixel is water.
@@ -20,7 +21,8 @@ follows the chart's own drawing rather than one chart's colours or resolution):
   ``pi (1.5 w)^2``), round (bounding box of aspect at most 1.5, at least half filled) and its
   ring is a component of its own, round outside too (box at most ``2 (w + 1)`` larger than the
   hole's, of aspect at most 1.25), so the loops of 4, 6, 9, b, d, p and q and the elongated
-  hole of 0 stay open.
+  hole of 0 stay open; ink of another colour layer touching the ring is cut off first (a pile
+  ring on a grey contour).
 - *solids*: the parts of the filled ink in water at least ``2 w + 1`` thick (a morphological
   opening by a disc of that diameter) whose area ``A`` is at most ``1.35 pi R^2``, ``R`` their
   largest inscribed radius (a disc gives 1, a square 1.27, a bar of aspect L/T about 1.27 L/T):
@@ -93,7 +95,7 @@ DOCK_FILL = 0.05
 BAR_LENGTH = 25.0
 BAR_FILL = (0.75, 1.0)
 #: Holes filled as ring symbols: largest area in units of ``w^2``, and shape limits.
-RING_HOLE_AREA = 2.25 * np.pi  # holes up to 1.5 strokes across (pi (1.5 w)^2)
+RING_HOLE_AREA = 2.25 * np.pi  # pi (1.5 w)^2: a disc three strokes across
 RING_HOLE_ASPECT = 1.5
 RING_HOLE_FILL = 0.5
 #: ... and the ring around it as round outside (the loops of b, d, p, q stand on a stem).
