@@ -57,9 +57,9 @@ class Colour(click.ParamType):
               help="Land specks and water holes smaller than this many pixels are clutter.")
 @click.option("--ink", type=click.Choice(["auto", "clutter", "obstacle"]), default="auto",
               show_default=True,
-              help="Ink in water: auto (solid and ring symbols and thick strokes from the shore "
-              "are hazards; thin strokes are clutter), clutter (all becomes water) or obstacle "
-              "(all blocks, the conservative choice).")
+              help="Ink in water: auto (by shape: solid and ring symbols, thick strokes from the "
+              "shore, free dark bars and dock networks are hazards; text and lines are clutter), "
+              "clutter (all becomes water) or obstacle (all blocks, the conservative choice).")
 @click.option("--occupancy", type=click.FloatRange(0, 1, max_open=True), default=0.0,
               show_default=True, help="Obstacle share of a cell above which it blocks.")
 @click.option("--min-depth", type=float,
