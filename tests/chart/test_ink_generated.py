@@ -92,9 +92,10 @@ def test_every_generated_hazard_is_an_obstacle(seed):
 
 
 def test_generated_text_stays_water():
-    """At most 1 % of the text's ink becomes obstacle over all the charts (0.57 % measured over
+    """At most 1 % of the text's ink becomes obstacle over all the charts (0.68 % measured over
     40 seeds: blobs where the strokes of small glyphs meet at an apex or a crossing, M, N, W,
-    A, 4, H, deep enough to read as small solids; docs/preprocess.md, Ink)."""
+    A, 4, H, deep enough to read as small solids, and a few loops read as rings;
+    docs/preprocess.md, Ink)."""
     total = flagged = 0
     for seed in SEEDS:
         items, _ = read(seed)

@@ -31,16 +31,6 @@ WATER = {(255, 255, 255), (209, 221, 239)}  # deep (white) and shallow (blue) wa
 CLUTTER = {(0, 0, 0), (114, 114, 114), (219, 73, 150)}  # black, grey and magenta ink
 CLEAR_M = 15.0  # navigable points are this far from anything but water and clutter
 
-# CSV data rows the ink rule gets wrong today (docs/preprocess.md, "Known misses"): strict
-# expected failures, so a fix shows as an unexpected pass and the row is taken off this list.
-_TOUCHING_RING = "pile circle touching other ink is not a ring of its own"
-_NOT_DISC = "light dot whose discrete disc is neither round enough nor tapered"
-KNOWN_MISSES = {
-    **dict.fromkeys((8, 12), _TOUCHING_RING),
-    **dict.fromkeys((50,), _NOT_DISC),
-}
-
-
 class Point(NamedTuple):
     number: int  # data row of the CSV, from 1
     chart: str
@@ -85,7 +75,6 @@ def test_the_csv_covers_both_charts_and_both_classes():
         assert len(rows) >= 25, chart
         assert {p.expect for p in rows} == set(EXPECT), chart
     assert {p.chart for p in ROWS} == set(CHARTS)
-    assert set(KNOWN_MISSES) <= {p.number for p in ROWS}
 
 
 @pytest.mark.parametrize("chart", CHARTS)
@@ -120,13 +109,7 @@ def test_points_are_what_they_say_on_the_original_kap(charts, chart):
             assert tuple(colour[row, col]) in WATER | CLUTTER, _id(p)
 
 
-def _param(p: Point):
-    reason = KNOWN_MISSES.get(p.number)
-    marks = [pytest.mark.xfail(strict=True, reason=reason)] if reason else []
-    return pytest.param(p, id=_id(p), marks=marks)
-
-
-@pytest.mark.parametrize("point", [_param(p) for p in ROWS])
+@pytest.mark.parametrize("point", ROWS, ids=[_id(p) for p in ROWS])
 def test_labelled_point_has_the_expected_cell(grid_of, point):
     grid = grid_of(point.chart)
     x, y = transformer("EPSG:4326", grid.crs).transform(point.lon, point.lat)

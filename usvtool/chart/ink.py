@@ -19,10 +19,12 @@ keep touching symbols of different inks apart and tell black structures from mag
 - *ring symbols* (piles, dolphins drawn as small circles) are filled first: a background hole
   (4-connected) enclosed by ink in water is filled when it is small (area at most
   ``pi (1.5 w)^2``), round (bounding box of aspect at most 1.5, at least half filled) and its
-  ring is a component of its own, round outside too (box at most ``2 (w + 1)`` larger than the
-  hole's, of aspect at most 1.25), so the loops of 4, 6, 9, b, d, p and q and the elongated
-  hole of 0 stay open; ink of another colour layer touching the ring is cut off first (a pile
-  ring on a grey contour).
+  ring is a component of its own, round outside too: its stroke ``s``, the median of the four
+  margins between the hole's box and its own (one side may be cut short, one carry a tick), is
+  at most ``1.5 w``, its box is at most ``2 (s + max(1, s / 3))`` larger than the hole's each
+  way and of aspect at most 1.25. So the loops of 4, 6, 9, b, d, p and q (a tail or stem on
+  one side) and the elongated hole of 0 stay open; ink of another colour layer touching the
+  ring is cut off first (a pile ring on a grey contour).
 - *solids*: the parts of the filled ink in water at least ``2 w + 1`` thick (a morphological
   opening by a disc of that diameter) whose area ``A`` is at most ``1.35 pi R^2``, ``R`` their
   largest inscribed radius (a disc gives 1, a square 1.27, a bar of aspect L/T about 1.27 L/T):
@@ -33,15 +35,15 @@ keep touching symbols of different inks apart and tell black structures from mag
   and neither is a part whose ``R`` is under 1.05 times the opening disc's radius: where the
   strokes of a glyph meet (the apex of an M, the crossing of a 4), that disc just fits.
 - *structures drawn as strokes*: the parts at least ``w + 1`` thick (an opening) that come
-  within ``2 w + 1`` of land (piers, jetties, groins running out from the shore), or that stand
-  free as long straight bars of dark ink (detached piers and breakwaters): at least ``25 w``
-  across (box diagonal ``D``), holding between 0.75 and 1 times ``D 2 R`` of ink, in a layer
-  the caller names dark (``dark_layers``; all ink when no layers are given). Charts draw
-  structures in black, ranges and limits in magenta: on 11361_4 thick magenta range lines cross
-  the river, and without the darkness test they became walls.
+  within ``w + 1/2`` of land, the *shore band* (piers, jetties, groins running out from the
+  shore), or that stand free as long straight bars of dark ink (detached piers and
+  breakwaters): at least ``25 w`` across (box diagonal ``D``), holding between 0.75 and 1 times
+  ``D 2 R`` of ink, in a layer the caller names dark (``dark_layers``; all ink when no layers
+  are given). Charts draw structures in black, ranges and limits in magenta: on 11361_4 thick
+  magenta range lines cross the river, and without the darkness test they became walls.
 - *dock networks* drawn in ordinary strokes (marina finger piers): the ink of one colour layer
-  more than ``2 w + 1`` from land, cut where layers meet, in 8-connected networks that come
-  within ``4 w + 3`` of land, are at least ``20 w`` across (box diagonal ``D``), hold at least
+  outside the shore band, cut where layers meet, in 8-connected networks that come within
+  ``2 w + 3/2`` of land, are at least ``20 w`` across (box diagonal ``D``), hold at least
   ``3.5 D w`` of ink and fill at least a twentieth of their box. A comb of fingers as long as
   their spacing along a spine holds about ``2 L w`` along its own length ``L`` and more with
   longer fingers; a single line holds ``D w``; the shore-attached networks of the bundled
@@ -83,7 +85,7 @@ TAPERED_AREA = 4.0
 SOLID_DEPTH = 1.05
 CORE_DEPTH = 0.75
 CORE_SHARE = 0.1
-#: Dock networks: thin-stroked ink of one layer, attached to land (within 4 w + 3), at least
+#: Dock networks: thin-stroked ink of one layer, attached to land (within 2 w + 3/2), at least
 #: DOCK_EXTENT strokes across (its box's diagonal), holding at least DOCK_INK times as much ink
 #: as a single stroke along that diagonal, and filling at least DOCK_FILL of its box.
 DOCK_EXTENT = 20.0
@@ -98,8 +100,10 @@ BAR_FILL = (0.75, 1.0)
 RING_HOLE_AREA = 2.25 * np.pi  # pi (1.5 w)^2: a disc three strokes across
 RING_HOLE_ASPECT = 1.5
 RING_HOLE_FILL = 0.5
-#: ... and the ring around it as round outside (the loops of b, d, p, q stand on a stem).
+#: ... and the ring around it as round outside (the loops of b, d, p, q stand on a stem), its
+#: stroke at most RING_STROKE ordinary widths (the pile rings of 12205_2: 1.4).
 RING_ASPECT = 1.25
+RING_STROKE = 1.5
 
 
 def land_side(ink: np.ndarray, land: np.ndarray) -> np.ndarray:
@@ -175,7 +179,7 @@ def resolve(
         return land, np.zeros_like(ink)
     if mode == "obstacle":
         return land, wet
-    shore = cv2.dilate(land.view(np.uint8), _disc(2 * w + 1))  # within 2 w + 1 of land
+    shore = _around(land, w + 0.5)  # the shore band
     separate = _cut_layers(wet, layers)  # a grey contour touching a black pier: two symbols
     hazard = _docks(separate, wet, land, shore, w)
     filled = (wet | _round_holes(wet, separate, w)).view(np.uint8)
@@ -185,7 +189,7 @@ def resolve(
     cv2.bitwise_or(parts, _structures(filled, shore, w, dark), dst=parts)
     del dark
     # an opening rounds corners off: grow back by half a stroke, inside the ink
-    hazard |= cv2.bitwise_and(cv2.dilate(parts, _disc(w + 1)), filled).view(bool)
+    hazard |= cv2.bitwise_and(_around(parts, (w + 1) / 2), filled).view(bool)
     return land, hazard
 
 
@@ -211,13 +215,13 @@ def _docks(
 ) -> np.ndarray:
     """Dock networks drawn in ordinary strokes (marina finger piers): see the module docstring.
 
-    ``separate`` is the ink in water cut where layers meet (:func:`_cut_layers`); its ink within
-    ``2 w + 1`` of land is set aside too (the coastline's own stroke would join every network
+    ``separate`` is the ink in water cut where layers meet (:func:`_cut_layers`); its ink in
+    the shore band is set aside too (the coastline's own stroke would join every network
     along the shore).
     """
     core = cv2.bitwise_and(separate.view(np.uint8), cv2.compare(shore, 0, cv2.CMP_EQ)).view(bool)
     n, labels, at, label_at = _label(core, 8)
-    near = cv2.dilate(land.view(np.uint8), _disc(4 * w + 3))
+    near = _around(land, 2 * w + 1.5)
     cv2.bitwise_and(near, core.view(np.uint8), dst=near)
     attached = np.zeros(n, bool)
     attached[labels.ravel()[np.flatnonzero(near)]] = True
@@ -232,7 +236,7 @@ def _docks(
         return body
     body.ravel()[at] = dock[label_at]
     # the pier roots in the shore band and the pixels set aside where layers meet
-    roots = cv2.dilate(body.view(np.uint8), _disc(2 * w + 3)).view(bool)
+    roots = _around(body, w + 1.5).view(bool)
     roots &= wet
     roots &= ~core
     return body | roots
@@ -276,7 +280,7 @@ def _solids(filled: np.ndarray, width: float) -> np.ndarray:
     """The parts of ``filled`` at least ``width`` thick (a morphological opening) whose area is
     at most ``SOLID_AREA`` times their inscribed disc: discs, squares, blobs, not bars (uint8
     0/1)."""
-    thick = cv2.morphologyEx(filled, cv2.MORPH_OPEN, _disc(width))
+    thick = _open(filled, width)
     n, labels, at, label_at = _label(thick, 8)  # the thick pixels: a small share of the chart
     if n == 1:
         return thick
@@ -301,7 +305,7 @@ def _structures(
 ) -> np.ndarray:
     """The parts of ``filled`` at least ``w + 1`` thick that reach the ``shore`` band (piers,
     jetties, groins), or that stand free as long straight bars of dark ink (uint8 0/1)."""
-    strokes = cv2.morphologyEx(filled, cv2.MORPH_OPEN, _disc(w + 1))
+    strokes = _open(filled, w + 1)
     n, labels, at, label_at = _label(strokes, 8)
     attached = np.zeros(n, bool)
     attached[labels.ravel()[np.flatnonzero(cv2.bitwise_and(strokes, shore))]] = True
@@ -361,9 +365,15 @@ def _round_holes(wet: np.ndarray, separate: np.ndarray, w: float) -> np.ndarray:
         x1 = np.where(found, left[sides] + box_w[sides], -1).max(axis=0)
         y1 = np.where(found, top[sides] + box_h[sides], -1).max(axis=0)
         ring_w, ring_h = x1 - x0, y1 - y0
-        grown = 2 * (w + 1)  # a ring adds at most a stroke and a pixel on each side
+        # the ring's own stroke: the median of its four sides' widths (one side may be cut
+        # short where a foreign ink touched it, one may carry a tick); a ring adds at most that
+        # and a third of it (a pixel at least) on each side, a glyph's tail or a line running on
+        # adds more
+        stroke = np.median([hx - x0, x1 - hx - hw, hy - y0, y1 - hy - hh], axis=0)
+        grown = 2 * (stroke + np.maximum(1, stroke / 3))
         ring[holes] = (
             found.any(axis=0)
+            & (stroke <= RING_STROKE * w)
             & (ring_w <= hw + grown)
             & (ring_h <= hh + grown)
             & (np.maximum(ring_w, ring_h) <= RING_ASPECT * np.minimum(ring_w, ring_h))
@@ -461,7 +471,42 @@ def _distance(mask: np.ndarray) -> np.ndarray:
     return cv2.distanceTransform(mask.view(np.uint8), cv2.DIST_L2, cv2.DIST_MASK_PRECISE)
 
 
+def _open(mask: np.ndarray, diameter: float) -> np.ndarray:
+    """The morphological opening of ``mask`` by :func:`_disc` of ``diameter`` (uint8 0/1): the
+    union of the discs inside it. An even-sized disc has no centre pixel, so the dilation takes
+    the erosion's anchor mirrored; with one anchor for both (OpenCV's ``MORPH_OPEN``) the result
+    moves by a pixel and is not inside ``mask``.
+
+    >>> bar = np.zeros((9, 9), np.uint8); bar[2:7, 2:6] = 1  # 5 rows by 4 columns
+    >>> bool((_open(bar, 4) <= bar).all()), int(_open(bar, 4).sum()), int(_open(bar, 5).sum())
+    (True, 16, 0)
+    >>> ellipse = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (4, 4))
+    >>> bool((cv2.morphologyEx(bar, cv2.MORPH_OPEN, ellipse) <= bar).all())
+    False
+    """
+    disc = _disc(diameter)
+    a = (len(disc) - 1) // 2
+    thin = cv2.erode(mask.view(np.uint8), disc, anchor=(a, a))
+    return cv2.dilate(thin, disc, anchor=(len(disc) - 1 - a,) * 2)
+
+
+def _around(mask: np.ndarray, radius: float) -> np.ndarray:
+    """The pixels within ``radius`` of ``mask`` (uint8 0/1): a dilation by the pixels at most
+    ``radius`` from a centre pixel, so that it grows every side alike."""
+    r = int(radius)
+    y, x = np.mgrid[-r : r + 1, -r : r + 1]
+    return cv2.dilate(mask.view(np.uint8), (np.hypot(x, y) <= radius).astype(np.uint8))
+
+
 def _disc(diameter: float) -> np.ndarray:
-    """A disc of ``diameter`` pixels (rounded up) as a structuring element."""
+    """The pixels of a disc of ``diameter`` (rounded up, at least 2) on a square of that size:
+    those whose centres lie within half of it of the square's centre. OpenCV's ellipse element
+    is no disc (a single pixel at each tip; the even sizes lopsided), and an opening by it cut
+    the corners of small squares deeper than a disc would.
+
+    >>> _disc(4).tolist()
+    [[0, 1, 1, 0], [1, 1, 1, 1], [1, 1, 1, 1], [0, 1, 1, 0]]
+    """
     d = max(2, int(np.ceil(diameter)))
-    return cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (d, d))
+    y, x = np.mgrid[:d, :d] - (d - 1) / 2
+    return (np.hypot(x, y) <= d / 2).astype(np.uint8)
