@@ -21,10 +21,10 @@ from pathlib import Path
 
 import numpy as np
 
-from usvtool.chart.georef import WGS84, transformer
+from usvtool.geodesy import WGS84, transformer
 from usvtool.grid import read_grid
 from usvtool.plan.optimizers import OPTIMIZERS
-from usvtool.plan.route import plan_route
+from usvtool.plan.planner import PlanOptions, plan_route
 
 ROOT = Path(__file__).resolve().parent.parent
 GRIDS = ROOT / "build" / "grids"
@@ -66,7 +66,7 @@ def main() -> None:
             sys.exit(f"bench_charts: no route or no grid for {chart!r} (run `make report` first)")
         grid = read_grid(path)
         start, goal = map_points(grid, ends[chart])
-        optimum = plan_route(grid, start, goal, "anyangle").length_m
+        optimum = plan_route(grid, start, goal, PlanOptions("anyangle")).route.length_m
         print(f"\n{chart}: {grid.width} x {grid.height} cells of {grid.cell_size:g} m, any-angle "
               f"optimum {optimum:.1f} m; {args.seeds} seeds, {args.pop} x {args.iters}, "
               f"{args.waypoints} waypoints, at most {args.attempts} run(s)")  # fmt: skip
@@ -74,9 +74,13 @@ def main() -> None:
         for algo in args.algos.split(","):
             routes = [
                 plan_route(
-                    grid, start, goal, algo, args.pop, args.iters, seed, args.waypoints,
-                    attempts=args.attempts,
-                )
+                    grid,
+                    start,
+                    goal,
+                    PlanOptions(
+                        algo, args.pop, args.iters, seed, args.waypoints, attempts=args.attempts
+                    ),
+                ).route
                 for seed in range(args.seeds)
             ]
             free = [r for r in routes if r.collision_free]

@@ -18,7 +18,7 @@ import time
 
 import numpy as np
 
-from usvtool.plan.benchrun import format_table, run_benchmark
+from usvtool.plan.benchrun import BenchmarkOptions, run_benchmark
 from usvtool.plan.functions import FUNCTIONS
 from usvtool.plan.optimizers import OPTIMIZERS, make_optimizer
 
@@ -41,13 +41,14 @@ def main() -> None:
     algorithms, functions = list(OPTIMIZERS), list(FUNCTIONS)
 
     start = time.perf_counter()
-    cells = run_benchmark(
+    result = run_benchmark(BenchmarkOptions(
         algorithms, functions, args.runs, args.pop, args.iters, args.dim, args.seed, args.jobs
-    )
+    ))  # fmt: skip
+    cells = result.cells
     wall = time.perf_counter() - start
     print(f"Table 1 form: {args.runs} runs, {args.pop} agents x {args.iters} iterations, "
           f"{args.dim}-D, seed {args.seed}\n")  # fmt: skip
-    print(format_table(cells, timing=True))
+    print(result.table(timing=True))
     print("Mean seconds per run, over F1-F10:")
     for a in algorithms:
         secs = [c.seconds for c in cells if c.algorithm == a]

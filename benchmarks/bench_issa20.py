@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from usvtool.grid import read_grid
-from usvtool.plan.route import plan_route
+from usvtool.plan.planner import PlanOptions, plan_route
 
 GRID = Path(__file__).resolve().parent.parent / "charts" / "grid20.tif"
 START, GOAL = (0.5, 0.5), (19.5, 19.5)
@@ -38,7 +38,7 @@ def main() -> None:
     ap.add_argument("--iters", type=int, default=500)
     args = ap.parse_args()
     grid = read_grid(GRID)
-    optimum = plan_route(grid, START, GOAL, "anyangle")
+    optimum = plan_route(grid, START, GOAL, PlanOptions("anyangle")).route
     print(f"grid20: {args.runs} runs, {args.pop} x {args.iters}, columns encoding; any-angle "
           f"optimum {optimum.length_m:.2f} (fitness {optimum.fitness:.2f}, "
           f"{optimum.turns} turns)\n")  # fmt: skip
@@ -47,7 +47,9 @@ def main() -> None:
           f"{'var':>6} {'time':>5}")  # fmt: skip
     for algo, label in ALGOS.items():
         runs = [
-            plan_route(grid, START, GOAL, algo, args.pop, args.iters, seed, encoding="columns")
+            plan_route(
+                grid, START, GOAL, PlanOptions(algo, args.pop, args.iters, seed, encoding="columns")
+            ).route
             for seed in range(args.runs)
         ]
         fitness = np.array([r.fitness for r in runs])
@@ -63,6 +65,7 @@ def main() -> None:
               f"{p_time:5.2f}")  # fmt: skip
     print("\nvar: sample variance of the final fitness over the runs; * over the collision-free"
           " runs only (a colliding route pays 40 per colliding segment); turns: of the best.")
+
 
 if __name__ == "__main__":
     main()

@@ -21,8 +21,8 @@ import numpy as np
 
 from usvtool.grid import read_grid
 from usvtool.plan.optimizers import OPTIMIZERS
+from usvtool.plan.planner import EXACT, PlanOptions, plan_route
 from usvtool.plan.problem import PathProblem
-from usvtool.plan.route import EXACT, plan_route
 
 CHARTS = Path(__file__).resolve().parent.parent / "charts"
 START, GOAL = (10.0, 10.0), (490.0, 490.0)
@@ -54,7 +54,7 @@ def median_time(fn, repeats: int) -> float:
 
 def quality(env: str, algos: list[str], args) -> None:
     grid = read_grid(CHARTS / f"{env}.tif")
-    optimum = plan_route(grid, START, GOAL, "anyangle").length_m
+    optimum = plan_route(grid, START, GOAL, PlanOptions("anyangle")).route.length_m
     print(f"\n{env}: any-angle optimum {optimum:.3f} m; {args.seeds} seeds, {args.pop} agents x "
           f"{args.iters} iterations, {args.waypoints} waypoints")  # fmt: skip
     print(f"{'algorithm':10} {'free':>5} {'len/opt':>8} {'length':>8} {'turns':>5} {'mot':>7} "
@@ -62,7 +62,9 @@ def quality(env: str, algos: list[str], args) -> None:
     for algo in algos:
         seeds = range(1) if algo.removesuffix("+s") in EXACT else range(args.seeds)
         runs = [
-            plan_route(grid, START, GOAL, algo, args.pop, args.iters, seed, args.waypoints)
+            plan_route(
+                grid, START, GOAL, PlanOptions(algo, args.pop, args.iters, seed, args.waypoints)
+            ).route
             for seed in seeds
         ]
         free = [r for r in runs if r.collision_free]
@@ -88,13 +90,13 @@ def timings(args) -> None:
     X = np.random.default_rng(0).uniform(problem.lower, problem.upper, (50, problem.dim))
     per_call = median_time(lambda: problem(X), 300)
     print(f"  cost of 50 random routes ({args.waypoints} waypoints): {per_call * 1e3:.3f} ms")
-    runs = [plan_route(grid, START, GOAL, "iwso", 50, 300, seed, args.waypoints) for seed in
-            range(max(args.seeds, 5))]  # fmt: skip
+    runs = [plan_route(grid, START, GOAL, PlanOptions("iwso", 50, 300, seed, args.waypoints)).route
+            for seed in range(max(args.seeds, 5))]  # fmt: skip
     print(f"  IWSO 50 x 300: {np.median([r.planning_time_s for r in runs]):.3f} s")
     for env in ("env1", "env2"):
         g = read_grid(CHARTS / f"{env}.tif")
-        t_any = median_time(lambda g=g: plan_route(g, START, GOAL, "anyangle"), 7)
-        t_astar = median_time(lambda g=g: plan_route(g, START, GOAL, "astar"), 3)
+        t_any = median_time(lambda g=g: plan_route(g, START, GOAL, PlanOptions("anyangle")), 7)
+        t_astar = median_time(lambda g=g: plan_route(g, START, GOAL, PlanOptions("astar")), 3)
         print(f"  {env}: any-angle {t_any:.3f} s, 8-connected A* {t_astar:.3f} s (with checks)")
 
 

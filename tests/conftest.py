@@ -1,4 +1,10 @@
-"""Shared fixtures: paths to the bundled charts, a CLI runner."""
+"""Shared fixtures: paths to the bundled charts, a CLI runner, bad S-57 cells, and an
+independent collision reference written plainly with shapely (for the collision check's tests
+and every stage whose routes or tracks must be collision-free).
+
+The reference: a segment collides when it intersects the closed unit square of a blocked cell
+(edges and corners included); shapely's predicates are exact, so no tolerance is involved.
+"""
 
 import contextlib
 import shutil
@@ -94,3 +100,40 @@ def bad_cell(tmp_path):
         return path, BAD_CELLS[kind]
 
     return make
+
+
+class ShapelyReference:
+    """Blocked cells of ``blocked`` (row 0 = y 0) as closed boxes in cell coordinates, grown
+    by ``grow`` on every side."""
+
+    def __init__(self, blocked: np.ndarray, grow: float = 0.0):
+        rows, cols = np.nonzero(blocked)
+        boxes = shapely.box(cols - grow, rows - grow, cols + 1 + grow, rows + 1 + grow)
+        self.tree = shapely.STRtree(boxes)
+
+    def segments_hit(self, a, b) -> np.ndarray:
+        """Whether each segment ``a[i] → b[i]`` intersects a blocked cell's closed square."""
+        lines = shapely.linestrings(np.stack([np.asarray(a, float), np.asarray(b, float)], 1))
+        hit_lines, _ = self.tree.query(lines, predicate="intersects")
+        out = np.zeros(len(lines), bool)
+        out[hit_lines] = True
+        return out
+
+    def route_free(self, route) -> bool:
+        """Whether the polyline (cell coordinates) touches no blocked cell."""
+        route = np.asarray(route, float)
+        return not self.segments_hit(route[:-1], route[1:]).any()
+
+
+@pytest.fixture(scope="session")
+def reference():
+    """``reference(blocked)``: the :class:`ShapelyReference` of a blocked mask."""
+    return ShapelyReference
+
+
+@pytest.fixture
+def one_cell() -> np.ndarray:
+    """A 10 x 10 blocked mask whose only obstacle is the cell x 5..6, y 5..6 (cell coordinates)."""
+    blocked = np.zeros((10, 10), bool)
+    blocked[5, 5] = True
+    return blocked

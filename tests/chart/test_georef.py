@@ -1,29 +1,16 @@
-"""Georeferencing: UTM zones, a known pixel through a lon/lat GeoTIFF, geodesic lengths."""
+"""Raster frames: bounds, a known pixel through a lon/lat GeoTIFF, scale errors, kept frames.
+
+UTM zones and geodesic lengths (:mod:`usvtool.geodesy`) are tested in tests/test_geodesy.py.
+"""
 
 import numpy as np
 import pytest
 import rasterio
 from affine import Affine
-from pyproj import Geod, Transformer
+from pyproj import Transformer
 
-from usvtool.chart.georef import frame_for_bounds, geodesic_length, utm_crs
+from usvtool.chart.georef import frame_for_bounds
 from usvtool.chart.sources import read_raster
-
-
-def test_utm_zone_of_boston_and_head_of_passes():
-    assert utm_crs(-71.0, 42.3).to_epsg() == 32619
-    assert utm_crs(-89.26, 29.15).to_epsg() == 32616
-    assert utm_crs(18.4, -33.9).to_epsg() == 32734
-
-
-def test_geodesic_lengths_against_known_wgs84_arcs():
-    # one degree of latitude from the equator: 110 574.389 m; of longitude on it: 111 319.491 m
-    assert geodesic_length([0, 0], [0, 1]) == pytest.approx(110574.389, abs=0.01)
-    assert geodesic_length([0, 1], [0, 0]) == pytest.approx(111319.491, abs=0.01)
-    # a polyline is the sum of its legs, as pyproj's Geod.inv gives them
-    lon, lat = [-71.05, -71.0, -70.95], [42.30, 42.32, 42.28]
-    legs = Geod(ellps="WGS84").inv(lon[:-1], lat[:-1], lon[1:], lat[1:])[2]
-    assert geodesic_length(lon, lat) == pytest.approx(sum(legs), rel=1e-12)
 
 
 def test_frame_covers_bounds_from_the_lower_left():

@@ -8,8 +8,8 @@ import rasterio
 from rasterio.transform import from_gcps
 from scipy import ndimage
 
-from usvtool.chart.georef import transformer
 from usvtool.chart.preprocess import Options, preprocess
+from usvtool.geodesy import transformer
 
 # lon/lat of three points of the Mississippi's main channel, north to south
 CHANNEL = [(-89.2677, 29.1840), (-89.2528, 29.1557), (-89.2619, 29.1240)]
@@ -41,7 +41,7 @@ def test_channel_points_are_water_on_the_chart_itself(kap):
 def test_grid_is_in_utm_16n_at_the_papers_cell_size(result):
     assert result.grid.crs.to_epsg() == 32616
     assert result.grid.cell_size == pytest.approx(3.75)
-    assert result.summary["source_kind"] == "kap"
+    assert result.summary()["source_kind"] == "kap"
 
 
 def test_river_channel_is_one_navigable_region_from_north_edge_to_southern_water(result):

@@ -20,8 +20,8 @@ import rasterio
 from pyproj import Geod
 from rasterio.transform import from_gcps
 
-from usvtool.chart.georef import transformer
 from usvtool.chart.preprocess import Options, preprocess
+from usvtool.geodesy import transformer
 from usvtool.grid import NAVIGABLE, OBSTACLE
 
 POINTS = Path(__file__).parent / "data" / "labelled_points.csv"

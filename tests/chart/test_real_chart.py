@@ -9,10 +9,10 @@ places of Boston Harbor.
 import pytest
 import rasterio
 
-from usvtool.chart.georef import WGS84, transformer
 from usvtool.chart.preprocess import Options, preprocess
 from usvtool.chart.render import render_cell, write_chart, write_truth
 from usvtool.chart.s57 import read_cell
+from usvtool.geodesy import WGS84, transformer
 
 THOMPSON_ISLAND = (-71.0106, 42.3148)
 NANTASKET_ROADS = (-70.9219, 42.3122)  # dredged channel, 11.0 m
@@ -47,8 +47,8 @@ def cell_at(grid, lon, lat):
 def test_vector_path_on_the_real_cell(enc):
     result = preprocess(enc, Options(cell_size=20.0))
     grid = result.grid
-    assert grid.crs.to_epsg() == 32619 and result.summary["source_kind"] == "s57"
+    assert grid.crs.to_epsg() == 32619 and result.summary()["source_kind"] == "s57"
     assert cell_at(grid, *THOMPSON_ISLAND) == 1
     assert cell_at(grid, *NANTASKET_ROADS) == 0
     assert cell_at(grid, *BETWEEN_STRIPS) == 1  # no coverage: not navigable
-    assert result.summary["min_depth_m"] == 1.2
+    assert result.summary()["min_depth_m"] == 1.2

@@ -7,7 +7,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from usvtool.chart.georef import WGS84, transformer
 from usvtool.chart.render import (
     COLOURS,
     chart_frame,
@@ -18,6 +17,7 @@ from usvtool.chart.render import (
 )
 from usvtool.chart.s57 import read_cell
 from usvtool.errors import UsvError
+from usvtool.geodesy import WGS84, transformer
 
 CELL = Path(__file__).resolve().parents[2] / "charts" / "noaa" / "US5MA12M.000"
 RESOLUTION = 40.0

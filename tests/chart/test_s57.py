@@ -78,7 +78,7 @@ def test_obstacles_shallow_in_deep_out(cell):
 
 
 def test_hazards_buffered_in_metres_and_deep_ones_skipped(cell):
-    from usvtool.chart.georef import WGS84, reproject_geometries
+    from usvtool.geodesy import WGS84, reproject_geometries
 
     found = obstacles(cell, hazard_radius=25.0)
     kept = ~(cell.valsou >= DEFAULT_MIN_DEPTH)  # unknown VALSOU (NaN) is kept

@@ -43,7 +43,7 @@ def results(cells):
 
 
 def test_update_3_applied_with_the_files_beside_it(results):
-    summary = results[0].summary
+    summary = results[0].summary()
     assert (summary["edition"], summary["update"]) == ("31", "3")
     assert summary["update_files"] == ["US4MD81M.001", "US4MD81M.002", "US4MD81M.003"]
     tags = results[0].grid.tags  # the grid GeoTIFF keeps them too
@@ -51,7 +51,7 @@ def test_update_3_applied_with_the_files_beside_it(results):
 
 
 def test_update_0_when_the_cell_is_alone(results):
-    summary = results[1].summary
+    summary = results[1].summary()
     assert (summary["edition"], summary["update"], summary["update_files"]) == ("31", "0", [])
 
 

@@ -9,9 +9,9 @@ import cv2
 import pytest
 
 from usvtool.chart import gridding, s57
-from usvtool.chart.georef import WGS84, reproject_geometries
 from usvtool.chart.preview import check_s57_preview
 from usvtool.errors import UsvError
+from usvtool.geodesy import WGS84, reproject_geometries
 
 NOAA = Path(__file__).resolve().parents[2] / "charts" / "noaa"
 BIG = NOAA / "US4MD81M" / "US4MD81M.000"

@@ -20,10 +20,10 @@ from rasterio.warp import Resampling, calculate_default_transform, reproject
 from shapely.geometry import Polygon, box, mapping
 
 from usvtool.chart.colours import colour_index
-from usvtool.chart.georef import WGS84, reproject_geometries, transformer
 from usvtool.chart.preprocess import Options, preprocess
 from usvtool.chart.sources import RasterChart, read_raster
 from usvtool.errors import UsvError
+from usvtool.geodesy import WGS84, reproject_geometries, transformer
 from usvtool.grid import OBSTACLE, read_grid
 
 LANDA, DEPDW = (201, 185, 122), (212, 234, 238)
@@ -95,12 +95,12 @@ def kap_and_mercator(kap, kap_3857):
 
 def test_web_mercator_geotiff_gives_the_kaps_grid_in_ground_metres(kap_and_mercator):
     ours, theirs = kap_and_mercator
-    assert theirs.summary["source_kind"] == "geotiff"
+    assert theirs.summary()["source_kind"] == "geotiff"
     assert theirs.grid.crs.to_epsg() == ours.grid.crs.to_epsg() == 32616  # warped to UTM 16N
-    assert theirs.summary["cell_size_m"] == theirs.grid.cell_size == 3.75
+    assert theirs.summary()["cell_size_m"] == theirs.grid.cell_size == 3.75
     assert theirs.grid.transform.a == pytest.approx(3.75)  # UTM metres, not Mercator units
-    share = theirs.summary["obstacle_fraction"]
-    assert abs(share - ours.summary["obstacle_fraction"]) <= 0.01  # before: 0.229 vs 0.674
+    share = theirs.summary()["obstacle_fraction"]
+    assert abs(share - ours.summary()["obstacle_fraction"]) <= 0.01  # before: 0.229 vs 0.674
 
 
 def test_web_mercator_geotiffs_paper_margin_is_outside_the_chart(kap_and_mercator):

@@ -12,7 +12,7 @@ from click.testing import CliRunner
 
 from usvtool.cli import cli
 from usvtool.grid import Grid, write_grid
-from usvtool.plan.route import read_path_geojson
+from usvtool.route import read_path_geojson
 
 FIGURES = {
     "algorithm", "parameters", "seed", "length_m", "turns", "mot", "fitness",

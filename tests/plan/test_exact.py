@@ -9,10 +9,10 @@ import pytest
 from scipy.sparse.csgraph import dijkstra
 
 from usvtool import metrics
+from usvtool.collision import SegmentChecker
 from usvtool.grid import Grid, read_grid
 from usvtool.plan.exact import DELTA, any_angle, astar
-from usvtool.plan.raster import SegmentChecker
-from usvtool.plan.route import plan_route
+from usvtool.plan.planner import PlanOptions, plan_route
 from usvtool.plan.shorten import shorten
 
 SQ2 = math.sqrt(2)
@@ -129,7 +129,10 @@ def to_cells(grid: Grid, points) -> np.ndarray:
 
 def test_exact_routes_on_the_bundled_environments(env, reference):
     ref = reference(env.blocked)
-    routes = {a: plan_route(env, (10, 10), (490, 490), a) for a in ("anyangle", "astar", "astar+s")}
+    routes = {
+        a: plan_route(env, (10, 10), (490, 490), PlanOptions(a)).route
+        for a in ("anyangle", "astar", "astar+s")
+    }
     for r in routes.values():
         assert r.collision_free and ref.route_free(to_cells(env, r.points))
         # the reported fitness of a free route is its length and turning cost (1 m cells):
@@ -143,10 +146,10 @@ def test_exact_routes_on_the_bundled_environments(env, reference):
 @pytest.mark.parametrize("algo", ["iwso", "ssa+s", "pso", "gwo"])
 def test_optimizer_routes_agree_with_the_independent_check(env, algo, reference):
     ref = reference(env.blocked)
-    route = plan_route(env, (10, 10), (490, 490), algo, pop=20, iters=40, seed=3)
+    route = plan_route(env, (10, 10), (490, 490), PlanOptions(algo, pop=20, iters=40, seed=3)).route
     assert route.collision_free == ref.route_free(to_cells(env, route.points))
     assert len(route.convergence) == 40
     assert np.all(np.diff(route.convergence) <= 0)
-    anyangle = plan_route(env, (10, 10), (490, 490), "anyangle")
+    anyangle = plan_route(env, (10, 10), (490, 490), PlanOptions("anyangle")).route
     if route.collision_free:
         assert route.length_m >= anyangle.length_m - 1e-6

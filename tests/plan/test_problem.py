@@ -1,4 +1,5 @@
-"""The path problem: the exact collision check against an independent rasteriser, and the cost."""
+"""The path problem: encodings, bounds and the cost (the collision check itself:
+tests/test_collision.py)."""
 
 from __future__ import annotations
 
@@ -10,83 +11,14 @@ from affine import Affine
 
 from usvtool.errors import UsvError
 from usvtool.grid import Grid
+from usvtool.plan.planner import PlanOptions, plan_route
 from usvtool.plan.problem import PAD, PathProblem
-from usvtool.plan.raster import SegmentChecker
-from usvtool.plan.route import plan_route
 
 
 def grid_of(blocked, cell=1.0) -> Grid:
     blocked = np.asarray(blocked)
     h = blocked.shape[0]
     return Grid(blocked.astype(np.uint8), Affine(cell, 0, 0, 0, -cell, h * cell))
-
-
-def random_segments(rng, n, width, height):
-    """Random segments of every length, plus lattice-aligned ones (edges, corners, diagonals)."""
-    a = rng.random((n, 2)) * (width, height)
-    angle = rng.random(n) * 2 * math.pi
-    length = rng.exponential(6.0, n)
-    b = a + length[:, None] * np.column_stack([np.cos(angle), np.sin(angle)])
-    half = rng.integers(0, 2 * width + 1, (n, 2)) / 2.0
-    step = rng.integers(-12, 13, (n, 2)) / 2.0
-    step[np.all(step == 0, axis=1)] = (0.5, 1.0)
-    a = np.vstack([a, half])
-    b = np.vstack([b, half + step])
-    limit = (width, height)
-    return np.clip(a, 0, limit), np.clip(b, 0, limit)
-
-
-@pytest.mark.parametrize("density, samples", [(0.02, 24), (0.1, 24), (0.3, 5), (0.05, 2)])
-def test_collisions_agree_with_an_independent_rasteriser(density, samples, reference):
-    rng = np.random.default_rng(int(density * 100) + samples)
-    blocked = rng.random((30, 40)) < density
-    chk = SegmentChecker(blocked, samples=samples)
-    a, b = random_segments(rng, 3000, 40, 30)
-    keep = np.any(a != b, axis=1)
-    a, b = a[keep], b[keep]
-    expected = reference(blocked).segments_hit(a, b)
-    assert 0.05 < expected.mean() < 0.95
-    assert np.array_equal(chk.collides(a, b), expected)
-    assert np.array_equal(chk.touches(a, b), expected)
-
-
-def test_long_segments_near_obstacles_agree(reference):
-    rng = np.random.default_rng(7)
-    blocked = np.zeros((120, 150), bool)
-    blocked[rng.integers(0, 120, 60), rng.integers(0, 150, 60)] = True  # isolated single cells
-    a = rng.random((2000, 2)) * (150, 120)
-    b = rng.random((2000, 2)) * (150, 120)
-    expected = reference(blocked).segments_hit(a, b)
-    assert np.array_equal(SegmentChecker(blocked).collides(a, b), expected)
-
-
-@pytest.fixture
-def one_cell():
-    """A 10 x 10 grid whose only obstacle is the cell x 5..6, y 5..6 (cell coordinates)."""
-    blocked = np.zeros((10, 10), bool)
-    blocked[5, 5] = True
-    return blocked
-
-
-def test_a_segment_grazing_a_single_cell_is_caught(one_cell):
-    chk = SegmentChecker(one_cell)
-    # x + y = 11.99 cuts a triangle of legs 0.01 off the cell's corner (6, 6): far thinner
-    # than the spacing of the samples along the segment
-    a, b = np.array([[2.0, 9.99]]), np.array([[9.99, 2.0]])
-    assert chk.collides(a, b)[0]
-    # passing the corner exactly also collides; 1e-6 beyond it does not
-    assert chk.collides([[2.0, 10.0]], [[10.0, 2.0]])[0]
-    assert not chk.collides([[3.0, 9.0 + 1e-6]], [[9.0 + 1e-6, 3.0]])[0]
-    # running along the cell's edge touches it; half a cell away does not
-    assert chk.collides([[0.5, 5.0]], [[9.5, 5.0]])[0]
-    assert not chk.collides([[0.5, 4.5]], [[9.5, 4.5]])[0]
-
-
-def test_a_diagonal_gap_between_two_cells_is_closed():
-    blocked = np.zeros((4, 4), bool)
-    blocked[1, 2] = blocked[2, 1] = True  # they share only the corner (2, 2)
-    chk = SegmentChecker(blocked)
-    assert chk.collides([[0.5, 0.5]], [[3.5, 3.5]])[0]  # through the corner point
 
 
 def test_the_cost_penalises_grazing_and_corners(one_cell):
@@ -141,59 +73,6 @@ def test_penalty_is_zero_exactly_for_routes_clear_of_the_grown_squares(spread, r
     assert np.all(exact[~free] > plain[~free] + p.penalty - 1e-9)
 
 
-def column_blocks(blocked, pad):
-    """Reference for SegmentChecker.inside: per column, the union of its blocked cells grown by
-    ``pad`` (open; with pad 0 each cell's open square on its own)."""
-    import shapely
-
-    shapes = []
-    for c in range(blocked.shape[1]):
-        rows = np.nonzero(blocked[:, c])[0]
-        boxes = [shapely.box(c - pad, r - pad, c + 1 + pad, r + 1 + pad) for r in rows]
-        if pad:
-            shapes += [shapely.union_all(boxes)] if boxes else []
-        else:
-            shapes += boxes
-    return [s.buffer(-1e-10, join_style="mitre") for s in shapes]
-
-
-@pytest.mark.parametrize("pad", [0.0, PAD, 0.2])
-def test_length_inside_agrees_with_shapely(pad):
-    rng = np.random.default_rng(int(pad * 1e4))
-    import shapely
-
-    for _ in range(6):
-        h, w = rng.integers(4, 14, 2)
-        blocked = rng.random((h, w)) < 0.3
-        chk = SegmentChecker(blocked, pad=pad)
-        a, b = random_segments(rng, 150, w, h)
-        a[:20, 1] = b[:20, 1] = np.floor(a[:20, 1]) + rng.choice([0.0, 0.5], 20)  # level
-        b[20:40, 0] = a[20:40, 0]  # north-south
-        b[40:50, 0] = np.clip(a[40:50, 0] + 1e-10, 0, w)  # nearly north-south
-        lines = shapely.linestrings(np.stack([a, b], 1))
-        blocks = column_blocks(blocked, pad)
-        expected = [sum(line.intersection(s).length for s in blocks) for line in lines]
-        # exact up to rounding, which nearly level pieces amplify (a y-difference over a slope)
-        assert chk.inside(a, b) == pytest.approx(expected, rel=1e-6, abs=1e-7)
-
-
-def test_length_inside_grows_linearly_to_the_grown_corner(one_cell):
-    """The segments x + y = 12 + u pass the corner (6, 6) of cell x 5..6, y 5..6 at u = 0, and
-    the grown square's corner (6 + pad, 6 + pad) at u = 2 pad: they cut a triangle of legs
-    2 pad - u off the grown square, so the length inside is √2 (2 pad - u) up to u = 2 pad
-    and 0 beyond: no flat stretch at the real corner for a search to settle on."""
-    pad = 1e-3
-    chk = SegmentChecker(one_cell, pad=pad)
-    u = np.array([-0.01, -pad, 0.0, pad, 1.9 * pad, 2 * pad + 1e-6, 0.01])
-    a, b = np.column_stack([np.full(7, 3.0), 9 + u]), np.column_stack([9 + u, np.full(7, 3.0)])
-    expected = np.sqrt(2) * np.maximum(2 * pad - u, 0.0)
-    assert chk.inside(a, b) == pytest.approx(expected, abs=1e-9)
-    touches, inside = chk.guide(a, b)
-    assert touches.tolist() == [True] * 5 + [False] * 2
-    assert inside == pytest.approx(expected, abs=1e-9)
-    assert chk.collides(a, b).tolist() == [True] * 3 + [False] * 4  # the exact check
-
-
 def test_waypoints_are_offsets_from_the_straight_line_bounded_by_the_extent():
     g = Grid(np.zeros((4, 6), np.uint8), Affine(10, 0, 1000, 0, -10, 2040))
     p = PathProblem(g, (1005, 2005), (1055, 2035), waypoints=2)
@@ -242,8 +121,6 @@ def test_bad_encoding_and_waypoints_are_refused():
         PathProblem(g, (0.5, 0.5), (4.5, 4.5), encoding="spline")
     with pytest.raises(ValueError, match="waypoints"):
         PathProblem(g, (0.5, 0.5), (4.5, 4.5), waypoints=0)
-    with pytest.raises(ValueError, match="inside the grid"):
-        SegmentChecker(np.zeros((5, 5), bool)).collides([[0, 0]], [[6, 1]])
 
 
 def test_waypoints_are_bounded_by_the_box_of_the_start_s_navigable_region():
@@ -287,7 +164,8 @@ def test_the_search_is_the_same_at_any_scale(algo):
     blocked = np.zeros((20, 30), bool)
     blocked[4:16, 12:15] = True
     routes = [
-        plan_route(grid_of(blocked, c), (1.5 * c, 10.5 * c), (28.5 * c, 10.5 * c), algo, 20, 40, 2)
+        plan_route(grid_of(blocked, c), (1.5 * c, 10.5 * c), (28.5 * c, 10.5 * c),
+                   PlanOptions(algo, 20, 40, 2)).route
         for c in (1.0, 4.0)
     ]
     assert routes[1].points / 4.0 == pytest.approx(routes[0].points, rel=1e-12, abs=1e-9)
@@ -305,9 +183,10 @@ def test_a_plan_labels_the_grid_s_regions_once(monkeypatch):
     blocked[3:5] = True
     blocked[3:5, 7] = False
     g = grid_of(blocked)
-    route = plan_route(g, (1.0, 7.5), (1.0, 0.5), "gwo", 10, 5, 0)  # check, box, connectivity
+    # the start/goal check, the search box and the connectivity test share one labelling
+    route = plan_route(g, (1.0, 7.5), (1.0, 0.5), PlanOptions("gwo", 10, 5, 0)).route
     assert calls == [(8, 10)]
     assert g.regions.max() == 1 and route.points.shape[1] == 2
     blocked[3:5, 7] = True
     with pytest.raises(UsvError, match="no navigable connection"):
-        plan_route(grid_of(blocked), (1.0, 7.5), (1.0, 0.5), "gwo", 10, 5, 0)
+        plan_route(grid_of(blocked), (1.0, 7.5), (1.0, 0.5), PlanOptions("gwo", 10, 5, 0))

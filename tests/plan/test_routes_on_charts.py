@@ -5,11 +5,11 @@ import numpy as np
 import pytest
 from scipy import ndimage
 
-from usvtool.chart.georef import WGS84, transformer
 from usvtool.chart.preprocess import Options, preprocess
+from usvtool.geodesy import WGS84, transformer
 from usvtool.grid import read_grid
 from usvtool.plan.optimizers import OPTIMIZERS
-from usvtool.plan.route import plan_route
+from usvtool.plan.planner import PlanOptions, plan_route
 
 # the Mississippi's main channel on chart 11361_4, Pilottown to Head of Passes (lon, lat)
 CHANNEL_START, CHANNEL_GOAL = (-89.2677, 29.1840), (-89.2619, 29.1240)
@@ -32,7 +32,7 @@ def river(kap):
     length of the exact any-angle route between them."""
     grid = preprocess(kap, Options(cell_size=10.0)).grid
     ends = on_chart(grid, CHANNEL_START, CHANNEL_GOAL)
-    return grid, ends, plan_route(grid, *ends, "anyangle").length_m
+    return grid, ends, plan_route(grid, *ends, PlanOptions("anyangle")).route.length_m
 
 
 @pytest.mark.parametrize("algo", [*OPTIMIZERS, "iwso+s", "anyangle", "astar"])
@@ -41,7 +41,9 @@ def test_every_algorithm_on_the_river_channel(river, algo, reference):
     # five attempts, as make report plans: a single faithful run can end colliding (IWSO's
     # single runs on this river were free in 96 % of 25 seeds, docs/planning.md; on this grid
     # its seed-1 run collides since the ink rule changed the grid)
-    route = plan_route(grid, start, goal, algo, pop=50, iters=300, seed=1, attempts=5)
+    route = plan_route(
+        grid, start, goal, PlanOptions(algo, pop=50, iters=300, seed=1, attempts=5)
+    ).route
     assert reference(grid.blocked).route_free(cells(grid, route.points))
     assert route.collision_free
     assert route.length_m >= optimum * (1 - 1e-9)  # nothing beats the exact any-angle route
@@ -56,9 +58,11 @@ def test_every_algorithm_on_the_river_channel(river, algo, reference):
 def test_iwso_on_the_bundled_environments(charts, env, reference):
     grid = read_grid(charts / f"{env}.tif")
     ref = reference(grid.blocked)
-    optimum = plan_route(grid, (10, 10), (490, 490), "anyangle").length_m
+    optimum = plan_route(grid, (10, 10), (490, 490), PlanOptions("anyangle")).route.length_m
     for seed in range(3):
-        route = plan_route(grid, (10, 10), (490, 490), "iwso", pop=50, iters=300, seed=seed)
+        route = plan_route(
+            grid, (10, 10), (490, 490), PlanOptions("iwso", pop=50, iters=300, seed=seed)
+        ).route
         assert ref.route_free(cells(grid, route.points))
         assert optimum * (1 - 1e-9) <= route.length_m <= optimum * 1.25
 
@@ -66,7 +70,7 @@ def test_iwso_on_the_bundled_environments(charts, env, reference):
 @pytest.fixture(scope="module", params=["env1", "env2"])
 def environment(request, charts):
     grid = read_grid(charts / f"{request.param}.tif")
-    return grid, plan_route(grid, (10, 10), (490, 490), "anyangle").length_m
+    return grid, plan_route(grid, (10, 10), (490, 490), PlanOptions("anyangle")).route.length_m
 
 
 @pytest.mark.parametrize("algo", OPTIMIZERS)
@@ -74,7 +78,9 @@ def test_every_optimizer_with_attempts_on_the_bundled_environments(environment, 
     """With up to 5 runs (`make report`'s setting) every optimizer ends collision-free on env1
     and env2 (single runs of PSO and WOA do not always: docs/planning.md)."""
     grid, optimum = environment
-    route = plan_route(grid, (10, 10), (490, 490), algo, pop=50, iters=300, seed=1, attempts=5)
+    route = plan_route(
+        grid, (10, 10), (490, 490), PlanOptions(algo, pop=50, iters=300, seed=1, attempts=5)
+    ).route
     assert reference(grid.blocked).route_free(cells(grid, route.points))
     assert optimum * (1 - 1e-9) <= route.length_m <= optimum * 1.5
 
@@ -92,7 +98,7 @@ def roads(enc, reference):
     grid = preprocess(enc, Options(cell_size=10.0)).grid
     ends = on_chart(grid, ROADS_START, ROADS_GOAL)
     shore = grid.blocked & ndimage.binary_dilation(~grid.blocked, structure=np.ones((3, 3)))
-    optimum = plan_route(grid, *ends, "anyangle").length_m
+    optimum = plan_route(grid, *ends, PlanOptions("anyangle")).route.length_m
     return grid, ends, optimum, reference(shore)
 
 
@@ -101,6 +107,8 @@ def test_every_optimizer_with_attempts_on_the_boston_route(roads, algo):
     """The hardest bundled route (a start 150 m from an island): single runs of SSA, ISSA and
     GWO end colliding for some seeds; within 5 runs every optimizer finds a free route."""
     grid, (start, goal), optimum, reference = roads
-    route = plan_route(grid, start, goal, algo, pop=50, iters=300, seed=1, attempts=5)
+    route = plan_route(
+        grid, start, goal, PlanOptions(algo, pop=50, iters=300, seed=1, attempts=5)
+    ).route
     assert reference.route_free(cells(grid, route.points))
     assert optimum * (1 - 1e-9) <= route.length_m <= optimum * 2.5

@@ -1,6 +1,8 @@
-"""Georeferencing helpers: UTM zones, reprojection of geometries, raster frames, geodesics.
+"""Raster frames of the chart stage: north-up transforms, their extent and their scale error.
 
-All of it is thin glue over pyproj and rasterio; nothing here re-implements projection maths.
+CRSs, reprojection, lon/lat <-> map metres and geodesic lengths are the shared contract
+:mod:`usvtool.geodesy`; this module adds only what is specific to raster frames. Thin glue over
+pyproj and rasterio; nothing here re-implements projection maths.
 """
 
 from __future__ import annotations
@@ -11,51 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 from affine import Affine
 
-WGS84 = "EPSG:4326"
-
-
-def utm_crs(lon: float, lat: float):
-    """The WGS84 / UTM zone CRS (rasterio ``CRS``) holding the point (lon, lat).
-
-    >>> utm_crs(-71.0, 42.3).to_epsg(), utm_crs(151.2, -33.9).to_epsg()
-    (32619, 32756)
-    """
-    from rasterio.crs import CRS
-
-    zone = int(math.floor((lon + 180.0) / 6.0)) % 60 + 1
-    return CRS.from_epsg((32600 if lat >= 0 else 32700) + zone)
-
-
-def transformer(src, dst):
-    """A pyproj transformer taking (x, y) = (lon, lat) / (east, north) order on both sides."""
-    from pyproj import Transformer
-
-    return Transformer.from_crs(_pyproj(src), _pyproj(dst), always_xy=True)
-
-
-def reproject_geometries(geoms, src, dst):
-    """Reproject an array of shapely geometries from CRS ``src`` to ``dst``."""
-    import shapely
-
-    t = transformer(src, dst)
-    return shapely.transform(
-        np.asarray(geoms, dtype=object), lambda xy: np.column_stack(t.transform(xy[:, 0], xy[:, 1]))
-    )
-
-
-def geodesic_length(lon, lat) -> float:
-    """Length in metres of a polyline on the WGS84 ellipsoid (pyproj ``Geod``, Karney's method).
-
-    The ISSA paper uses Vincenty's inverse formula; Karney's agrees with it to well under a
-    millimetre on these distances and never fails to converge.
-    """
-    from pyproj import Geod
-
-    lon = np.asarray(lon, float)
-    lat = np.asarray(lat, float)
-    if lon.size < 2:
-        return 0.0
-    return float(Geod(ellps="WGS84").line_length(lon, lat))
+from usvtool.geodesy import pyproj_crs
 
 
 @dataclass(frozen=True)
@@ -89,7 +47,7 @@ def scale_error(frame: Frame) -> float:
     """
     from pyproj import Proj
 
-    proj = Proj(_pyproj(frame.crs))
+    proj = Proj(pyproj_crs(frame.crs))
     left, bottom, right, top = frame.bounds
     x, y = np.meshgrid([left, (left + right) / 2, right], [bottom, (bottom + top) / 2, top])
     lon, lat = proj(x.ravel(), y.ravel(), inverse=True)
@@ -114,9 +72,3 @@ def frame_for_bounds(bounds, resolution: float, crs=None) -> Frame:
     height = max(1, math.ceil((top - bottom) / resolution - 1e-9))
     top = bottom + height * resolution
     return Frame(Affine(resolution, 0, left, 0, -resolution, top), width, height, crs)
-
-
-def _pyproj(crs):
-    if crs is None:
-        raise ValueError("no CRS")
-    return crs.to_wkt() if hasattr(crs, "to_wkt") else crs

@@ -60,10 +60,16 @@ class Options:
 
 @dataclass
 class Result:
+    """A navigation grid, what it came from, and the figures of the run."""
+
     grid: Grid
-    summary: dict
+    details: dict  # the grid's parameters, sizes, fractions and stage timings (summary())
     chart: sources.RasterChart | None  # the chart image, for previews
     segmentation: Segmentation | None
+
+    def summary(self) -> dict:
+        """The ``usvtool preprocess`` summary (the CLI adds ``output`` and ``preview``)."""
+        return dict(self.details)
 
 
 def preprocess(path, options: Options | None = None) -> Result:

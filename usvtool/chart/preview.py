@@ -114,7 +114,7 @@ def check_s57_preview(path, cell_size: float, resolution: float | None) -> None:
     if resolution is None:
         return
     from usvtool.chart import gridding, s57
-    from usvtool.chart.georef import WGS84, reproject_geometries
+    from usvtool.geodesy import WGS84, reproject_geometries
 
     coverage = s57.read_coverage(path)
     crs = s57.coverage_utm(coverage)

@@ -15,18 +15,27 @@ The image is in the UTM zone of the cell's centre and covers the bounds of its c
 
 Areas are rasterised on pixel centres and nothing is antialiased, so the LANDA pixels are exactly
 the land truth minus the pixels covered by the lines and digits drawn over them.
+
+The stage API (``usvtool render``): :func:`render` reads a cell and draws it as
+:class:`RenderOptions` say; its :class:`RenderResult` writes the chart and the truth together
+(:meth:`RenderResult.write`) and gives the command's summary (:meth:`RenderResult.summary`).
 """
 
 from __future__ import annotations
 
 import math
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
-from usvtool.atomic import atomic_path
-from usvtool.chart.georef import WGS84, Frame, frame_for_bounds, reproject_geometries
-from usvtool.chart.s57 import Cell
+from usvtool.atomic import atomic_path, staged
+from usvtool.chart.georef import Frame, frame_for_bounds
+from usvtool.chart.s57 import Cell, read_cell, update_status
 from usvtool.errors import UsvError
+from usvtool.geodesy import WGS84, reproject_geometries
 
 #: S-52 day colour table entries, in palette index order.
 COLOURS = {
@@ -131,6 +140,97 @@ def render_cell(
     truth = _burn(frame, land, fill=TRUTH_WATER, value=TRUTH_LAND)
     truth[~coverage] = TRUTH_NODATA
     return np.moveaxis(PALETTE[index], -1, 0), truth, frame
+
+
+@dataclass
+class RenderOptions:
+    """Everything :func:`render` can be told (the ``usvtool render`` options)."""
+
+    resolution: float = 10.0  # metres per pixel
+    shallow: float = 2.0  # contours, metres: shallow <= safety <= deep
+    safety: float = 10.0
+    deep: float = 30.0
+    soundings: bool = True  # draw the soundings
+
+
+@dataclass
+class RenderResult:
+    """A drawn cell: the RGB chart ``(3, H, W)``, its land truth ``(H, W)``, frame and tags."""
+
+    cell: str  # the cell's name (DSID)
+    status: dict  # edition, update and update files (usvtool.chart.s57.update_status)
+    rgb: np.ndarray
+    truth: np.ndarray
+    frame: Frame
+    tags: dict  # the GeoTIFF tags of both files
+    options: RenderOptions
+    timings: dict[str, float] = field(default_factory=dict)  # seconds: read, render[, write]
+    output: str | None = None  # where write() put the chart
+    truth_output: str | None = None  # and the truth (None: not written)
+
+    @property
+    def land_fraction(self) -> float:
+        """Share of land among the pixels inside the coverage."""
+        covered = self.truth != TRUTH_NODATA
+        return float((self.truth[covered] == TRUTH_LAND).mean()) if covered.any() else 0.0
+
+    def write(self, output: str | os.PathLike, truth: str | os.PathLike | None = None) -> None:
+        """Write the chart to ``output`` and the truth to ``truth`` (if given), all or nothing
+        (:class:`usvtool.atomic.staged`); records the paths and the time taken."""
+        start = time.perf_counter()
+        with staged(output, truth) as (chart_tmp, truth_tmp):  # renamed together at the end
+            write_chart(chart_tmp, self.rgb, self.frame, self.tags)
+            if truth_tmp:
+                write_truth(truth_tmp, self.truth, self.frame, self.tags)
+        self.timings["write"] = time.perf_counter() - start
+        self.output = os.fspath(output)
+        self.truth_output = os.fspath(truth) if truth is not None else None
+
+    def summary(self) -> dict:
+        """The ``usvtool render`` summary (``timings_s`` has ``write`` once written)."""
+        seconds = {**self.timings, "total": sum(self.timings.values())}
+        return {
+            "cell": self.cell,
+            **self.status,
+            "output": self.output,
+            "truth": self.truth_output,
+            "width": self.frame.width,
+            "height": self.frame.height,
+            "resolution_m": self.options.resolution,
+            "crs": self.frame.crs.to_string(),
+            "land_fraction": round(self.land_fraction, 6),
+            "soundings": self.options.soundings,
+            "timings_s": {k: round(v, 3) for k, v in seconds.items()},
+        }
+
+
+def render(path: str | os.PathLike, options: RenderOptions | None = None) -> RenderResult:
+    """Read the S-57 cell at ``path`` (its update files applied) and draw it (:func:`render_cell`).
+
+    Raises :class:`UsvError` for an unreadable cell, contours out of order or an image over
+    :data:`MAX_PIXELS`.
+    """
+    opts = options or RenderOptions()
+    start = time.perf_counter()
+    status = update_status(path)
+    cell = read_cell(path)
+    read_s = time.perf_counter() - start
+    rgb, truth, frame = render_cell(
+        cell, opts.resolution, opts.shallow, opts.safety, opts.deep, opts.soundings
+    )
+    render_s = time.perf_counter() - start - read_s
+    tags = {
+        "source": Path(path).name,
+        "edition": cell.edition,
+        "update": cell.update,
+        "resolution_m": opts.resolution,
+        "shallow_m": opts.shallow,
+        "safety_m": opts.safety,
+        "deep_m": opts.deep,
+    }
+    return RenderResult(
+        cell.name, status, rgb, truth, frame, tags, opts, {"read": read_s, "render": render_s}
+    )
 
 
 def write_chart(path, rgb: np.ndarray, frame: Frame, tags: dict | None = None) -> None:

@@ -29,8 +29,8 @@ from pathlib import Path
 import numpy as np
 import shapely
 
-from usvtool.chart.georef import WGS84, reproject_geometries, utm_crs
 from usvtool.errors import UsvError, check_input_file
+from usvtool.geodesy import WGS84, reproject_geometries, utm_crs
 
 LAND_LAYERS = ("LNDARE", "BUAARE", "PONTON", "HULKES", "FLODOC", "DRYDOC")
 DEPTH_LAYERS = ("DEPARE", "DRGARE")

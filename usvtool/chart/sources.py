@@ -26,8 +26,9 @@ from pathlib import Path
 import numpy as np
 
 from usvtool.chart.colours import colour_index, index_dtype, index_packed, pack
-from usvtool.chart.georef import WGS84, Frame, reproject_geometries, scale_error, utm_crs
+from usvtool.chart.georef import Frame, scale_error
 from usvtool.errors import UsvError, check_input_file
+from usvtool.geodesy import WGS84, reproject_geometries, utm_crs
 
 MIN_PIXELS = 4  # an image narrower than this cannot hold a chart
 #: A projected CRS in metres is kept as the chart's frame when, at the chart, its point scale in

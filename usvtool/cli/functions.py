@@ -69,35 +69,23 @@ def functions(
     table: str | None,
 ) -> None:
     """Best, worst, mean and std of the final cost of every algorithm on every function."""
-    from usvtool.atomic import check_output_path, write_text
-    from usvtool.plan.benchrun import cell_dict, format_table, run_benchmark
+    from usvtool.atomic import check_output_path
+    from usvtool.plan.benchrun import BenchmarkOptions, run_benchmark
 
     table_path = check_output_path(table, "--table") if table else None
-    algorithms = list(dict.fromkeys(algos)) or list(OPTIMIZERS)
-    names = list(dict.fromkeys(n.upper() for n in function_names)) or list(FUNCTIONS)
-    cells = run_benchmark(algorithms, names, runs, pop, iters, dim, seed, jobs)
-    text = format_table(cells)
+    options = BenchmarkOptions(
+        algorithms=algos, functions=function_names, runs=runs, pop=pop, iters=iters, dim=dim,
+        seed=seed, jobs=jobs,
+    )
+    result = run_benchmark(options)
     if table_path:
-        write_text(table_path, text)
+        result.write_table(table_path)
     else:
-        click.echo(text, err=True, nl=False)
-    rows = [cell_dict(c) for c in cells]
+        click.echo(result.table(), err=True, nl=False)
     if fmt == "csv":
+        rows = result.rows()
         writer = csv.DictWriter(sys.stdout, fieldnames=list(rows[0]), lineterminator="\n")
         writer.writeheader()
         writer.writerows(rows)
     else:
-        emit(
-            {
-                "command": "functions",
-                "runs": runs,
-                "pop": pop,
-                "iters": iters,
-                "dim": dim,
-                "seed": seed,
-                "algorithms": algorithms,
-                "functions": names,
-                "table": str(table_path) if table_path else None,
-                "results": rows,
-            }
-        )
+        emit(result.summary())

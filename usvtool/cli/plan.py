@@ -8,8 +8,8 @@ import logging
 import click
 
 from usvtool.cli.options import NON_NEGATIVE, emit, output_option, seed_option
+from usvtool.plan.planner import algorithm_names
 from usvtool.plan.problem import ENCODINGS
-from usvtool.plan.route import algorithm_names
 from usvtool.plan.shorten import SUFFIX
 
 log = logging.getLogger(__name__)
@@ -125,40 +125,31 @@ def plan(
     from usvtool.atomic import check_output_path
     from usvtool.errors import UsvError
     from usvtool.grid import read_grid
-    from usvtool.plan.route import check_ends, plan_route, write_path_geojson
+    from usvtool.plan.planner import PlanOptions, check_ends, plan_route
+    from usvtool.route import write_path_geojson
 
     check_output_path(output)
     grid = read_grid(grid_path)
     start = _point(grid, grid_path, "start", start, start_lonlat)
     goal = _point(grid, grid_path, "goal", goal, goal_lonlat)
     try:
-        check_ends(grid, start, goal)
+        check_ends(grid, start, goal)  # errors name the grid (plan_route's cannot)
     except UsvError as exc:
         raise UsvError(f"{grid_path}: {exc}") from None
-    route = plan_route(
-        grid, start, goal, algo, pop, iters, seed, waypoints, encoding, params, turn_weight,
-        attempts,
+    options = PlanOptions(
+        algo=algo, pop=pop, iters=iters, seed=seed, waypoints=waypoints, encoding=encoding,
+        params=params, turn_weight=turn_weight, attempts=attempts, timing=timing,
     )
-    if not timing:
-        route.planning_time_s = None
-    if not route.collision_free:
+    result = plan_route(grid, start, goal, options)
+    if not result.route.collision_free:
         log.warning(
             "%s: the best route %s found in %d run(s) touches obstacle or margin cells (written "
             "with collision_free false); try more --attempts, --waypoints or --iters, or another "
             "algorithm",
             grid_path, algo, attempts,
         )
-    write_path_geojson(output, route, grid)
-    emit(
-        {
-            "output": output,
-            "grid": grid_path,
-            "start": list(start),
-            "goal": list(goal),
-            "points": len(route.points),
-            **route.figures(),
-        }
-    )
+    write_path_geojson(output, result.route, grid)
+    emit({"output": output, "grid": grid_path, **result.summary()})
 
 
 def _point(grid, grid_path: str, name: str, xy, lonlat) -> tuple[float, float]:
@@ -171,7 +162,6 @@ def _point(grid, grid_path: str, name: str, xy, lonlat) -> tuple[float, float]:
         return float(xy[0]), float(xy[1])
     if grid.crs is None:
         raise UsvError(f"--{name}-lonlat: {grid_path} has no CRS; give --{name} X Y in metres")
-    from usvtool.chart.georef import WGS84, transformer
+    from usvtool.geodesy import lonlat_to_map
 
-    x, y = transformer(WGS84, grid.crs).transform(*lonlat)
-    return float(x), float(y)
+    return lonlat_to_map(grid.crs, *lonlat)

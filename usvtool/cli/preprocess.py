@@ -98,7 +98,7 @@ def preprocess(chart, output, preview, ship_length, cell_size, margin, swell, re
 
         check_s57_preview(chart, opts.cell, preview_resolution)  # fail before the grid work
     result = run(chart, opts)
-    summary = dict(result.summary, output=output)
+    summary = {**result.summary(), "output": output}
     if preview:
         from usvtool.chart.preview import (
             background_resolution,
@@ -108,7 +108,7 @@ def preprocess(chart, output, preview, ship_length, cell_size, margin, swell, re
         )
 
         background = result.chart
-        if background is None and result.summary["source_kind"] == "s57":
+        if background is None and summary["source_kind"] == "s57":
             px = preview_resolution or background_resolution(result.grid.bounds, opts.cell)
             background = s57_background(chart, px)
         image = render_preview(result.grid, background, preview_resolution)  # before any file

@@ -2,9 +2,6 @@
 
 from __future__ import annotations
 
-import time
-from pathlib import Path
-
 import click
 
 from usvtool.cli.options import POSITIVE, emit, output_option
@@ -36,9 +33,9 @@ def render(
     soundings: bool,
 ) -> None:
     """Draw the S-57 CELL (.000, updates beside it applied) in the S-52 day colours."""
-    from usvtool.atomic import check_output_path, staged
-    from usvtool.chart.render import TRUTH_LAND, TRUTH_NODATA, render_cell, write_chart, write_truth
-    from usvtool.chart.s57 import read_cell, update_status
+    from usvtool.atomic import check_output_path
+    from usvtool.chart.render import RenderOptions
+    from usvtool.chart.render import render as run
 
     if not shallow <= safety <= deep:
         raise click.UsageError(
@@ -49,46 +46,9 @@ def render(
     truth_path = check_output_path(truth, "--truth") if truth else None
     if truth_path and truth_path.resolve() == out.resolve():
         raise click.UsageError(f"--truth {truth}: same file as -o")
-
-    start = time.perf_counter()
-    status = update_status(cell)
-    chart = read_cell(cell)
-    read_s = time.perf_counter() - start
-    rgb, land_truth, frame = render_cell(chart, resolution, shallow, safety, deep, soundings)
-    render_s = time.perf_counter() - start - read_s
-    tags = {
-        "source": Path(cell).name,
-        "edition": chart.edition,
-        "update": chart.update,
-        "resolution_m": resolution,
-        "shallow_m": shallow,
-        "safety_m": safety,
-        "deep_m": deep,
-    }
-    with staged(out, truth_path) as (chart_tmp, truth_tmp):  # renamed together at the end
-        write_chart(chart_tmp, rgb, frame, tags)
-        if truth_tmp:
-            write_truth(truth_tmp, land_truth, frame, tags)
-    total_s = time.perf_counter() - start
-    covered = land_truth != TRUTH_NODATA
-    land_fraction = float((land_truth[covered] == TRUTH_LAND).mean()) if covered.any() else 0.0
-    emit(
-        {
-            "cell": chart.name,
-            **status,
-            "output": str(out),
-            "truth": str(truth_path) if truth_path else None,
-            "width": frame.width,
-            "height": frame.height,
-            "resolution_m": resolution,
-            "crs": frame.crs.to_string(),
-            "land_fraction": round(land_fraction, 6),
-            "soundings": soundings,
-            "timings_s": {
-                "read": round(read_s, 3),
-                "render": round(render_s, 3),
-                "write": round(total_s - read_s - render_s, 3),
-                "total": round(total_s, 3),
-            },
-        }
+    options = RenderOptions(
+        resolution=resolution, shallow=shallow, safety=safety, deep=deep, soundings=soundings
     )
+    result = run(cell, options)
+    result.write(out, truth_path)
+    emit(result.summary())

@@ -1,5 +1,10 @@
 """Run optimizers on the benchmark functions and summarise them as in the IWSO paper's Table 1.
 
+The stage API (``usvtool functions``): :func:`run_benchmark` runs what a
+:class:`BenchmarkOptions` asks; its :class:`BenchmarkResult` gives the table
+(:meth:`~BenchmarkResult.table`, :meth:`~BenchmarkResult.write_table`), one row per cell
+(:meth:`~BenchmarkResult.rows`) and the command's summary (:meth:`~BenchmarkResult.summary`).
+
 Every run's seed comes from ``SeedSequence([seed, crc32(algorithm), crc32(function), run])``,
 spawned into one stream for the optimizer and one for F7's noise, so a result does not depend
 on the order of the runs nor on how many worker processes share them.
@@ -7,6 +12,7 @@ on the order of the runs nor on how many worker processes share them.
 
 from __future__ import annotations
 
+import os
 import zlib
 from collections.abc import Sequence
 from concurrent.futures import ProcessPoolExecutor
@@ -14,8 +20,8 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from usvtool.plan.functions import get_function
-from usvtool.plan.optimizers import make_optimizer
+from usvtool.plan.functions import FUNCTIONS, get_function
+from usvtool.plan.optimizers import OPTIMIZERS, make_optimizer
 
 STATS = ("best", "worst", "mean", "std")
 
@@ -64,15 +70,82 @@ def run_one(task: Task) -> tuple[float, int, float]:
     return result.f, result.evaluations, result.seconds
 
 
-def run_benchmark(
+@dataclass
+class BenchmarkOptions:
+    """Everything :func:`run_benchmark` can be told (the ``usvtool functions`` options)."""
+
+    algorithms: Sequence[str] = ()  # optimizer names, in order (repeats dropped); () for all
+    functions: Sequence[str] = ()  # F1..F10, any case, in order (repeats dropped); () for all
+    runs: int = 25
+    pop: int = 50
+    iters: int = 300
+    dim: int = 30
+    seed: int = 0
+    jobs: int = 1  # worker processes (the results do not depend on it)
+
+
+@dataclass
+class BenchmarkResult:
+    """The cells of a benchmark, functions outer, algorithms inner, in the order asked."""
+
+    cells: list[Cell]
+    algorithms: list[str]
+    functions: list[str]
+    options: BenchmarkOptions
+    table_output: str | None = None  # where write_table() put the table
+
+    def table(self, timing: bool = False) -> str:
+        """The Table 1 layout (:func:`format_table`)."""
+        return format_table(self.cells, timing)
+
+    def rows(self, timing: bool = False) -> list[dict]:
+        """One dict per cell (:func:`cell_dict`)."""
+        return [cell_dict(c, timing) for c in self.cells]
+
+    def write_table(self, path: str | os.PathLike) -> None:
+        """Write the table to ``path``, atomically, and record where."""
+        from usvtool.atomic import write_text
+
+        write_text(path, self.table())
+        self.table_output = os.fspath(path)
+
+    def summary(self) -> dict:
+        """The ``usvtool functions`` summary (no timings: it is reproducible)."""
+        o = self.options
+        return {
+            "command": "functions",
+            "runs": o.runs,
+            "pop": o.pop,
+            "iters": o.iters,
+            "dim": o.dim,
+            "seed": o.seed,
+            "algorithms": self.algorithms,
+            "functions": self.functions,
+            "table": self.table_output,
+            "results": self.rows(),
+        }
+
+
+def run_benchmark(options: BenchmarkOptions | None = None) -> BenchmarkResult:
+    """Every (function, algorithm) cell of ``options``."""
+    opts = options or BenchmarkOptions()
+    algorithms = list(dict.fromkeys(opts.algorithms)) or list(OPTIMIZERS)
+    functions = list(dict.fromkeys(f.upper() for f in opts.functions)) or list(FUNCTIONS)
+    cells = _run_cells(
+        algorithms, functions, opts.runs, opts.pop, opts.iters, opts.dim, opts.seed, opts.jobs
+    )
+    return BenchmarkResult(cells, algorithms, functions, opts)
+
+
+def _run_cells(
     algorithms: Sequence[str],
     functions: Sequence[str],
-    runs: int = 25,
-    pop: int = 50,
-    iters: int = 300,
-    dim: int = 30,
-    seed: int = 0,
-    jobs: int = 1,
+    runs: int,
+    pop: int,
+    iters: int,
+    dim: int,
+    seed: int,
+    jobs: int,
 ) -> list[Cell]:
     """All (function, algorithm) cells, functions outer, in the order given."""
     tasks = [

@@ -1,7 +1,7 @@
 """Exact reference planners: 8-connected A* and the any-angle shortest route.
 
-Both work in cell coordinates (see :mod:`usvtool.plan.raster`) and return routes that touch no
-blocked cell under the collision definition of :mod:`usvtool.plan.raster`.
+Both work in cell coordinates (see :mod:`usvtool.collision`) and return routes that touch no
+blocked cell under the collision definition of :mod:`usvtool.collision`.
 
 8-connected A* (:func:`astar`)
     Over cell centres, moves to the 8 neighbours (cost 1 or √2), with the octile heuristic. A
@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from usvtool.plan.raster import SegmentChecker
+from usvtool.collision import SegmentChecker
 
 DELTA = 1e-5
 _SQRT2 = math.sqrt(2.0)

@@ -42,7 +42,7 @@ Cost (in metres; ``ℓ`` cell size, ``W × H`` grid)
 28), ``T`` the ISSA turning energy (:func:`usvtool.metrics.turn_cost`, in cell sides, weight
 ``w``), ``S = ℓ (W + H)`` (longer than any sensible route, so any collision-free route beats a
 colliding one of similar length), and, against the blocked squares grown by ``PAD`` = 1e-3 cell
-(:meth:`usvtool.plan.raster.SegmentChecker.guide`), ``n_col`` the number of segments touching
+(:meth:`usvtool.collision.SegmentChecker.guide`), ``n_col`` the number of segments touching
 them and ``L_in`` (cells) the length inside them, which guides the search out of land: exact
 near the boundary, estimated from samples for segments that run deep into land.
 
@@ -63,8 +63,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from usvtool import metrics
+from usvtool.collision import SegmentChecker
 from usvtool.grid import Grid
-from usvtool.plan.raster import SegmentChecker
 
 ENCODINGS = ("waypoints", "columns")
 INSIDE_WEIGHT = 10.0  # cost per metre of route inside blocked cells

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.plan.raster import SegmentChecker
+from usvtool.collision import SegmentChecker
 
 SUFFIX = "+s"
 STEPS = 20

@@ -1,35 +1,38 @@
-"""Plan a global route on a grid and write it as a path GeoJSON (the ``usvtool plan`` API).
+"""Plan a global route on a grid (the ``usvtool plan`` API): :func:`plan_route`.
 
 Algorithms: every optimizer of :data:`usvtool.plan.optimizers.OPTIMIZERS` (minimising the
 :class:`~usvtool.plan.problem.PathProblem` cost), ``astar`` (8-connected) and ``anyangle`` (the
 exact any-angle shortest route, :mod:`usvtool.plan.exact`). A ``+s`` suffix (``iwso+s``,
 ``astar+s``) adds route shortening (:mod:`usvtool.plan.shorten`) to the planner's result.
 
+What to plan is a :class:`PlanOptions`; the answer a :class:`PlanResult`, holding the
+:class:`usvtool.route.Route` (write it with :func:`usvtool.route.write_path_geojson`) and the
+summary the command prints.
+
 Figures of a route: ``length_m`` (IWSO eq. 28; for a georeferenced grid the geodesic length on
 the WGS84 ellipsoid), ``turns`` and ``mot`` (:mod:`usvtool.metrics`), ``fitness`` (the path
 problem's cost of the route, the same for every algorithm), ``planning_time_s`` (every run of
 the search, and any shortening; reading the grid, validating the request and building the grid's
 collision tables, about 20 ms on 500 x 500 cells and done once per grid, are not included),
-``collision_free`` (the exact check of :mod:`usvtool.plan.raster` on the written coordinates)
+``collision_free`` (the exact check of :mod:`usvtool.collision` on the written coordinates)
 and ``attempt`` (the optimizer run that gave the route, :func:`_optimize`).
 """
 
 from __future__ import annotations
 
-import json
-import os
 import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from usvtool import metrics
+from usvtool.collision import check_point, is_collision_free
 from usvtool.errors import UsvError
-from usvtool.grid import MARGIN, OBSTACLE, Grid
+from usvtool.grid import Grid
 from usvtool.plan import exact
 from usvtool.plan.problem import ENCODINGS, PathProblem
-from usvtool.plan.raster import EPS, SegmentChecker
 from usvtool.plan.shorten import SUFFIX, shorten
+from usvtool.route import Route, route_length
 
 EXACT = ("astar", "anyangle")
 
@@ -42,61 +45,53 @@ def algorithm_names() -> list[str]:
 
 
 @dataclass
-class Route:
-    """A planned route: map coordinates ``points`` ``(m, 2)`` and its figures."""
+class PlanOptions:
+    """Everything :func:`plan_route` can be told (the ``usvtool plan`` options)."""
 
-    points: np.ndarray
-    algorithm: str
-    parameters: dict
-    seed: int | None
-    length_m: float
-    turns: int
-    mot: float
-    fitness: float
-    planning_time_s: float | None  # None: not recorded (--no-timing)
-    collision_free: bool
-    convergence: list[float] = field(default_factory=list)
-    attempt: int | None = None  # the optimizer run that gave the route (None: exact planner)
+    algo: str = "iwso"  # an algorithm_names() entry, optionally with the suffix +s
+    pop: int = 50  # agents (optimizers)
+    iters: int = 300  # iterations (optimizers)
+    seed: int | None = 0
+    waypoints: int = 3  # free waypoints (waypoints encoding)
+    encoding: str = "waypoints"  # or "columns" (ISSA)
+    params: dict = field(default_factory=dict)  # optimizer parameters
+    turn_weight: float = 1.0  # weight of the ISSA turning energy in the cost
+    attempts: int = 1  # optimizer runs at most, until the best route is collision-free
+    timing: bool = True  # False: planning_time_s is None (byte-identical outputs per seed)
 
-    def figures(self) -> dict:
-        """The route's figures (the GeoJSON properties and the CLI summary share them)."""
+
+@dataclass
+class PlanResult:
+    """A planned route and the request that gave it."""
+
+    route: Route
+    start: tuple[float, float]  # map metres, as asked
+    goal: tuple[float, float]
+    options: PlanOptions
+
+    def summary(self) -> dict:
+        """The plan summary: ``start``, ``goal``, ``points`` and the route's figures (the CLI
+        adds ``output`` and ``grid`` in front)."""
         return {
-            "algorithm": self.algorithm,
-            "parameters": self.parameters,
-            "seed": self.seed,
-            "length_m": self.length_m,
-            "turns": self.turns,
-            "mot": self.mot,
-            "fitness": self.fitness,
-            "planning_time_s": self.planning_time_s,
-            "collision_free": self.collision_free,
-            "convergence": self.convergence,
-            "attempt": self.attempt,
+            "start": list(self.start),
+            "goal": list(self.goal),
+            "points": len(self.route.points),
+            **self.route.figures(),
         }
 
 
-def plan_route(
-    grid: Grid,
-    start,
-    goal,
-    algo: str = "iwso",
-    pop: int = 50,
-    iters: int = 300,
-    seed: int | None = 0,
-    waypoints: int = 3,
-    encoding: str = "waypoints",
-    params: dict | None = None,
-    turn_weight: float = 1.0,
-    attempts: int = 1,
-) -> Route:
-    """Plan a route from ``start`` to ``goal`` (map metres) with algorithm ``algo``.
+def plan_route(grid: Grid, start, goal, options: PlanOptions | None = None) -> PlanResult:
+    """Plan a route from ``start`` to ``goal`` (map metres) as ``options`` say.
 
-    An optimizer runs up to ``attempts`` times (:func:`_optimize`) until its best route is
-    collision-free; the exact planners run once.
+    An optimizer runs up to ``options.attempts`` times (:func:`_optimize`) until its best route
+    is collision-free; the exact planners run once.
 
     Raises :class:`UsvError` for an unknown algorithm, a start or goal outside the grid or
     touching an obstacle or margin cell, or no navigable connection between them.
     """
+    opts = options or PlanOptions()
+    algo, encoding, waypoints, attempts = opts.algo, opts.encoding, opts.waypoints, opts.attempts
+    seed, turn_weight = opts.seed, opts.turn_weight
     base, shortened = (algo[: -len(SUFFIX)], True) if algo.endswith(SUFFIX) else (algo, False)
     if base not in algorithm_names():
         known = ", ".join(algorithm_names())
@@ -123,7 +118,7 @@ def plan_route(
         parameters = {"delta_cells": exact.DELTA}
     else:
         cells, convergence, parameters, attempt = _optimize(
-            problem, base, pop, iters, seed, params or {}, attempts
+            problem, base, opts.pop, opts.iters, seed, opts.params or {}, attempts
         )
         parameters = {**parameters, "encoding": encoding, "turn_weight": turn_weight}
         if encoding == "waypoints":
@@ -135,7 +130,7 @@ def plan_route(
         parameters = {**parameters, "shorten": True}
     elapsed = time.perf_counter() - t0
     points = problem.to_map(cells)
-    return Route(
+    route = Route(
         points=points,
         algorithm=algo,
         parameters=parameters,
@@ -144,11 +139,14 @@ def plan_route(
         turns=int(metrics.turns(points)),
         mot=float(metrics.mot(points)),
         fitness=float(problem.cost(cells[None], exact=True)[0]),
-        planning_time_s=elapsed,
+        planning_time_s=elapsed if opts.timing else None,
         collision_free=is_collision_free(grid, points, checker),
         convergence=convergence,
         attempt=attempt,
     )
+    start = tuple(float(v) for v in start)
+    goal = tuple(float(v) for v in goal)
+    return PlanResult(route, start, goal, opts)
 
 
 def _optimize(
@@ -193,107 +191,15 @@ def _optimize(
     return cells, convergence, {**parameters, "attempts": attempts}, attempt
 
 
-def route_length(grid: Grid, points) -> float:
-    """Length in metres: geodesic (WGS84) for a georeferenced grid, planar otherwise."""
-    points = np.asarray(points, float)
-    if grid.crs is None:
-        return float(metrics.path_length(points))
-    from usvtool.chart.georef import WGS84, geodesic_length, transformer
-
-    lon, lat = transformer(grid.crs, WGS84).transform(points[:, 0], points[:, 1])
-    return geodesic_length(lon, lat)
-
-
-def is_collision_free(grid: Grid, points, checker: SegmentChecker | None = None) -> bool:
-    """Whether the route (map metres) stays in the grid and touches no blocked cell."""
-    col, row = grid.to_cell_coords(*np.asarray(points, float).T)
-    cells = np.column_stack([col, row])
-    checker = checker or SegmentChecker(grid.blocked)
-    try:
-        hit = checker.collides(cells[:-1], cells[1:])
-    except ValueError:  # leaves the grid
-        return False
-    return not hit.any()
-
-
-def _m(value: float) -> str:
-    """Metres for messages: 0.1 m resolution, no exponent, no trailing zeros (332204.3, 21)."""
-    return f"{value:.1f}".rstrip("0").rstrip(".")
-
-
-def write_path_geojson(path: str | os.PathLike, route: Route, grid: Grid) -> None:
-    """Write ``route`` as a GeoJSON FeatureCollection holding one LineString feature, atomically.
-
-    With a CRS the coordinates are lon/lat (RFC 7946) and ``map_coordinates`` (with ``crs``)
-    holds the grid's; without one they are the grid's local metres, and ``frame`` says so.
-    """
-    from usvtool.atomic import jsonable, write_text
-
-    points = np.asarray(route.points, float)
-    props = route.figures()
-    if grid.crs is None:
-        coords = points
-        props["frame"] = "local metres (no CRS): x east, y north from the grid's lower-left corner"
-    else:
-        from usvtool.chart.georef import WGS84, transformer
-
-        lon, lat = transformer(grid.crs, WGS84).transform(points[:, 0], points[:, 1])
-        coords = np.column_stack([lon, lat])
-        props["crs"] = grid.crs.to_string()
-        props["map_coordinates"] = points.tolist()
-    feature = {
-        "type": "Feature",
-        "geometry": {"type": "LineString", "coordinates": coords.tolist()},
-        "properties": props,
-    }
-    text = json.dumps(
-        {"type": "FeatureCollection", "features": [feature]}, indent=1, default=jsonable
-    )
-    write_text(path, text + "\n")
-
-
-def read_path_geojson(path: str | os.PathLike) -> tuple[np.ndarray, dict]:
-    """The map coordinates ``(m, 2)`` and the properties of a path GeoJSON."""
-    try:
-        with open(path, encoding="utf-8") as f:
-            data = json.load(f)
-        feature = data["features"][0] if data.get("type") == "FeatureCollection" else data
-        props = feature["properties"]
-        coords = props.get("map_coordinates", feature["geometry"]["coordinates"])
-        return np.asarray(coords, float), props
-    except (OSError, ValueError, KeyError, IndexError, TypeError) as exc:
-        raise UsvError(f"{path}: not a path GeoJSON ({exc})") from None
-
-
 def check_ends(grid: Grid, start, goal) -> tuple[tuple[float, float], tuple[float, float]]:
     """Cell coordinates of ``start`` and ``goal`` (map metres), or :class:`UsvError`.
 
     Each must lie in the grid and touch no blocked cell, and a navigable route must join them.
     """
-    start_c = _check_end(grid, "start", start)
-    goal_c = _check_end(grid, "goal", goal)
+    start_c = check_point(grid, start, "start")
+    goal_c = check_point(grid, goal, "goal")
     _check_connected(grid, start_c, goal_c)
     return start_c, goal_c
-
-
-def _check_end(grid: Grid, name: str, point) -> tuple[float, float]:
-    """Cell coordinates of a start or goal that lies in the grid and touches no blocked cell."""
-    x, y = (float(v) for v in point)
-    left, bottom, right, top = grid.bounds
-    if not (left <= x <= right and bottom <= y <= top):
-        raise UsvError(
-            f"{name} ({_m(x)}, {_m(y)}) is outside the grid (x {_m(left)}..{_m(right)}, "
-            f"y {_m(bottom)}..{_m(top)})"
-        )
-    col, row = (float(v) for v in grid.to_cell_coords(x, y))
-    rows = slice(max(int(np.ceil(row - 1 - EPS)), 0), int(np.floor(row + EPS)) + 1)
-    cols = slice(max(int(np.ceil(col - 1 - EPS)), 0), int(np.floor(col + EPS)) + 1)
-    touched = grid.cells[rows, cols]
-    if (touched == OBSTACLE).any():
-        raise UsvError(f"{name} ({_m(x)}, {_m(y)}) is on an obstacle")
-    if (touched == MARGIN).any():
-        raise UsvError(f"{name} ({_m(x)}, {_m(y)}) is in the safety margin around an obstacle")
-    return col, row
 
 
 def _check_connected(grid: Grid, start, goal) -> None:

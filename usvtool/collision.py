@@ -1,7 +1,11 @@
-"""Exact collision checks of many straight segments against the blocked cells of a grid.
+"""The exact collision check: straight segments, routes and points against a grid's blocked cells.
+
+A contract below the stages: the planner's routes, its start and goal, and every later stage
+(simulated tracks, metrics) are judged by this one definition and implementation.
 
 Coordinates are continuous cell coordinates ``(x, y) = (col, row)``: cell ``(r, c)`` is the closed
 square ``[c, c+1] × [r, r+1]`` (see :meth:`usvtool.grid.Grid.to_cell_coords`).
+:func:`is_collision_free` and :func:`check_point` take map metres and a :class:`~usvtool.grid.Grid`.
 
 Definition (what "collides" means everywhere in usvtool)
     A segment collides when it touches a blocked cell (obstacle or margin): it meets the cell's
@@ -48,6 +52,9 @@ overlap in a seam ``2 pad`` wide, which is counted twice.
 from __future__ import annotations
 
 import numpy as np
+
+from usvtool.errors import UsvError
+from usvtool.grid import MARGIN, OBSTACLE, Grid
 
 EPS = 1e-9
 _MARGIN = 1e-6  # extra clearance the filter demands, >> √2·EPS
@@ -272,3 +279,57 @@ class SegmentChecker:
         if not dx.all():  # a north-south piece counts in the strips whose interior holds it
             within *= (dx > 0) | ((cx < d) & (cx > -1.0 - d))
         return touches, np.bincount(strip.take(take), within, touches.size)
+
+
+def is_collision_free(grid: Grid, points, checker: SegmentChecker | None = None) -> bool:
+    """Whether the route (map metres) stays in the grid and touches no blocked cell."""
+    col, row = grid.to_cell_coords(*np.asarray(points, float).T)
+    cells = np.column_stack([col, row])
+    checker = checker or SegmentChecker(grid.blocked)
+    try:
+        hit = checker.collides(cells[:-1], cells[1:])
+    except ValueError:  # leaves the grid
+        return False
+    return not hit.any()
+
+
+def check_point(grid: Grid, point, name: str = "point") -> tuple[float, float]:
+    """Cell coordinates ``(col, row)`` of a map point that lies in the grid (edges included) and
+    touches no blocked cell (closed squares enlarged by :data:`EPS`, as for segments); else
+    :class:`UsvError`, one line naming ``name`` and the point (metres to 0.1 m), and whether it
+    is outside the grid, on an obstacle or in the safety margin.
+
+    >>> from affine import Affine
+    >>> g = Grid(np.array([[0, 2], [0, 1]], np.uint8), Affine(10, 0, 0, 0, -10, 20))
+    >>> check_point(g, (5.0, 15.0), "start")
+    (0.5, 0.5)
+    >>> check_point(g, (10.0, 5.0), "goal")  # on the edge of the obstacle cell
+    Traceback (most recent call last):
+    ...
+    usvtool.errors.UsvError: goal (10, 5) is on an obstacle
+    >>> check_point(g, (25.0, 5.0), "goal")
+    Traceback (most recent call last):
+    ...
+    usvtool.errors.UsvError: goal (25, 5) is outside the grid (x 0..20, y 0..20)
+    """
+    x, y = (float(v) for v in point)
+    left, bottom, right, top = grid.bounds
+    if not (left <= x <= right and bottom <= y <= top):
+        raise UsvError(
+            f"{name} ({_m(x)}, {_m(y)}) is outside the grid (x {_m(left)}..{_m(right)}, "
+            f"y {_m(bottom)}..{_m(top)})"
+        )
+    col, row = (float(v) for v in grid.to_cell_coords(x, y))
+    rows = slice(max(int(np.ceil(row - 1 - EPS)), 0), int(np.floor(row + EPS)) + 1)
+    cols = slice(max(int(np.ceil(col - 1 - EPS)), 0), int(np.floor(col + EPS)) + 1)
+    touched = grid.cells[rows, cols]
+    if (touched == OBSTACLE).any():
+        raise UsvError(f"{name} ({_m(x)}, {_m(y)}) is on an obstacle")
+    if (touched == MARGIN).any():
+        raise UsvError(f"{name} ({_m(x)}, {_m(y)}) is in the safety margin around an obstacle")
+    return col, row
+
+
+def _m(value: float) -> str:
+    """Metres for messages: 0.1 m resolution, no exponent, no trailing zeros (332204.3, 21)."""
+    return f"{value:.1f}".rstrip("0").rstrip(".")
