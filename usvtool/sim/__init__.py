@@ -1,0 +1,1 @@
+"""Simulation stage: own ship (USV) among target ships, COLREGs encounters and their evaluation."""

@@ -1,0 +1,315 @@
+"""The Dynamic Window Approach core that every controller shares.
+
+One control step, all velocity samples at once (no per-sample Python loop):
+
+1. the dynamic window: the vessel's limits (IWSO-DWA eq. 18) intersected with what its
+   accelerations reach in one control period (eq. 19), sampled on a regular grid of
+   ``v_samples`` x ``omega_samples`` pairs (:func:`usvtool.sim.vessel.samples`);
+2. every pair is rolled out at constant (v, omega) over ``horizon`` seconds in steps of
+   ``step`` (eq. 16, :func:`usvtool.sim.vessel.rollout`);
+3. the rollouts are checked against the grid's clearance field (:mod:`usvtool.clearance`: a
+   contact where the clearance falls to the own ship's radius, half her length) and against
+   every target's predicted positions (constant velocity; a contact where the centres come
+   within half the sum of the two lengths). A sample's *time to contact* is the first predicted
+   time of either, infinite when there is none in the horizon. A sample is *admissible* (eq. 20,
+   :func:`usvtool.sim.vessel.admissible`) when it can brake to a stop before its contact, the
+   paper's "dist" read as Fox et al.'s distance along the trajectory to the contact;
+4. the controller's terms are computed for each sample, each normalised by its sum over the
+   candidates (the UDWA paper's eqs. 2-4) and combined with the controller's weights (eq. 1,
+   eq. 21, eq. 25); every term is a reward (larger is better);
+5. the candidates are the contact-free samples, less those the side rule removes (CCDWA); a side
+   preference (UDWA) multiplies the preferred side's scores by ``1 + priority``. The best
+   candidate is taken.
+
+No controller picks a sample with a contact while a contact-free one exists. When every sample
+has one, the controller takes, in order: an admissible one (it can still stop), the longest time
+to contact, the most starboard yaw rate, the lowest speed (COLREGs Rules 8 and 17(b): a clear
+turn to starboard and slowing), and logs an ``all-samples-collide`` event with the number of
+samples each check rejected, the way Nav2's DWB reports which critic rejected the trajectories.
+
+Angles inside are mathematical radians (counter-clockwise from east); a positive yaw rate turns
+to port (:mod:`usvtool.sim.sides`).
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from usvtool.errors import UsvError
+from usvtool.sim import sides as side_rules
+from usvtool.sim import vessel as vessel_model
+
+#: Yaw rates within this of zero (rad/s) belong to neither side.
+STRAIGHT = 1e-9
+
+
+@dataclass(frozen=True)
+class World:
+    """What a controller knows for a whole run."""
+
+    vessel: vessel_model.Vessel
+    goal: np.ndarray  # (2,) map metres
+    clearance: object | None = None  # usvtool.clearance.Clearance, or None on open water
+    route: np.ndarray | None = None  # (m, 2) the global route, start to goal
+    weather: object | None = None  # a usvtool.sim.weather.Weather, or None for calm water
+    period: float = 0.1  # control period (s)
+
+
+@dataclass(frozen=True)
+class Own:
+    """The own ship's state: position (m), heading (rad), speed (m/s), yaw rate (rad/s)."""
+
+    x: float
+    y: float
+    psi: float
+    v: float
+    omega: float
+
+
+@dataclass(frozen=True)
+class Targets:
+    """The targets as the own ship sees them: positions (k, 2), velocities (k, 2), lengths (k,)."""
+
+    pos: np.ndarray
+    vel: np.ndarray
+    length: np.ndarray
+
+    @classmethod
+    def none(cls) -> Targets:
+        return cls(np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0))
+
+
+@dataclass(frozen=True)
+class Encounter:
+    """The encounter that sets the side rule: its COLREGs class and the target's index."""
+
+    cls: str
+    target: int
+
+
+@dataclass
+class Decision:
+    """The velocity pair taken, and the events of the step (empty for most steps)."""
+
+    v: float
+    omega: float
+    events: list[dict] = field(default_factory=list)
+
+
+@dataclass
+class Rollouts:
+    """The velocity samples of one step and what the core computed for them."""
+
+    v: np.ndarray  # (N,)
+    omega: np.ndarray  # (N,)
+    pos: np.ndarray  # (N, T, 2) predicted positions
+    psi: np.ndarray  # (N, T) predicted headings
+    times: np.ndarray  # (T,) seconds ahead
+    contact: np.ndarray  # (N,) time to the first contact, inf when none
+    static_hit: np.ndarray  # (N,) bool: the first contact is with the grid
+    clearance: np.ndarray  # (N,) smallest distance to anything over the horizon (m)
+
+
+class Controller(ABC):
+    """A DWA controller: the core above, its terms and weights, and its side rule.
+
+    Parameters common to all (keyword arguments, each controller adding its own ``defaults``):
+    ``horizon`` (s), ``step`` (s, the rollout's time step), ``v_samples`` and
+    ``omega_samples`` (the window's grid), ``dist_max`` (m, the clearance term's cap),
+    ``weather`` (use the attainable speed of UDWA eq. 5 in the velocity term), ``sides`` (a
+    table of :mod:`usvtool.sim.sides`, or ``none``) and ``priority`` (the preferred side's score
+    bonus, for the controllers that prefer rather than remove).
+    """
+
+    name: str = ""
+    common: dict = {
+        "horizon": 3.0,
+        "step": 0.1,
+        "v_samples": 21,
+        "omega_samples": 21,
+        "dist_max": 30.0,
+        "weather": False,
+        "sides": "none",
+        "priority": 0.0,
+    }
+    defaults: dict = {}
+    removes_side = False  # CCDWA removes the other side; the others prefer
+
+    def __init__(self, **params):
+        options = {**self.common, **self.defaults}
+        unknown = set(params) - set(options)
+        if unknown:
+            known = ", ".join(sorted(options))
+            raise UsvError(f"{self.name}: unknown parameter(s) {sorted(unknown)} (known: {known})")
+        self.params = {**options, **params}
+        p = self.params
+        for key in ("horizon", "step", "dist_max"):
+            if not p[key] > 0:
+                raise UsvError(f"{self.name}: {key} must be > 0, not {p[key]}")
+        for key in ("v_samples", "omega_samples"):
+            if int(p[key]) != p[key] or p[key] < 2:
+                raise UsvError(f"{self.name}: {key} must be an integer >= 2, not {p[key]}")
+        if p["sides"] != "none" and p["sides"] not in side_rules.TABLES:
+            known = ", ".join(["none", *side_rules.TABLES])
+            raise UsvError(f"{self.name}: unknown sides {p['sides']!r} (known: {known})")
+        if not p["priority"] >= 0:
+            raise UsvError(f"{self.name}: priority must be >= 0, not {p['priority']}")
+        self.times = p["step"] * np.arange(1, int(round(p["horizon"] / p["step"])) + 1)
+        self.world: World | None = None
+
+    def reset(self, world: World) -> None:
+        """Start a run in ``world``."""
+        self.world = world
+
+    # -- the core --------------------------------------------------------------------------
+
+    def decide(self, own: Own, targets: Targets, encounter: Encounter | None = None) -> Decision:
+        """The velocity pair for the next control period."""
+        r = self.rollouts(own, targets)
+        side = self.side(encounter)
+        free = ~np.isfinite(r.contact)
+        removed = np.zeros_like(free)
+        if side != side_rules.EITHER and self.removes_side:
+            removed = np.sign(r.omega) == -side
+        candidates = free & ~removed
+        if not candidates.any():
+            return self._fallback(own, r, removed)
+        score = self.score(own, r, candidates)
+        if side != side_rules.EITHER and self.params["priority"] > 0:
+            score = np.where(np.sign(r.omega) == side, score * (1 + self.params["priority"]), score)
+        score = np.where(candidates, score, -np.inf)
+        best = int(np.argmax(score))
+        decision = Decision(float(r.v[best]), float(r.omega[best]))
+        if side != side_rules.EITHER and np.sign(r.omega[best]) == -side:
+            decision.events.append(self._departure(encounter, side, r, score, free))
+        return decision
+
+    def rollouts(self, own: Own, targets: Targets) -> Rollouts:
+        """Sample the window, roll every sample out and find its contacts."""
+        world, p = self.world, self.params
+        vessel = world.vessel
+        window = vessel_model.window(vessel, own.v, own.omega, world.period)
+        v, omega = vessel_model.samples(
+            window, int(p["v_samples"]), int(p["omega_samples"]), current=(own.v, own.omega)
+        )
+        pos, psi = vessel_model.rollout(own.x, own.y, own.psi, v, omega, p["step"], len(self.times))
+        radius = vessel.length / 2
+        n, t = v.size, self.times.size
+        if world.clearance is not None:
+            static_gap = world.clearance.at(pos) - radius
+        else:
+            static_gap = np.full((n, t), np.inf)
+        static_hit = static_gap <= 0  # (N, T)
+        clearance = static_gap.min(axis=1)
+        hit = static_hit
+        if len(targets.length):
+            # squared centre distances (N, k, T) against each target's predicted position
+            ahead = targets.pos[:, None, :] + targets.vel[:, None, :] * self.times[:, None]
+            dx = pos[:, None, :, 0] - ahead[None, :, :, 0]
+            dy = pos[:, None, :, 1] - ahead[None, :, :, 1]
+            d2 = dx * dx + dy * dy
+            reach = (vessel.length + targets.length) / 2  # (k,)
+            hit = hit | (d2 <= (reach * reach)[None, :, None]).any(axis=1)
+            ship_gap = (np.sqrt(d2.min(axis=2)) - reach).min(axis=1)
+            clearance = np.minimum(clearance, ship_gap)
+        first = np.where(hit.any(axis=1), hit.argmax(axis=1), t)
+        at = np.minimum(first, t - 1)
+        contact = np.where(first < t, self.times[at], np.inf)
+        static_first = (first < t) & static_hit[np.arange(n), at]
+        return Rollouts(v, omega, pos, psi, self.times, contact, static_first, clearance)
+
+    def side(self, encounter: Encounter | None) -> int:
+        """The side the rule asks for in ``encounter``."""
+        table = self.params["sides"]
+        if encounter is None or table == "none":
+            return side_rules.EITHER
+        return side_rules.side_for(table, encounter.cls)
+
+    def score(self, own: Own, r: Rollouts, candidates: np.ndarray) -> np.ndarray:
+        """The weighted sum of the normalised terms (eqs. 2-4), over ``candidates``."""
+        total = np.zeros(r.v.size)
+        for weight, values in self.terms(own, r):
+            total += weight * normalise(values, candidates)
+        return total
+
+    @abstractmethod
+    def terms(self, own: Own, r: Rollouts) -> list[tuple[float, np.ndarray]]:
+        """(weight, reward per sample) of each term of the controller's objective."""
+
+    # -- shared terms ----------------------------------------------------------------------
+
+    def velocity(self, r: Rollouts) -> np.ndarray:
+        """The speed term: the sampled speed, or with ``weather`` the speed it makes good in
+        the wind and waves at the own ship (UDWA eq. 5) on the rollout's final heading."""
+        world = self.world
+        if not self.params["weather"] or world.weather is None:
+            return r.v
+        end = r.pos[:, -1]
+        return world.weather.attainable_speed(
+            r.v, r.psi[:, -1], end[:, 0], end[:, 1], world.vessel.deadweight
+        )
+
+    def distance(self, r: Rollouts) -> np.ndarray:
+        """The clearance term: the smallest distance to the grid or a target over the horizon,
+        capped at ``dist_max``."""
+        return np.clip(r.clearance, 0.0, self.params["dist_max"])
+
+    @staticmethod
+    def heading(r: Rollouts, bearing: np.ndarray | float) -> np.ndarray:
+        """The heading term: pi less the angle between the rollout's final heading and
+        ``bearing`` (rad)."""
+        return np.pi - np.abs(vessel_model.wrap(bearing - r.psi[:, -1]))
+
+    # -- when no sample is free ------------------------------------------------------------
+
+    def _fallback(self, own: Own, r: Rollouts, removed: np.ndarray) -> Decision:
+        admissible = vessel_model.admissible(r.v, r.omega, r.v * r.contact, self.world.vessel)
+        # np.lexsort sorts by the last key first: admissible, contact time, starboard, slow
+        order = np.lexsort((r.v, r.omega, -r.contact, ~admissible))
+        best = int(order[0])
+        event = {
+            "kind": "all-samples-collide",
+            "samples": int(r.v.size),
+            "rejected": {
+                "grid": int(np.count_nonzero(r.static_hit)),
+                "targets": int(np.count_nonzero(np.isfinite(r.contact) & ~r.static_hit)),
+                "side": int(np.count_nonzero(removed & ~np.isfinite(r.contact))),
+            },
+            "admissible": int(np.count_nonzero(admissible)),
+            "contact_s": round(float(r.contact[best]), 3),
+        }
+        return Decision(float(r.v[best]), float(r.omega[best]), [event])
+
+    def _departure(self, encounter, side, r, score, free) -> dict:
+        """A Rule 2 departure: the step turned away from the side the rule prefers."""
+        own_side = np.sign(r.omega) == side
+        if not (own_side & free).any():
+            reason = f"every {side_rules.NAMES[side]} sample meets a contact within the horizon"
+        else:
+            best_own = float(np.max(np.where(own_side, score, -np.inf)))
+            reason = (
+                f"best {side_rules.NAMES[side]} score {best_own:.3f} below "
+                f"{float(np.max(score)):.3f} on the other side"
+            )
+        return {
+            "kind": "rule2-departure",
+            "target": encounter.target,
+            "class": encounter.cls,
+            "preferred": side_rules.NAMES[side],
+            "reason": reason,
+        }
+
+
+def normalise(values: np.ndarray, candidates: np.ndarray) -> np.ndarray:
+    """Each candidate's share of the term's sum over the candidates (UDWA eqs. 2-4); zero for
+    the others, and for every sample when the sum is zero.
+
+    >>> normalise(np.array([1.0, 3.0, 5.0]), np.array([True, True, False])).tolist()
+    [0.25, 0.75, 0.0]
+    """
+    values = np.where(candidates, values, 0.0)
+    total = values.sum()
+    return values / total if total > 0 else np.zeros_like(values)
