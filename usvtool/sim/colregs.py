@@ -434,6 +434,11 @@ def _next_true(mask: np.ndarray) -> np.ndarray:
 # ----------------------------------------------------------------------------- ship domain
 
 
+def onset_distance(length: float) -> float:
+    """The DCPA below which an encounter begins: the domain's semi-major axis, ``3.5 L``."""
+    return 0.5 * DOMAIN_LENGTH_FACTOR * length
+
+
 def domain_radius(own_xy, own_heading, target_xy, length) -> np.ndarray:
     """The target's normalised elliptic distance in the own ship's domain (≤ 1 inside).
 
@@ -629,7 +634,7 @@ def evaluate(
     t_len = np.broadcast_to(
         np.asarray(length if target_length is None else target_length, float), (k,)
     )
-    risk = 0.5 * DOMAIN_LENGTH_FACTOR * length if risk_distance is None else risk_distance
+    risk = onset_distance(length) if risk_distance is None else risk_distance
     r_crit = CRITICAL_RANGE_LENGTHS * length if critical_range is None else float(critical_range)
     sit = assess(own_xy[:, None], own_h[:, None], own_v[:, None], txy, th, tv)
     latched = latch_series(

@@ -1,0 +1,302 @@
+"""Run a scenario: the own ship under a DWA controller among its targets (``usvtool simulate``).
+
+Each step of ``sim.dt`` seconds: the targets are where their courses put them
+(:mod:`usvtool.sim.targets`, computed before the run); every target is classified and its
+encounter latched (:mod:`usvtool.sim.colregs`); the controller picks a velocity pair for the
+step, with the side rule of the most urgent latched encounter (the smallest time to the closest
+point of approach); the own ship moves on an exact arc (IWSO-DWA eq. 16) at the speed she makes
+good in the wind and waves (UDWA eq. 5, when the scenario has weather: for every controller, the
+sea does not care which one steers).
+
+The run ends when the own ship is within ``sim.goal_tolerance`` of the goal (*arrived*), when she
+touches a target (centres closer than half the sum of the two lengths) or an obstacle cell of the
+map (*collision*), or at ``sim.duration``.
+
+Figures of a run (the summary; :meth:`Result.summary`): ``min_distance_m`` the smallest centre
+distance to any target, ``mean_distance_m`` the mean over the steps with a latched encounter of
+the distance to the nearest target (the UDWA paper's "average distance", Table 1),
+``domain_intrusion_s`` the time some target is inside the own ship's domain, ``path_length_m``
+the length of her track, ``turns`` and ``mot`` (:mod:`usvtool.metrics`) on her track sampled
+every ``TURN_WINDOW`` seconds: a turn is a course change between two such legs (per 0.1 s step a
+smooth turn would count once per step, or never), ``step_time_ms`` the mean time of one control
+decision.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from usvtool import geodesy, metrics
+from usvtool.errors import UsvError
+from usvtool.sim import colregs
+from usvtool.sim import targets as target_motion
+from usvtool.sim import vessel as vessel_model
+from usvtool.sim.controllers import Encounter, Own, Targets, World, make_controller
+from usvtool.sim.scenario import Scenario
+from usvtool.trace import Trace
+
+#: Seconds between the track samples on which turns and mot are counted.
+TURN_WINDOW = 10.0
+#: How far (m) a route may start from the own ship's start, beyond the goal tolerance.
+ROUTE_START = 0.0
+
+
+@dataclass(frozen=True)
+class Options:
+    """What the command line adds to a scenario: another controller, parameters, the seed."""
+
+    controller: str | None = None
+    params: dict = field(default_factory=dict)
+    seed: int = 0
+
+
+@dataclass
+class Result:
+    """A finished run: its trace, its events and its figures."""
+
+    scenario: Scenario
+    trace: Trace
+    events: dict
+    figures: dict
+    crs: object | None = None
+
+    def summary(self) -> dict:
+        return dict(self.figures)
+
+
+def simulate(scenario: Scenario, options: Options | None = None) -> Result:
+    """Run ``scenario`` (see the module docstring)."""
+    opts = options or Options()
+    setup = _Setup(scenario)
+    name = opts.controller or scenario.controller["name"]
+    params = {k: v for k, v in scenario.controller.items() if k != "name"}
+    if opts.controller and opts.controller != scenario.controller["name"]:
+        params = {}  # the scenario's parameters belong to its own controller
+    controller = make_controller(name, **{**params, **opts.params})
+    sim = scenario.sim
+    n_steps = int(round(sim.duration / sim.dt))
+    times = sim.dt * np.arange(n_steps + 1)
+    rng = np.random.default_rng(opts.seed)
+    # one step beyond the end, for the targets' velocities at the last step
+    times_ahead = sim.dt * np.arange(n_steps + 2)
+    tracks = [target_motion.positions(c, times_ahead, rng) for c in setup.courses]
+    ahead = np.stack(tracks, axis=1) if tracks else np.zeros((len(times_ahead), 0, 2))
+    k = ahead.shape[1]
+    lengths = np.array([t.length for t in scenario.targets], float)
+    vessel = setup.vessel
+    world = World(vessel, setup.goal, setup.clearance, setup.route, setup.weather, sim.dt)
+    controller.reset(world)
+
+    x, y = setup.start
+    psi = float(geodesy.compass_to_math(scenario.own.heading))
+    v = float(np.clip(scenario.own.speed, vessel.min_speed, vessel.max_speed))
+    omega, made_good = 0.0, v
+    tracker = colregs.EncounterTracker(k, risk_distance=colregs.onset_distance(vessel.length))
+    own_states = [(x, y, psi, made_good, omega)]
+    controller_events: list[dict] = []
+    collision, arrived, decide_time, steps = None, False, 0.0, 0
+    for i in range(n_steps):
+        vel = (ahead[i + 1] - ahead[i]) / sim.dt
+        heading = geodesy.math_to_compass(np.arctan2(vel[:, 1], vel[:, 0]))
+        tracker.update(times[i], (x, y), geodesy.math_to_compass(psi), made_good, ahead[i],
+                       heading, np.hypot(vel[:, 0], vel[:, 1]))  # fmt: skip
+        urgent = tracker.most_urgent()
+        encounter = None if urgent is None else Encounter(
+            colregs.CLASS_NAMES[tracker.latched[urgent]], urgent
+        )  # fmt: skip
+        t0 = time.perf_counter()
+        decision = controller.decide(Own(x, y, psi, v, omega), Targets(ahead[i], vel, lengths),
+                                     encounter)  # fmt: skip
+        decide_time += time.perf_counter() - t0
+        controller_events += [{"t": round(float(times[i]), 3), **e} for e in decision.events]
+        v, omega = decision.v, decision.omega
+        made_good = v if setup.weather is None else float(
+            setup.weather.attainable_speed(v, psi, x, y, vessel.deadweight)
+        )  # fmt: skip
+        x, y, psi = (float(a) for a in vessel_model.step(x, y, psi, made_good, omega, sim.dt))
+        own_states.append((x, y, psi, made_good, omega))
+        steps = i + 1
+        collision = _collision(setup, (x, y), ahead[steps], vessel.length, lengths)
+        if collision is not None:
+            controller_events.append({"t": round(float(times[steps]), 3), "kind": "collision",
+                                      "with": _name(scenario, collision)})  # fmt: skip
+            break
+        if np.hypot(x - setup.goal[0], y - setup.goal[1]) <= sim.goal_tolerance:
+            arrived = True
+            break
+    return _result(scenario, setup, opts, controller, times[: steps + 1], np.array(own_states),
+                   ahead[: steps + 2], lengths, controller_events, collision, arrived,
+                   decide_time / max(steps, 1))  # fmt: skip
+
+
+class _Setup:
+    """The scenario's files read and its points in map metres, with errors naming the field."""
+
+    def __init__(self, scenario: Scenario):
+        from usvtool.sim import weather as weather_model
+
+        path = self.path = scenario.path
+        self.grid = self.clearance = None
+        crs = None
+        if scenario.map is not None:
+            from usvtool.clearance import Clearance
+            from usvtool.grid import read_grid
+
+            self.grid = read_grid(scenario.map)
+            self.clearance = Clearance(self.grid)
+            crs = self.grid.crs
+        self.crs = crs
+        self.start = self.point(scenario.own.start, "own.start")
+        self.goal = np.array(self.point(scenario.own.goal, "own.goal"))
+        if self.grid is not None:
+            from usvtool.collision import check_point
+
+            for field_name, p in (("own.start", self.start), ("own.goal", self.goal)):
+                try:
+                    check_point(self.grid, p, field_name)
+                except UsvError as exc:
+                    raise UsvError(f"{path}: {exc}") from None
+        self.vessel = vessel_model.vessel_from(
+            scenario.own.vessel, scenario.own.overrides, f"{path}: own"
+        )
+        self.route = None
+        if scenario.route is not None:
+            from usvtool.route import read_path_geojson
+
+            points, _ = read_path_geojson(scenario.route)
+            gap = float(np.hypot(*(points[0] - np.asarray(self.start))))
+            if gap > scenario.sim.goal_tolerance + ROUTE_START:
+                raise UsvError(
+                    f"{path}: route {scenario.route.name} starts {gap:.1f} m from own.start "
+                    f"(at most sim.goal_tolerance, {scenario.sim.goal_tolerance:g} m)"
+                )
+            self.route = points
+        self.weather = None
+        w = scenario.weather
+        if w is not None and w.field is not None:
+            self.weather = weather_model.read_weather(w.field, crs=crs)
+        elif w is not None:
+            self.weather = weather_model.uniform(
+                w.wind_speed, w.wind_from, w.wave_height, w.wave_from, f"{path}: weather"
+            )
+        self.courses = [self.course(t, i) for i, t in enumerate(scenario.targets)]
+
+    def point(self, p, where: str) -> tuple[float, float]:
+        if isinstance(p, dict):
+            if self.crs is None:
+                raise UsvError(f"{self.path}: {where}: lon/lat needs a map with a CRS")
+            x, y = geodesy.lonlat_to_map(self.crs, p["lon"], p["lat"])
+            return float(x), float(y)
+        return float(p[0]), float(p[1])
+
+    def course(self, t, i: int) -> target_motion.Course:
+        where = f"targets[{i}]"
+        track = None
+        if t.track is not None:
+            to_map = (lambda lon, lat: geodesy.lonlat_to_map(self.crs, lon, lat)) \
+                if self.crs is not None else None  # fmt: skip
+            times, xy, _ = target_motion.read_track(t.track, to_map)
+            track = (times, xy)
+        waypoints = None
+        if t.waypoints is not None:
+            waypoints = np.array([self.point(p, f"{where}.waypoints") for p in t.waypoints])
+        return target_motion.Course(
+            start=np.array(self.point(t.start, f"{where}.start")) if t.start is not None else None,
+            heading=float(geodesy.compass_to_math(t.heading)),
+            speed=t.speed,
+            waypoints=waypoints,
+            track=track,
+            heading_sd=np.radians(t.heading_sd),
+            speed_sd=t.speed_sd,
+        )
+
+
+def _collision(setup: _Setup, own, ahead: np.ndarray, own_length: float, lengths) -> int | None:
+    """-1 for the grid, the target's index for a target, None when the own ship is clear."""
+    if len(lengths):
+        d = np.hypot(ahead[:, 0] - own[0], ahead[:, 1] - own[1])
+        touching = np.flatnonzero(d < (own_length + lengths) / 2)
+        if touching.size:
+            return int(touching[0])
+    if setup.grid is not None:
+        from usvtool.grid import OBSTACLE
+
+        grid = setup.grid
+        if not grid.contains(*own):
+            return -1
+        row, col = grid.cell_of(*own)
+        if grid.cells[row, col] == OBSTACLE:
+            return -1
+    return None
+
+
+def _name(scenario: Scenario, index: int) -> str:
+    return "map" if index == -1 else scenario.targets[index].name
+
+
+def _result(scenario, setup, opts, controller, times, own, ahead, lengths, controller_events,
+            collision, arrived, step_time) -> Result:  # fmt: skip
+    """The trace (targets' headings, speeds and yaw rates from their positions), the COLREGs
+    evaluation and the figures."""
+    n, dt = len(times), scenario.sim.dt
+    step = np.diff(ahead, axis=0)  # (n, k, 2): each step's motion
+    course = np.arctan2(step[..., 1], step[..., 0])
+    turn = np.diff(np.unwrap(course, axis=0), axis=0, append=np.unwrap(course, axis=0)[-1:]) / dt
+    x = np.column_stack([own[:, 0], ahead[:n, :, 0]])
+    y = np.column_stack([own[:, 1], ahead[:n, :, 1]])
+    heading = geodesy.math_to_compass(np.column_stack([own[:, 2], course]))
+    speed = np.column_stack([own[:, 3], np.hypot(step[..., 0], step[..., 1]) / dt])
+    yaw = -np.degrees(np.column_stack([own[:, 4], turn]))  # compass sense: + to starboard
+    names = ["own", *[t.name for t in scenario.targets]]
+    trace = Trace(times, names, x, y, heading, speed, yaw)
+    rule2 = [e for e in controller_events if e["kind"] == "rule2-departure"]
+    evaluation = colregs.evaluate(
+        times, x[:, 0], y[:, 0], heading[:, 0], speed[:, 0], x[:, 1:], y[:, 1:], heading[:, 1:],
+        speed[:, 1:], setup.vessel.length, lengths, rule2,
+    )  # fmt: skip
+    track = np.column_stack([x[:, 0], y[:, 0]])
+    sampled = track[:: max(1, int(round(TURN_WINDOW / dt)))]
+    if not np.array_equal(sampled[-1], track[-1]):
+        sampled = np.vstack([sampled, track[-1]])
+    figures = {
+        "scenario": scenario.name,
+        "controller": controller.name,
+        "parameters": controller.params,
+        "seed": opts.seed,
+        "arrived": bool(arrived),
+        "collision": None if collision is None else _name(scenario, collision),
+        "time_s": round(float(times[-1]), 3),
+        "path_length_m": round(float(metrics.path_length(track)), 3),
+        "turns": int(metrics.turns(sampled)),
+        "mot": round(float(metrics.mot(sampled)), 6),
+        "step_time_ms": round(step_time * 1e3, 4),
+        **evaluation["figures"],
+        "per_target": [_per_target(e, names) for e in evaluation["events"]],
+    }
+    events = {
+        "scenario": scenario.name,
+        "controller": controller.name,
+        "steps": controller_events,
+        "encounters": evaluation["events"],
+        "thresholds": evaluation["thresholds"],
+        "unmatched_rule2": evaluation["unmatched_rule2"],
+    }
+    return Result(scenario, trace, events, figures, setup.crs)
+
+
+def _per_target(event: dict, names: list[str]) -> dict:
+    """The summary's entry for one encounter."""
+    manoeuvre = event.get("first_manoeuvre") or {}
+    return {
+        "target": names[1 + event["target"]],
+        "class": event["class"],
+        "min_distance_m": event["min_distance_m"],
+        "cpa_time_s": event["cpa_time_s"],
+        "passing_side": event["passing_side"],
+        "first_manoeuvre_side": manoeuvre.get("side"),
+        "rule2_departure": bool(event.get("rule2_departure")),
+        "compliant": event["compliant"],
+    }
