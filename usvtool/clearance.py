@@ -19,7 +19,7 @@ grid; a query is one gather.
 >>> from usvtool.grid import Grid
 >>> cells = np.zeros((5, 5), np.uint8); cells[2, 4] = 1  # one obstacle cell at the east edge
 >>> field = Clearance(Grid(cells, Affine(10, 0, 0, 0, -10, 50)))
->>> field.at(np.array([[25.0, 25.0], [35.0, 25.0], [45.0, 25.0], [5.0, 45.0], [-1.0, 0.0]]))
+>>> field.at(np.array([25.0, 35.0, 45.0, 5.0, -1.0]), np.array([25.0, 25.0, 25.0, 45.0, 0.0]))
 array([15.,  5.,  0.,  5.,  0.])
 """
 
@@ -38,15 +38,16 @@ class Clearance:
         self.grid = grid
         free = np.pad(~grid.blocked, 1).astype(np.uint8)  # the outside is blocked
         dist = cv2.distanceTransform(free, cv2.DIST_L2, cv2.DIST_MASK_PRECISE)[1:-1, 1:-1]
-        self._metres = np.where(dist > 0, (dist - 0.5) * grid.cell_size, 0.0)
+        self._metres = np.where(dist > 0, (dist - 0.5) * grid.cell_size, 0.0).astype(float)
+        self._flat = np.pad(self._metres, 1).ravel()
 
-    def at(self, points: np.ndarray) -> np.ndarray:
-        """Clearance in metres at map points ``(..., 2)``; shape ``(...)``."""
-        points = np.asarray(points, float)
-        col, row = self.grid.to_cell_coords(points[..., 0], points[..., 1])
-        col, row = np.floor(col).astype(np.intp), np.floor(row).astype(np.intp)
+    def at(self, x, y) -> np.ndarray:
+        """Clearance in metres at the map points ``(x, y)`` (arrays of one shape)."""
+        left, _, _, top = self.grid.bounds
+        scale = 1.0 / self.grid.cell_size
         h, w = self._metres.shape
-        inside = (row >= 0) & (row < h) & (col >= 0) & (col < w)
-        out = np.zeros(points.shape[:-1])
-        out[inside] = self._metres[row[inside], col[inside]]
-        return out
+        # indices into the padded field, whose border (zero) stands for everything outside;
+        # clipped to be >= 0 first, so truncation is the floor
+        col = np.clip((np.asarray(x, float) - left) * scale + 1, 0, w + 1).astype(np.intp)
+        row = np.clip((top - np.asarray(y, float)) * scale + 1, 0, h + 1).astype(np.intp)
+        return self._flat[row * (w + 2) + col]

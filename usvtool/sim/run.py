@@ -24,6 +24,7 @@ decision.
 
 from __future__ import annotations
 
+import contextlib
 import time
 from dataclasses import dataclass, field
 
@@ -75,7 +76,8 @@ def simulate(scenario: Scenario, options: Options | None = None) -> Result:
     params = {k: v for k, v in scenario.controller.items() if k != "name"}
     if opts.controller and opts.controller != scenario.controller["name"]:
         params = {}  # the scenario's parameters belong to its own controller
-    controller = make_controller(name, **{**params, **opts.params})
+    with _naming(scenario.path, "controller"):
+        controller = make_controller(name, **{**params, **opts.params})
     sim = scenario.sim
     n_steps = int(round(sim.duration / sim.dt))
     times = sim.dt * np.arange(n_steps + 1)
@@ -145,7 +147,8 @@ class _Setup:
             from usvtool.clearance import Clearance
             from usvtool.grid import read_grid
 
-            self.grid = read_grid(scenario.map)
+            with _naming(path, "map"):
+                self.grid = read_grid(scenario.map)
             self.clearance = Clearance(self.grid)
             crs = self.grid.crs
         self.crs = crs
@@ -166,7 +169,12 @@ class _Setup:
         if scenario.route is not None:
             from usvtool.route import read_path_geojson
 
-            points, _ = read_path_geojson(scenario.route)
+            with _naming(path, "route"):
+                points, _ = read_path_geojson(scenario.route)
+                if points.ndim != 2 or points.shape[1:] != (2,) or len(points) < 2:
+                    raise UsvError(f"{scenario.route}: a route needs two or more [x, y] points")
+                if not np.isfinite(points).all():
+                    raise UsvError(f"{scenario.route}: a route's coordinates must be finite")
             gap = float(np.hypot(*(points[0] - np.asarray(self.start))))
             if gap > scenario.sim.goal_tolerance + ROUTE_START:
                 raise UsvError(
@@ -177,7 +185,8 @@ class _Setup:
         self.weather = None
         w = scenario.weather
         if w is not None and w.field is not None:
-            self.weather = weather_model.read_weather(w.field, crs=crs)
+            with _naming(path, "weather.field"):
+                self.weather = weather_model.read_weather(w.field, crs=crs)
         elif w is not None:
             self.weather = weather_model.uniform(
                 w.wind_speed, w.wind_from, w.wave_height, w.wave_from, f"{path}: weather"
@@ -198,7 +207,12 @@ class _Setup:
         if t.track is not None:
             to_map = (lambda lon, lat: geodesy.lonlat_to_map(self.crs, lon, lat)) \
                 if self.crs is not None else None  # fmt: skip
-            times, xy, _ = target_motion.read_track(t.track, to_map)
+            with _naming(self.path, f"{where}.track"):
+                try:
+                    times, xy, _ = target_motion.read_track(t.track, to_map)
+                except UnicodeDecodeError as exc:
+                    raise UsvError(f"{t.track}: not UTF-8 text ({exc.reason} at byte "
+                                   f"{exc.start})") from None  # fmt: skip
             track = (times, xy)
         waypoints = None
         if t.waypoints is not None:
@@ -212,6 +226,15 @@ class _Setup:
             heading_sd=np.radians(t.heading_sd),
             speed_sd=t.speed_sd,
         )
+
+
+@contextlib.contextmanager
+def _naming(path, where: str):
+    """Prefix a :class:`UsvError` raised in the block with the scenario and its field."""
+    try:
+        yield
+    except UsvError as exc:
+        raise UsvError(f"{path}: {where}: {exc}") from None
 
 
 def _collision(setup: _Setup, own, ahead: np.ndarray, own_length: float, lengths) -> int | None:

@@ -20,11 +20,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from usvtool.errors import UsvError, check_input_file
-from usvtool.sim.vessel import USER_UNITS
+from usvtool.sim.vessel import PRESETS, USER_UNITS
 
 DEFAULT_VESSEL = "iwso-dwa-usv"
 #: Inline vessel fields a scenario may set, in user units (:data:`usvtool.sim.vessel.USER_UNITS`).
 VESSEL_FIELDS = tuple(USER_UNITS)
+#: The smallest ``sim.dt`` (s): the trace writes times to the millisecond.
+MIN_DT = 0.001
+#: Characters a ship name may not hold (the trace CSV's rule), and the own ship's name.
+_BAD_NAME = (",", '"', "\n", "\r")
+OWN_NAME = "own"
 
 
 @dataclass(frozen=True)
@@ -114,13 +119,32 @@ def parse(data, path: str | os.PathLike) -> Scenario:
     own = v.mapping(top["own"], "own", required={"start", "goal"}, allowed=own_fields)
     targets = v.sequence(top.get("targets", []), "targets")
     controller = v.mapping(top.get("controller", {"name": "dwa"}), "controller", required={"name"})
+    controller_name = v.text(controller["name"], "controller.name")
+    if controller_name not in _controllers():
+        v.fail("controller.name", f"must be one of {', '.join(_controllers())}, not "
+                                  f"{controller_name!r}")  # fmt: skip
+    controller_params(controller_name, {k: val for k, val in controller.items() if k != "name"},
+                      lambda key: f"{path}: controller.{key}")  # fmt: skip
+    vessel = v.text(own.get("vessel", DEFAULT_VESSEL), "own.vessel")
+    if vessel not in PRESETS:
+        v.fail("own.vessel", f"must be a vessel preset ({', '.join(sorted(PRESETS))}), not "
+                             f"{vessel!r}")  # fmt: skip
+    dt = v.number(sim.get("dt", Sim.dt), "sim.dt", positive=True)
+    if dt < MIN_DT:
+        v.fail("sim.dt", f"must be at least {MIN_DT:g} s (the trace's time resolution), not {dt:g}")
+    targets = [_target(v, t, i) for i, t in enumerate(targets)]
+    names = [OWN_NAME]
+    for i, t in enumerate(targets):
+        if t.name in names:
+            v.fail(f"targets[{i}].name", f"{t.name!r} is taken (by the own ship or another target)")
+        names.append(t.name)
     return Scenario(
         name=v.text(top["name"], "name"),
         path=path,
         map=v.file(top["map"], "map") if "map" in top else None,
         route=v.file(top["route"], "route") if "route" in top else None,
         sim=Sim(
-            dt=v.number(sim.get("dt", Sim.dt), "sim.dt", positive=True),
+            dt=dt,
             duration=v.number(sim.get("duration", Sim.duration), "sim.duration", positive=True),
             goal_tolerance=v.number(
                 sim.get("goal_tolerance", Sim.goal_tolerance), "sim.goal_tolerance", positive=True
@@ -131,13 +155,16 @@ def parse(data, path: str | os.PathLike) -> Scenario:
             goal=v.point(own["goal"], "own.goal"),
             heading=v.angle(own.get("heading", 0.0), "own.heading"),
             speed=v.number(own.get("speed", 0.0), "own.speed", minimum=0.0),
-            vessel=v.text(own.get("vessel", DEFAULT_VESSEL), "own.vessel"),
-            overrides={k: v.number(own[k], f"own.{k}") for k in VESSEL_FIELDS if k in own},
+            vessel=vessel,
+            overrides={
+                k: v.number(own[k], f"own.{k}", positive=k != "min_speed", minimum=0.0)
+                for k in VESSEL_FIELDS if k in own
+            },
         ),
-        targets=[_target(v, t, i) for i, t in enumerate(targets)],
+        targets=targets,
         weather=_weather(v, top["weather"]) if "weather" in top else None,
         controller={
-            "name": v.text(controller["name"], "controller.name"),
+            "name": controller_name,
             **{k: val for k, val in controller.items() if k != "name"},
         },
     )
@@ -162,8 +189,11 @@ def _target(v: _Fields, data, index: int) -> Target:
         if not points:
             raise UsvError(f"{v.path}: {where}.waypoints is empty")
         waypoints = [v.point(p, f"{where}.waypoints[{i}]") for i, p in enumerate(points)]
+    name = v.text(t.get("name", f"target{index + 1}"), f"{where}.name")
+    if any(c in name for c in _BAD_NAME):
+        v.fail(f"{where}.name", f"must hold no comma, quote or line break, not {name!r}")
     return Target(
-        name=v.text(t.get("name", f"target{index + 1}"), f"{where}.name"),
+        name=name,
         start=v.point(t["start"], f"{where}.start") if "start" in t else None,
         heading=v.angle(t.get("heading", 0.0), f"{where}.heading"),
         speed=v.number(t["speed"], f"{where}.speed", minimum=0.0),
@@ -195,6 +225,48 @@ def _weather(v: _Fields, data) -> Weather:
         ),
         wave_from=v.angle(w["wave_from"], "weather.wave_from") if "wave_from" in w else None,
     )  # fmt: skip
+
+
+def controller_params(name: str, params: dict, where) -> dict:
+    """Check ``params`` against controller ``name``'s parameters: known names, and the type of
+    each default (a number: a finite number; true/false: a boolean; a string: a string; none: a
+    finite number or null). ``where(key)`` names a parameter in the errors. The values
+    themselves (a horizon > 0, ...) are the controller's to check.
+
+    >>> controller_params("dwa", {"horizon": 2}, lambda k: f"--param {k}")
+    {'horizon': 2}
+    >>> controller_params("dwa", {"horizon": "far"}, lambda k: f"--param {k}")
+    Traceback (most recent call last):
+    usvtool.errors.UsvError: --param horizon must be a finite number, not 'far'
+    """
+    cls = _controllers()[name]
+    known = {**cls.common, **cls.defaults}
+    for key, value in params.items():
+        if key not in known:
+            raise UsvError(f"{where(key)} is not a parameter of {name} "
+                           f"(known: {', '.join(sorted(known))})")  # fmt: skip
+        default = known[key]
+        number = not isinstance(value, bool) and isinstance(value, int | float)
+        if isinstance(default, bool):
+            ok, what = isinstance(value, bool), "true or false"
+        elif isinstance(default, int | float) or default is None:
+            ok = number and math.isfinite(value) or (default is None and value is None)
+            what = "a finite number" + (" or null" if default is None else "")
+            if number and not math.isfinite(value):
+                what = "finite"
+        elif isinstance(default, str):
+            ok, what = isinstance(value, str) and bool(value), "a non-empty string"
+        else:
+            ok, what = True, ""
+        if not ok:
+            raise UsvError(f"{where(key)} must be {what}, not {value!r}")
+    return params
+
+
+def _controllers() -> dict:
+    from usvtool.sim.controllers import CONTROLLERS
+
+    return CONTROLLERS
 
 
 class _Fields:

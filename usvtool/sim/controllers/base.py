@@ -105,9 +105,8 @@ class Rollouts:
 
     v: np.ndarray  # (N,)
     omega: np.ndarray  # (N,)
-    pos: np.ndarray  # (N, T, 2) predicted positions
-    psi: np.ndarray  # (N, T) predicted headings
-    times: np.ndarray  # (T,) seconds ahead
+    end: np.ndarray  # (N,) complex: the predicted final positions x + iy
+    psi_end: np.ndarray  # (N,) the predicted final headings (rad)
     contact: np.ndarray  # (N,) time to the first contact, inf when none
     static_hit: np.ndarray  # (N,) bool: the first contact is with the grid
     clearance: np.ndarray  # (N,) smallest distance to anything over the horizon (m)
@@ -195,31 +194,33 @@ class Controller(ABC):
         v, omega = vessel_model.samples(
             window, int(p["v_samples"]), int(p["omega_samples"]), current=(own.v, own.omega)
         )
-        pos, psi = vessel_model.rollout(own.x, own.y, own.psi, v, omega, p["step"], len(self.times))
+        z = vessel_model.arcs(own.x, own.y, own.psi, v, omega, p["step"], len(self.times))
         radius = vessel.length / 2
         n, t = v.size, self.times.size
+        x, y = np.ascontiguousarray(z.real), np.ascontiguousarray(z.imag)
         if world.clearance is not None:
-            static_gap = world.clearance.at(pos) - radius
+            static_gap = world.clearance.at(x, y) - radius  # (N, T)
+            hit = static_gap <= 0
+            clearance = static_gap.min(axis=1)
         else:
-            static_gap = np.full((n, t), np.inf)
-        static_hit = static_gap <= 0  # (N, T)
-        clearance = static_gap.min(axis=1)
-        hit = static_hit
-        if len(targets.length):
-            # squared centre distances (N, k, T) against each target's predicted position
-            ahead = targets.pos[:, None, :] + targets.vel[:, None, :] * self.times[:, None]
-            dx = pos[:, None, :, 0] - ahead[None, :, :, 0]
-            dy = pos[:, None, :, 1] - ahead[None, :, :, 1]
-            d2 = dx * dx + dy * dy
-            reach = (vessel.length + targets.length) / 2  # (k,)
-            hit = hit | (d2 <= (reach * reach)[None, :, None]).any(axis=1)
-            ship_gap = (np.sqrt(d2.min(axis=2)) - reach).min(axis=1)
-            clearance = np.minimum(clearance, ship_gap)
+            hit = np.zeros((n, t), bool)
+            clearance = np.full(n, np.inf)
+        static = hit.copy()
+        # one target at a time: (N, T) temporaries, small enough to stay in the allocator's
+        # cache (fresh (N, k, T) arrays cost more in page faults than in arithmetic)
+        ahead = targets.pos[:, None, :] + targets.vel[:, None, :] * self.times[:, None]
+        for j, length in enumerate(targets.length):
+            d2 = np.square(x - ahead[j, :, 0])
+            d2 += np.square(y - ahead[j, :, 1])
+            reach = (vessel.length + length) / 2
+            hit |= d2 <= reach * reach
+            np.minimum(clearance, np.sqrt(d2.min(axis=1)) - reach, out=clearance)
         first = np.where(hit.any(axis=1), hit.argmax(axis=1), t)
         at = np.minimum(first, t - 1)
         contact = np.where(first < t, self.times[at], np.inf)
-        static_first = (first < t) & static_hit[np.arange(n), at]
-        return Rollouts(v, omega, pos, psi, self.times, contact, static_first, clearance)
+        static_first = (first < t) & static[np.arange(n), at]
+        psi_end = vessel_model.wrap(own.psi + omega * self.times[-1])
+        return Rollouts(v, omega, z[:, -1], psi_end, contact, static_first, clearance)
 
     def side(self, encounter: Encounter | None) -> int:
         """The side the rule asks for in ``encounter``."""
@@ -247,9 +248,8 @@ class Controller(ABC):
         world = self.world
         if not self.params["weather"] or world.weather is None:
             return r.v
-        end = r.pos[:, -1]
         return world.weather.attainable_speed(
-            r.v, r.psi[:, -1], end[:, 0], end[:, 1], world.vessel.deadweight
+            r.v, r.psi_end, r.end.real, r.end.imag, world.vessel.deadweight
         )
 
     def distance(self, r: Rollouts) -> np.ndarray:
@@ -261,7 +261,7 @@ class Controller(ABC):
     def heading(r: Rollouts, bearing: np.ndarray | float) -> np.ndarray:
         """The heading term: pi less the angle between the rollout's final heading and
         ``bearing`` (rad)."""
-        return np.pi - np.abs(vessel_model.wrap(bearing - r.psi[:, -1]))
+        return np.pi - np.abs(vessel_model.wrap(bearing - r.psi_end))
 
     # -- when no sample is free ------------------------------------------------------------
 

@@ -21,12 +21,11 @@ class DWA(Controller):
         p = self.params
         return [
             (p["w_velocity"], self.velocity(r)),
-            (p["w_heading"], self.heading(r, bearing(r.pos[:, -1], self.world.goal))),
+            (p["w_heading"], self.heading(r, bearing(r.end, self.world.goal))),
             (p["w_distance"], self.distance(r)),
         ]
 
 
 def bearing(points: np.ndarray, goal: np.ndarray) -> np.ndarray:
-    """Mathematical bearing (rad) from each point ``(N, 2)`` to ``goal``."""
-    d = np.asarray(goal) - points
-    return np.arctan2(d[:, 1], d[:, 0])
+    """Mathematical bearing (rad) from each point ``x + iy`` ``(N,)`` to ``goal`` ``(2,)``."""
+    return np.angle(goal[0] + 1j * goal[1] - points)

@@ -67,7 +67,7 @@ class GDWA(Controller):
         p = self.params
         sub = self.subgoal(own)
         theta_c = np.arctan2(sub[1] - own.y, sub[0] - own.x)  # eq. 22
-        path = np.linalg.norm(r.pos[:, -1] - sub, axis=1)  # eq. 24
+        path = np.abs(r.end - (sub[0] + 1j * sub[1]))  # eq. 24
         return [
             (p["w_velocity"], self.velocity(r)),
             (p["w_heading"], self.heading(r, theta_c)),  # eq. 23
