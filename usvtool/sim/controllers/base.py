@@ -21,11 +21,15 @@ One control step, all velocity samples at once (no per-sample Python loop):
    preference (UDWA) multiplies the preferred side's scores by ``1 + priority``. The best
    candidate is taken.
 
-No controller picks a sample with a contact while a contact-free one exists. When every sample
-has one, the controller takes, in order: an admissible one (it can still stop), the longest time
-to contact, the most starboard yaw rate, the lowest speed (COLREGs Rules 8 and 17(b): a clear
-turn to starboard and slowing), and logs an ``all-samples-collide`` event with the number of
-samples each check rejected, the way Nav2's DWB reports which critic rejected the trajectories.
+No controller picks a sample with a contact while a contact-free one exists: when every sample
+the side rule keeps meets a contact, the removed side's free samples are the candidates after
+all, and the step logs a ``side-rule-overridden`` event (CCDWA stays rigid until then: it turns
+away from its side only once that side holds no free sample within the horizon). When every
+sample has one, the controller takes, in order: an admissible one (it can still stop), the
+longest time to contact, the most starboard yaw rate, the lowest speed (COLREGs Rules 8 and
+17(b): a clear turn to starboard and slowing), and logs an ``all-samples-collide`` event with the
+number of samples each check rejected, the way Nav2's DWB reports which critic rejected the
+trajectories.
 
 Angles inside are mathematical radians (counter-clockwise from east); a positive yaw rate turns
 to port (:mod:`usvtool.sim.sides`).
@@ -174,6 +178,15 @@ class Controller(ABC):
         if side != side_rules.EITHER and self.removes_side:
             removed = np.sign(r.omega) == -side
         candidates = free & ~removed
+        events = []
+        if not candidates.any() and free.any():  # safety first: the removed side after all
+            candidates = free
+            events.append({
+                "kind": "side-rule-overridden",
+                "preferred": side_rules.NAMES[side],
+                "reason": f"every {side_rules.NAMES[side]} sample meets a contact within "
+                f"{self.times[-1]:g} s",
+            })  # fmt: skip
         if not candidates.any():
             return self._fallback(own, r, removed)
         score = self.score(own, r, candidates)
@@ -181,8 +194,8 @@ class Controller(ABC):
             score = np.where(np.sign(r.omega) == side, score * (1 + self.params["priority"]), score)
         score = np.where(candidates, score, -np.inf)
         best = int(np.argmax(score))
-        decision = Decision(float(r.v[best]), float(r.omega[best]))
-        if side != side_rules.EITHER and np.sign(r.omega[best]) == -side:
+        decision = Decision(float(r.v[best]), float(r.omega[best]), events)
+        if side != side_rules.EITHER and np.sign(r.omega[best]) == -side and not events:
             decision.events.append(self._departure(encounter, side, r, score, free))
         return decision
 
