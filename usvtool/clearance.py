@@ -38,14 +38,15 @@ class Clearance:
         self.grid = grid
         free = np.pad(~grid.blocked, 1).astype(np.uint8)  # the outside is blocked
         dist = cv2.distanceTransform(free, cv2.DIST_L2, cv2.DIST_MASK_PRECISE)[1:-1, 1:-1]
-        self._metres = np.where(dist > 0, (dist - 0.5) * grid.cell_size, 0.0).astype(float)
-        self._flat = np.pad(self._metres, 1).ravel()
+        #: the clearance of each cell (m), rows from the north as in the grid
+        self.metres = np.where(dist > 0, (dist - 0.5) * grid.cell_size, 0.0).astype(float)
+        self._flat = np.pad(self.metres, 1).ravel()
 
     def at(self, x, y) -> np.ndarray:
         """Clearance in metres at the map points ``(x, y)`` (arrays of one shape)."""
         left, _, _, top = self.grid.bounds
         scale = 1.0 / self.grid.cell_size
-        h, w = self._metres.shape
+        h, w = self.metres.shape
         # indices into the padded field, whose border (zero) stands for everything outside;
         # clipped to be >= 0 first, so truncation is the floor
         col = np.clip((np.asarray(x, float) - left) * scale + 1, 0, w + 1).astype(np.intp)

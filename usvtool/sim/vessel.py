@@ -275,11 +275,14 @@ def window(vessel: Vessel, v, omega, dt: float) -> Window:
     omega = np.asarray(omega, float)
     v_down, v_up = v - vessel.max_decel * dt, v + vessel.max_accel * dt
     w_down, w_up = omega - vessel.max_yaw_accel * dt, omega + vessel.max_yaw_accel * dt
+    def clip(limit, lo, hi):  # np.clip's dispatch costs more than the work on scalars
+        return _out(np.minimum(np.maximum(limit, lo), hi))
+
     return Window(
-        _out(np.clip(vessel.min_speed, v_down, v_up)),
-        _out(np.clip(vessel.max_speed, v_down, v_up)),
-        _out(np.clip(-vessel.max_yaw_rate, w_down, w_up)),
-        _out(np.clip(vessel.max_yaw_rate, w_down, w_up)),
+        clip(vessel.min_speed, v_down, v_up),
+        clip(vessel.max_speed, v_down, v_up),
+        clip(-vessel.max_yaw_rate, w_down, w_up),
+        clip(vessel.max_yaw_rate, w_down, w_up),
     )
 
 
