@@ -22,6 +22,7 @@ SUBCOMMANDS = {
     "preprocess": ("usvtool.cli.preprocess", "Turn a chart into a navigation grid GeoTIFF."),
     "render": ("usvtool.cli.render", "Draw an S-57 cell as an S-52 coloured chart image."),
     "plan": ("usvtool.cli.plan", "Plan a global route on a navigation grid."),
+    "simulate": ("usvtool.cli.simulate", "Run an encounter scenario: trace, events, tracks."),
     "functions": ("usvtool.cli.functions", "Run the optimizers on benchmark functions F1-F10."),
 }
 

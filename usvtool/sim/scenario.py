@@ -158,7 +158,8 @@ def parse(data, path: str | os.PathLike) -> Scenario:
             vessel=vessel,
             overrides={
                 k: v.number(own[k], f"own.{k}", positive=k != "min_speed", minimum=0.0)
-                for k in VESSEL_FIELDS if k in own
+                for k in VESSEL_FIELDS
+                if k in own
             },
         ),
         targets=targets,

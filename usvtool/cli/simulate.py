@@ -1,0 +1,116 @@
+"""``usvtool simulate``: run a scenario and write its trace CSV (+ events JSON, tracks GeoJSON).
+
+The scenario's schema is docs/scenario.md, the outputs and the summary docs/simulate.md.
+"""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+import click
+
+from usvtool.cli.options import emit, output_option, seed_option
+from usvtool.sim.controllers import CONTROLLERS
+
+log = logging.getLogger(__name__)
+
+
+def _params(ctx, param, values: tuple[str, ...]) -> dict:
+    """``NAME=VALUE`` pairs, each value a YAML scalar (number, true/false, null or a string)."""
+    import yaml
+
+    params = {}
+    for item in values:
+        name, sep, text = item.partition("=")
+        if not sep or not name.strip():
+            raise click.BadParameter(f"{item!r} is not NAME=VALUE")
+        if not text.strip():
+            raise click.BadParameter(f"{item!r} has no value (write {name}=null for none)")
+        try:
+            value = yaml.safe_load(text)
+        except yaml.YAMLError:
+            value = text
+        if isinstance(value, str):  # YAML 1.1 reads 1e3 as a string: a number is meant
+            try:
+                value = float(value) if any(c.isdigit() for c in value) else value
+            except ValueError:
+                pass
+        if isinstance(value, list | dict) or hasattr(value, "isoformat"):
+            raise click.BadParameter(f"{item!r}: the value must be a number, true/false, null or "
+                                     "a string")  # fmt: skip
+        params[name.strip()] = value
+    return params
+
+
+@click.command()
+@click.argument("scenario_path", metavar="SCENARIO.yaml", type=click.Path(dir_okay=False))
+@click.option(
+    "--controller",
+    type=click.Choice(list(CONTROLLERS)),
+    help="The controller to run instead of the scenario's (its parameters are then dropped).",
+)
+@click.option(
+    "--param",
+    "params",
+    multiple=True,
+    callback=_params,
+    metavar="NAME=VALUE",
+    help="A controller parameter (repeatable; the value a YAML scalar), over the scenario's.",
+)
+@seed_option
+@output_option("Trace CSV to write.")
+@click.option("--events", type=click.Path(dir_okay=False), help="Also write the events JSON.")
+@click.option("--tracks", type=click.Path(dir_okay=False), help="Also write the tracks GeoJSON.")
+def simulate(scenario_path: str, controller: str | None, params: dict, seed: int, output: str,
+             events: str | None, tracks: str | None) -> None:  # fmt: skip
+    """Run SCENARIO.yaml (own ship, targets, weather, controller) and write its trace to -o.
+
+    All the outputs are written, or none. The summary JSON goes to stdout.
+    """
+    from usvtool.atomic import check_outputs, staged
+    from usvtool.errors import UsvError
+    from usvtool.sim.controllers import make_controller
+    from usvtool.sim.run import Options
+    from usvtool.sim.run import simulate as run
+    from usvtool.sim.scenario import controller_params, read_scenario
+    from usvtool.trace import write_events, write_trace, write_tracks
+
+    outputs = [("-o", output), ("--events", events), ("--tracks", tracks)]
+    check_outputs(outputs)
+    for option, path in outputs:
+        if path is not None and Path(path).resolve() == Path(scenario_path).resolve():
+            raise UsvError(f"{option} {path}: is the scenario itself")
+    scenario = read_scenario(scenario_path)
+    name = controller or scenario.controller["name"]
+    controller_params(name, params, lambda key: f"--param {key}")
+    try:
+        make_controller(name, **params)  # the values, before the scenario's files are read
+    except UsvError as exc:
+        raise UsvError(f"--param: {exc}") from None
+    if controller and controller != scenario.controller["name"] and len(scenario.controller) > 1:
+        log.info("%s: --controller %s: the parameters the scenario gives %s are not used",
+                 scenario_path, controller, scenario.controller["name"])  # fmt: skip
+    log.info("%s: running %s for %g s in steps of %g s", scenario_path, name,
+             scenario.sim.duration, scenario.sim.dt)  # fmt: skip
+    result = run(scenario, Options(controller=controller, params=params, seed=seed))
+    with staged(output, events, tracks) as (trace_tmp, events_tmp, tracks_tmp):
+        write_trace(trace_tmp, result.trace)
+        if events_tmp:
+            write_events(events_tmp, result.events)
+        if tracks_tmp:
+            write_tracks(tracks_tmp, result.trace, result.crs)
+    summary = result.summary()
+    if summary.get("collision"):
+        log.warning("%s: the own ship collided with %s at t %g s", scenario_path,
+                    summary["collision"], summary["time_s"])  # fmt: skip
+    elif not summary.get("arrived"):
+        log.info("%s: the own ship did not reach the goal in %g s", scenario_path,
+                 summary["time_s"])  # fmt: skip
+    log.info("%s: %d steps of %d ships", output, result.trace.n_steps, len(result.trace.ships))
+    extra = {"output": output, "scenario_file": scenario_path}
+    if events:
+        extra["events"] = events
+    if tracks:
+        extra["tracks"] = tracks
+    emit({**extra, **summary})
