@@ -41,8 +41,6 @@ from usvtool.trace import Trace
 
 #: Seconds between the track samples on which turns and mot are counted.
 TURN_WINDOW = 10.0
-#: How far (m) a route may start from the own ship's start, beyond the goal tolerance.
-ROUTE_START = 0.0
 
 
 @dataclass(frozen=True)
@@ -176,7 +174,7 @@ class _Setup:
                 if not np.isfinite(points).all():
                     raise UsvError(f"{scenario.route}: a route's coordinates must be finite")
             gap = float(np.hypot(*(points[0] - np.asarray(self.start))))
-            if gap > scenario.sim.goal_tolerance + ROUTE_START:
+            if gap > scenario.sim.goal_tolerance:
                 raise UsvError(
                     f"{path}: route {scenario.route.name} starts {gap:.1f} m from own.start "
                     f"(at most sim.goal_tolerance, {scenario.sim.goal_tolerance:g} m)"
