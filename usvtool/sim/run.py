@@ -295,7 +295,10 @@ def _result(scenario, setup, opts, controller, times, own, ahead, lengths, contr
         "mot": round(float(metrics.mot(sampled)), 6),
         "step_time_ms": round(step_time * 1e3, 4),
         **evaluation["figures"],
-        "per_target": [_per_target(e, names) for e in evaluation["events"]],
+        "per_target": [
+            _per_target(j, names[1 + j], evaluation["events"], times, x, y)
+            for j in range(len(names) - 1)
+        ],
     }
     events = {
         "scenario": scenario.name,
@@ -308,16 +311,25 @@ def _result(scenario, setup, opts, controller, times, own, ahead, lengths, contr
     return Result(scenario, trace, events, figures, setup.crs)
 
 
-def _per_target(event: dict, names: list[str]) -> dict:
-    """The summary's entry for one encounter."""
-    manoeuvre = event.get("first_manoeuvre") or {}
+def _per_target(j: int, name: str, encounters: list[dict], times, x, y) -> dict:
+    """The summary's entry for target ``j``: its closest distance and time over the whole run
+    (from the trace), and the COLREGs figures of its closest encounter (the events JSON lists
+    every encounter); ``compliant`` only when all its judged encounters are, ``rule2_departure``
+    when any has one."""
+    mine = [e for e in encounters if e["target"] == j]
+    main = min(mine, key=lambda e: e["min_distance_m"])
+    gap = np.hypot(x[:, 1 + j] - x[:, 0], y[:, 1 + j] - y[:, 0])
+    closest = int(np.argmin(gap))
+    judged = [e["compliant"] for e in mine if e["compliant"] is not None]
+    manoeuvre = main.get("first_manoeuvre") or {}
     return {
-        "target": names[1 + event["target"]],
-        "class": event["class"],
-        "min_distance_m": event["min_distance_m"],
-        "cpa_time_s": event["cpa_time_s"],
-        "passing_side": event["passing_side"],
+        "target": name,
+        "class": main["class"],
+        "encounters": sum(e["class"] != "none" for e in mine),
+        "min_distance_m": round(float(gap[closest]), 3),
+        "cpa_time_s": round(float(times[closest]), 3),
+        "passing_side": main["passing_side"],
         "first_manoeuvre_side": manoeuvre.get("side"),
-        "rule2_departure": bool(event.get("rule2_departure")),
-        "compliant": event["compliant"],
+        "rule2_departure": any(bool(e.get("rule2_departure")) for e in mine),
+        "compliant": all(judged) if judged else None,
     }
