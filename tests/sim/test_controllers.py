@@ -26,8 +26,13 @@ def ships(*rows):
     return Targets(a[:, :2], a[:, 2:4], a[:, 4])
 
 
+#: The hand-built situations below are sized for a short horizon, and the plain loop knows no
+#: ship domain: both set here, whatever the controllers' defaults.
+SHORT = {"horizon": 3.0, "step": 0.1, "domain": False}
+
+
 def controller(name="dwa", goal=(0.0, 300.0), clearance=None, weather=None, **params):
-    c = make_controller(name, **params)
+    c = make_controller(name, **{**SHORT, **params})
     c.reset(World(SHIP, np.array(goal), clearance, None, weather, 0.1))
     return c
 
@@ -190,3 +195,34 @@ def test_gdwa_follows_the_route_vertex_by_vertex():
     assert c.subgoal(Own(0, 0, NORTH, 4, 0)).tolist() == [0.0, 50.0]
     assert c.subgoal(Own(0, 46, NORTH, 4, 0)).tolist() == [50.0, 50.0]  # within reach
     assert c.subgoal(Own(60, 52, 0, 4, 0)).tolist() == [50.0, 100.0]  # passed: the goal
+
+
+def test_the_domain_is_kept_clear_when_some_sample_can():
+    """A ship lying 12 m ahead, 3 m to starboard: out of reach of every hull, but the straight
+    samples bring her inside the own ship's domain (7 L x 3 L, semi-axes 8.75 m and 3.75 m).
+    With the domain rule the choice keeps her outside it over the horizon, replayed by hand."""
+    targets = ships((3.0, 12.0, 0.0, 0.0, 2.5))
+    own = Own(0, 0, NORTH, 4.0, 0.0)
+    kept = controller(domain=True)
+    r = kept.rollouts(own, targets)
+    assert r.intrudes.any() and not r.intrudes.all()  # the premise
+    d = kept.decide(own, targets)
+    x, y, psi = own.x, own.y, own.psi
+    for _ in kept.times:  # the target inside the ellipse along and across the heading?
+        x, y, psi = (float(a) for a in vessel_model.step(x, y, psi, d.v, d.omega, 0.1))
+        mid = psi - d.omega * 0.05
+        along = (3.0 - x) * math.cos(mid) + (12.0 - y) * math.sin(mid)
+        across = (12.0 - y) * math.cos(mid) - (3.0 - x) * math.sin(mid)
+        assert (along / 8.75) ** 2 + (across / 3.75) ** 2 > 1
+    assert r.intrudes[r.omega == 0].all()  # holding course would bring her inside
+
+
+def test_a_rollout_through_the_goal_scores_the_full_heading():
+    """Close to the goal a fast rollout ends beyond it looking away; it reaches it all the same
+    and gets the heading term's maximum (a ship would circle the goal otherwise)."""
+    c = make_controller("dwa", **SHORT)
+    c.reset(World(SHIP, np.array([0.0, 6.0]), None, None, None, 0.1, 1.0))
+    r = c.rollouts(Own(0, 0, NORTH, 4.0, 0.0), Targets.none())
+    straight = r.omega == 0.0
+    assert r.reached[straight].all() and np.abs(r.end[straight] - 6j).min() > 5  # ends beyond
+    assert (c.heading(r, math.pi)[straight] == math.pi).all()

@@ -87,7 +87,8 @@ def simulate(scenario: Scenario, options: Options | None = None) -> Result:
     k = ahead.shape[1]
     lengths = np.array([t.length for t in scenario.targets], float)
     vessel = setup.vessel
-    world = World(vessel, setup.goal, setup.clearance, setup.route, setup.weather, sim.dt)
+    world = World(vessel, setup.goal, setup.clearance, setup.route, setup.weather, sim.dt,
+                  sim.goal_tolerance)  # fmt: skip
     controller.reset(world)
 
     x, y = setup.start

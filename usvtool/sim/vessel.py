@@ -201,7 +201,7 @@ def step(x, y, psi, v, omega, dt):
     return x, y, wrap(psi)
 
 
-def arcs(x0, y0, psi0, v, omega, dt: float, steps: int) -> np.ndarray:
+def arcs(x0, y0, psi0, v, omega, dt: float, steps: int, directions: bool = False):
     """The predicted positions ``x + iy`` ``(N, steps)`` of ``N`` velocity samples held for
     ``steps`` periods, at ``t = dt, 2·dt, …`` (the start pose not included).
 
@@ -210,7 +210,8 @@ def arcs(x0, y0, psi0, v, omega, dt: float, steps: int) -> np.ndarray:
     multiplication: the positions of eq. 16 integrated exactly, with two complex exponentials per
     sample rather than transcendental functions at every step (each costs as much as a dozen
     multiplications). ``np.sinc`` is exact at ``omega = 0`` (a straight line) and loses no
-    precision near it.
+    precision near it. With ``directions`` also each period's chord direction, a unit complex
+    number ``(N, steps)`` (the heading at the period's middle).
 
     >>> arcs(0, 0, 0, [1.0, 1.0], [0.0, math.pi], 0.5, 2).round(6).tolist()
     [[(0.5+0j), (1+0j)], [(0.31831+0.31831j), 0.63662j]]
@@ -219,13 +220,14 @@ def arcs(x0, y0, psi0, v, omega, dt: float, steps: int) -> np.ndarray:
     omega = np.atleast_1d(np.asarray(omega, float))
     v, omega = np.broadcast_arrays(v, omega)
     turn = omega * dt
-    z = np.empty((v.size, steps), complex)
-    z[:, 0] = v * dt * np.sinc(turn / (2 * np.pi)) * np.exp(1j * (psi0 + turn / 2))
-    z[:, 1:] = np.exp(1j * turn)[:, None]
-    np.cumprod(z, axis=1, out=z)
+    u = np.empty((v.size, steps), complex)
+    u[:, 0] = np.exp(1j * (psi0 + turn / 2))
+    u[:, 1:] = np.exp(1j * turn)[:, None]
+    np.cumprod(u, axis=1, out=u)
+    z = (v * dt * np.sinc(turn / (2 * np.pi)))[:, None] * u
     np.cumsum(z, axis=1, out=z)
     z += np.asarray(x0, float)[..., None] + 1j * np.asarray(y0, float)[..., None]
-    return z
+    return (z, u) if directions else z
 
 
 def rollout(x0, y0, psi0, v, omega, dt: float, steps: int):

@@ -43,6 +43,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from usvtool.errors import UsvError
+from usvtool.sim import colregs
 from usvtool.sim import sides as side_rules
 from usvtool.sim import vessel as vessel_model
 
@@ -60,6 +61,7 @@ class World:
     route: np.ndarray | None = None  # (m, 2) the global route, start to goal
     weather: object | None = None  # a usvtool.sim.weather.Weather, or None for calm water
     period: float = 0.1  # control period (s)
+    goal_tolerance: float = 0.0  # m: a rollout passing this close to the goal reaches it
 
 
 @dataclass(frozen=True)
@@ -114,6 +116,9 @@ class Rollouts:
     contact: np.ndarray  # (N,) time to the first contact, inf when none
     static_hit: np.ndarray  # (N,) bool: the first contact is with the grid
     clearance: np.ndarray  # (N,) smallest distance to anything over the horizon (m)
+    intrudes: np.ndarray  # (N,) bool: some target enters the own ship's domain
+    z: np.ndarray  # (N, T) complex: the predicted positions x + iy
+    reached: np.ndarray  # (N,) bool: the rollout passes within the goal tolerance of the goal
 
 
 class Controller(ABC):
@@ -129,14 +134,15 @@ class Controller(ABC):
 
     name: str = ""
     common: dict = {
-        "horizon": 3.0,
-        "step": 0.1,
+        "horizon": 10.0,
+        "step": 0.2,
         "v_samples": 21,
         "omega_samples": 21,
         "dist_max": 30.0,
         "weather": False,
         "sides": "none",
         "priority": 0.0,
+        "domain": True,
     }
     defaults: dict = {}
     removes_side = False  # CCDWA removes the other side; the others prefer
@@ -178,6 +184,8 @@ class Controller(ABC):
         if side != side_rules.EITHER and self.removes_side:
             removed = np.sign(r.omega) == -side
         candidates = free & ~removed
+        if (candidates & ~r.intrudes).any():  # keep the targets out of the domain when one can
+            candidates &= ~r.intrudes
         events = []
         if not candidates.any() and free.any():  # safety first: the removed side after all
             candidates = free
@@ -207,7 +215,9 @@ class Controller(ABC):
         v, omega = vessel_model.samples(
             window, int(p["v_samples"]), int(p["omega_samples"]), current=(own.v, own.omega)
         )
-        z = vessel_model.arcs(own.x, own.y, own.psi, v, omega, p["step"], len(self.times))
+        z, u = vessel_model.arcs(
+            own.x, own.y, own.psi, v, omega, p["step"], len(self.times), directions=True
+        )
         radius = vessel.length / 2
         n, t = v.size, self.times.size
         x, y = np.ascontiguousarray(z.real), np.ascontiguousarray(z.imag)
@@ -222,18 +232,29 @@ class Controller(ABC):
         # one target at a time: (N, T) temporaries, small enough to stay in the allocator's
         # cache (fresh (N, k, T) arrays cost more in page faults than in arithmetic)
         ahead = targets.pos[:, None, :] + targets.vel[:, None, :] * self.times[:, None]
+        intrudes = np.zeros(n, bool)
+        a2 = np.square(colregs.DOMAIN_LENGTH_FACTOR * vessel.length / 2)
+        b2 = np.square(colregs.DOMAIN_WIDTH_FACTOR * vessel.length / 2)
         for j, length in enumerate(targets.length):
-            d2 = np.square(x - ahead[j, :, 0])
-            d2 += np.square(y - ahead[j, :, 1])
+            dx, dy = ahead[j, :, 0] - x, ahead[j, :, 1] - y
+            d2 = np.square(dx)
+            d2 += np.square(dy)
             reach = (vessel.length + length) / 2
             hit |= d2 <= reach * reach
             np.minimum(clearance, np.sqrt(d2.min(axis=1)) - reach, out=clearance)
+            if p["domain"]:  # the target in the own ship's domain: along and across her heading
+                along = dx * u.real + dy * u.imag
+                across = dy * u.real - dx * u.imag
+                intrudes |= (np.square(along) / a2 + np.square(across) / b2 <= 1).any(axis=1)
         first = np.where(hit.any(axis=1), hit.argmax(axis=1), t)
         at = np.minimum(first, t - 1)
         contact = np.where(first < t, self.times[at], np.inf)
         static_first = (first < t) & static[np.arange(n), at]
         psi_end = vessel_model.wrap(own.psi + omega * self.times[-1])
-        return Rollouts(v, omega, z[:, -1], psi_end, contact, static_first, clearance)
+        goal = world.goal[0] + 1j * world.goal[1]
+        reached = (np.abs(z - goal) <= world.goal_tolerance).any(axis=1)
+        return Rollouts(v, omega, z[:, -1], psi_end, contact, static_first, clearance, intrudes,
+                        z, reached)  # fmt: skip
 
     def side(self, encounter: Encounter | None) -> int:
         """The side the rule asks for in ``encounter``."""
@@ -273,8 +294,9 @@ class Controller(ABC):
     @staticmethod
     def heading(r: Rollouts, bearing: np.ndarray | float) -> np.ndarray:
         """The heading term: pi less the angle between the rollout's final heading and
-        ``bearing`` (rad)."""
-        return np.pi - np.abs(vessel_model.wrap(bearing - r.psi_end))
+        ``bearing`` (rad); pi for a rollout that reaches the goal (its end may lie beyond it,
+        looking away: without this a fast ship circles a goal it keeps overshooting)."""
+        return np.where(r.reached, np.pi, np.pi - np.abs(vessel_model.wrap(bearing - r.psi_end)))
 
     # -- when no sample is free ------------------------------------------------------------
 

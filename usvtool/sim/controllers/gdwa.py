@@ -9,8 +9,9 @@ F'(v, omega) = sigma (alpha vel + beta head' + gamma dist + eta path)   (eq. 25)
 - ``head'`` (eq. 23) = |theta_c - theta_st|, theta_c the bearing from the own ship to the
   sub-goal (eq. 22, whose "tan" is the arctangent of the two coordinate differences, read as
   ``atan2``) and theta_st the rollout's final heading; as a reward, pi less it;
-- ``path`` (eq. 24): the distance from the rollout's end to the sub-goal; as a reward, the
-  largest over the samples less it;
+- ``path`` (eq. 24): the distance from the rollout's closest point to the sub-goal (the end of
+  a rollout through the sub-goal lies beyond it); as a reward, the largest over the samples less
+  it;
 - ``sigma``, the smoothing factor, scales every score alike and so does not change the choice:
   the normalisation (UDWA eqs. 2-4) stands in for it, as in Fox et al. 1997.
 
@@ -67,7 +68,7 @@ class GDWA(Controller):
         p = self.params
         sub = self.subgoal(own)
         theta_c = np.arctan2(sub[1] - own.y, sub[0] - own.x)  # eq. 22
-        path = np.abs(r.end - (sub[0] + 1j * sub[1]))  # eq. 24
+        path = np.abs(r.z - (sub[0] + 1j * sub[1])).min(axis=1)  # eq. 24, closest point
         return [
             (p["w_velocity"], self.velocity(r)),
             (p["w_heading"], self.heading(r, theta_c)),  # eq. 23
