@@ -233,8 +233,9 @@ class Controller(ABC):
         # cache (fresh (N, k, T) arrays cost more in page faults than in arithmetic)
         ahead = targets.pos[:, None, :] + targets.vel[:, None, :] * self.times[:, None]
         intrudes = np.zeros(n, bool)
-        a2 = np.square(colregs.DOMAIN_LENGTH_FACTOR * vessel.length / 2)
-        b2 = np.square(colregs.DOMAIN_WIDTH_FACTOR * vessel.length / 2)
+        inv_a2 = 1 / np.square(colregs.DOMAIN_LENGTH_FACTOR * vessel.length / 2)
+        inv_b2 = 1 / np.square(colregs.DOMAIN_WIDTH_FACTOR * vessel.length / 2)
+        ux, uy = np.ascontiguousarray(u.real), np.ascontiguousarray(u.imag)
         for j, length in enumerate(targets.length):
             dx, dy = ahead[j, :, 0] - x, ahead[j, :, 1] - y
             d2 = np.square(dx)
@@ -243,16 +244,19 @@ class Controller(ABC):
             hit |= d2 <= reach * reach
             np.minimum(clearance, np.sqrt(d2.min(axis=1)) - reach, out=clearance)
             if p["domain"]:  # the target in the own ship's domain: along and across her heading
-                along = dx * u.real + dy * u.imag
-                across = dy * u.real - dx * u.imag
-                intrudes |= (np.square(along) / a2 + np.square(across) / b2 <= 1).any(axis=1)
+                # along^2 / a^2 + across^2 / b^2, with across^2 = d2 - along^2
+                ellipse = np.square(dx * ux + dy * uy)
+                ellipse *= inv_a2 - inv_b2
+                ellipse += d2 * inv_b2
+                intrudes |= (ellipse <= 1).any(axis=1)
         first = np.where(hit.any(axis=1), hit.argmax(axis=1), t)
         at = np.minimum(first, t - 1)
         contact = np.where(first < t, self.times[at], np.inf)
         static_first = (first < t) & static[np.arange(n), at]
         psi_end = vessel_model.wrap(own.psi + omega * self.times[-1])
-        goal = world.goal[0] + 1j * world.goal[1]
-        reached = (np.abs(z - goal) <= world.goal_tolerance).any(axis=1)
+        to_goal = np.square(x - world.goal[0])
+        to_goal += np.square(y - world.goal[1])
+        reached = to_goal.min(axis=1) <= world.goal_tolerance**2
         return Rollouts(v, omega, z[:, -1], psi_end, contact, static_first, clearance, intrudes,
                         z, reached)  # fmt: skip
 
