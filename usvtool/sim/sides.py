@@ -20,8 +20,9 @@ Tables, by encounter class (:data:`usvtool.sim.colregs.CLASSES`):
   she must act, never port (Rule 17(c)); keeping course and speed (Rule 17(a)) is judged by the
   verdicts, not forced by a side. Overtaking: either side (Rule 13).
 - ``iwso``: the IWSO-DWA paper's section 4.1, for the route-guided controller: head-on,
-  crossing from port and crossing from starboard all "adjust the starboard"; overtaking "from the
-  port side or starboard".
+  crossing from port and crossing from starboard all "adjust the starboard"; overtaking is
+  allowed "from the port side or starboard", and both of its overtaking runs (section 5.3,
+  env1 and env2) turn "to the upper right": starboard.
 """
 
 from __future__ import annotations
@@ -48,7 +49,7 @@ TABLES: dict[str, dict[str, int]] = {
         "head-on": STARBOARD,
         "crossing-give-way": STARBOARD,
         "crossing-stand-on": STARBOARD,
-        "overtaking": EITHER,
+        "overtaking": STARBOARD,
         "overtaken": EITHER,
     },
 }

@@ -17,9 +17,12 @@ One control step, all velocity samples at once (no per-sample Python loop):
 4. the controller's terms are computed for each sample, each normalised by its sum over the
    candidates (the UDWA paper's eqs. 2-4) and combined with the controller's weights (eq. 1,
    eq. 21, eq. 25); every term is a reward (larger is better);
-5. the candidates are the contact-free samples, less those the side rule removes (CCDWA); a side
-   preference (UDWA) multiplies the preferred side's scores by ``1 + priority``. The best
-   candidate is taken.
+5. the candidates are the contact-free samples, less those the side rule removes (CCDWA), and,
+   when some remain, less those that bring a target into the own ship's domain (the UDWA
+   paper's 7 L x 3 L ellipse: "the predicted trajectory is discarded" within the safe
+   distance) and, as the give-way ship of a crossing, less those that cross ahead of the target
+   (Rule 15, which both papers name); a side preference (UDWA, gdwa) multiplies the preferred
+   side's scores by ``1 + priority``. The best candidate is taken.
 
 No controller picks a sample with a contact while a contact-free one exists: when every sample
 the side rule keeps meets a contact, the removed side's free samples are the candidates after
@@ -186,6 +189,10 @@ class Controller(ABC):
         candidates = free & ~removed
         if (candidates & ~r.intrudes).any():  # keep the targets out of the domain when one can
             candidates &= ~r.intrudes
+        if encounter is not None and encounter.cls == "crossing-give-way" and side:
+            astern = ~self._crosses_ahead(own, r, targets, encounter.target)
+            if (candidates & astern).any():  # Rule 15: and pass astern of her when one can
+                candidates &= astern
         events = []
         if not candidates.any() and free.any():  # safety first: the removed side after all
             candidates = free
@@ -206,6 +213,21 @@ class Controller(ABC):
         if side != side_rules.EITHER and np.sign(r.omega[best]) == -side and not events:
             decision.events.append(self._departure(encounter, side, r, score, free))
         return decision
+
+    def _crosses_ahead(self, own: Own, r: Rollouts, targets: Targets, j: int) -> np.ndarray:
+        """(N,) bool: the rollout crosses target ``j``'s course line ahead of her (the side of
+        her line the own ship is on changes while she is ahead of the target's bow)."""
+        vel = targets.vel[j]
+        speed = float(np.hypot(*vel))
+        if speed < 1e-9:
+            return np.zeros(r.v.size, bool)
+        hx, hy = vel / speed
+        px = targets.pos[j, 0] + vel[0] * self.times
+        py = targets.pos[j, 1] + vel[1] * self.times
+        rx, ry = r.z.real - px, r.z.imag - py
+        now = hx * (own.y - targets.pos[j, 1]) - hy * (own.x - targets.pos[j, 0])
+        across = hx * ry - hy * rx
+        return ((np.sign(across) != np.sign(now)) & (hx * rx + hy * ry > 0)).any(axis=1)
 
     def rollouts(self, own: Own, targets: Targets) -> Rollouts:
         """Sample the window, roll every sample out and find its contacts."""

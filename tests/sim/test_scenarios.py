@@ -1,0 +1,258 @@
+"""The bundled scenarios (charts/scenarios/, README.md there) run end to end.
+
+Runs are cached for the module: each (scenario, controller) pair is simulated once.
+
+* Every scenario reads and starts with every controller: a short run (``SMOKE_S`` seconds of
+  simulated time) of each of the 16 x 4 pairs. Full runs cover each scenario with its own
+  controller, the comparison controllers the papers use (ccdwa against udwa, dwa against udwa)
+  and every controller on two short scenarios (``ALL_CONTROLLERS_ON``); all 64 full runs take
+  about a minute on two cores, too slow for the suite (set ``USVTOOL_ALL_SCENARIO_RUNS=1`` to
+  run them all in full and check every trace).
+* The papers' claims: the eight IWSO-DWA encounters (gdwa) arrive without collision and turn to
+  starboard first; in the three UDWA emergency encounters udwa does not collide and keeps a
+  larger minimum distance than ccdwa; in both wind runs udwa arrives before dwa.
+* Every run's trace is checked independently: the centre distances recomputed from it give the
+  summary's minimum distances, and no run with touching hulls is reported arrived.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import importlib.util
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from usvtool import geodesy
+from usvtool.grid import NAVIGABLE, read_grid
+from usvtool.sim.run import Options, simulate
+from usvtool.sim.scenario import read_scenario
+from usvtool.sim.vessel import vessel_from
+
+SCENARIOS = Path(__file__).resolve().parents[2] / "charts" / "scenarios"
+CONTROLLERS = ("dwa", "gdwa", "ccdwa", "udwa")
+PAPER = [
+    f"{env}-{kind}"
+    for env in ("env1", "env2")
+    for kind in ("overtaking", "head-on", "crossing-port", "crossing-starboard")
+]
+STATIC = ["env1-static", "env2-static"]
+EMERGENCY = ["emergency-head-on", "emergency-crossing", "emergency-overtaking"]
+WIND = ["wind-southeast-strong", "wind-northwest-strong"]
+CHANNEL = ["rudee-inlet-channel"]
+NAMES = PAPER + STATIC + EMERGENCY + WIND + CHANNEL
+ALL_CONTROLLERS_ON = ["env1-crossing-port", "emergency-crossing"]
+#: Seconds of simulated time of the runs that only show a pair starts and steps.
+SMOKE_S = 3.0
+
+
+def full_runs() -> list[tuple[str, str]]:
+    if os.environ.get("USVTOOL_ALL_SCENARIO_RUNS"):
+        return [(n, c) for n in NAMES for c in CONTROLLERS]
+    pairs = [(n, "gdwa") for n in PAPER + STATIC + CHANNEL]
+    pairs += [(n, c) for n in EMERGENCY for c in ("udwa", "ccdwa")]
+    pairs += [(n, c) for n in WIND for c in ("udwa", "dwa")]
+    pairs += [(n, c) for n in ALL_CONTROLLERS_ON for c in CONTROLLERS]
+    return list(dict.fromkeys(pairs))
+
+
+FULL = full_runs()
+
+
+@pytest.fixture(scope="module")
+def scenario():
+    cache = {}
+
+    def get(name):
+        if name not in cache:
+            cache[name] = read_scenario(SCENARIOS / f"{name}.yaml")
+        return cache[name]
+
+    return get
+
+
+@pytest.fixture(scope="module")
+def run(scenario):
+    """``run(name, controller)``: the full run, simulated once per module."""
+    cache = {}
+
+    def get(name, controller):
+        if (name, controller) not in cache:
+            cache[name, controller] = simulate(scenario(name), Options(controller=controller))
+        return cache[name, controller]
+
+    return get
+
+
+def test_every_yaml_is_listed():
+    assert sorted(p.stem for p in SCENARIOS.glob("*.yaml")) == sorted(NAMES)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_every_controller_starts(scenario, name):
+    """Each scenario reads and steps with every controller (a short run of each pair)."""
+    sc = scenario(name)
+    assert sc.name == name
+    short = dataclasses.replace(sc, sim=dataclasses.replace(sc.sim, duration=SMOKE_S))
+    for controller in CONTROLLERS:
+        result = simulate(short, Options(controller=controller))
+        s = result.summary()
+        assert s["controller"] == controller
+        assert s["collision"] is None, (controller, s["collision"])
+        assert len(result.trace.t) == int(round(SMOKE_S / sc.sim.dt)) + 1 or s["arrived"]
+        check_trace(sc, result)
+
+
+def check_trace(sc, result) -> None:
+    """The independent check of one run: distances recomputed from the trace."""
+    s = result.summary()
+    tr = result.trace
+    assert tr.ships[0] == "own" and list(tr.ships[1:]) == [t.name for t in sc.targets]
+    own_length = vessel_from(sc.own.vessel, sc.own.overrides).length
+    d = np.hypot(tr.x[:, 1:] - tr.x[:, :1], tr.y[:, 1:] - tr.y[:, :1])  # (n, k)
+    if not sc.targets:
+        assert s["min_distance_m"] is None and s["per_target"] == []
+        return
+    assert s["min_distance_m"] == pytest.approx(d.min(), abs=1e-3)
+    for j, target in enumerate(sc.targets):
+        events = [p for p in s["per_target"] if p["target"] == target.name]
+        assert events, f"no entry for {target.name}"
+        reported = min(p["min_distance_m"] for p in events)
+        assert reported == pytest.approx(d[:, j].min(), abs=1e-3), (
+            f"{sc.name}/{s['controller']}: {target.name} came within {d[:, j].min():.3f} m "
+            f"(t = {tr.t[np.argmin(d[:, j])]:.1f} s), its encounters report {reported} m"
+        )
+    touching = (d < (own_length + np.array([t.length for t in sc.targets])) / 2).any()
+    if touching:
+        assert not s["arrived"] and s["collision"] is not None
+
+
+@pytest.mark.parametrize(("name", "controller"), FULL, ids=[f"{n}/{c}" for n, c in FULL])
+def test_trace_agrees_with_summary(scenario, run, name, controller):
+    result = run(name, controller)
+    check_trace(scenario(name), result)
+    s = result.summary()
+    assert s["scenario"] == name and s["controller"] == controller
+
+
+#: The side of the first manoeuvre the paper reports: "veering toward the upper right" (env1
+#: overtaking, 65 deg), "steering approximately 68 degrees to the upper right" (env2 overtaking),
+#: head-on and both crossings "adjust(s) the starboard" / "turning ... to the starboard".
+PAPER_SIDES = {name: "starboard" for name in PAPER}
+
+
+@pytest.mark.parametrize("name", PAPER)
+def test_paper_encounter_arrives_without_collision(run, name):
+    s = run(name, "gdwa").summary()
+    assert s["arrived"] and s["collision"] is None, (s["time_s"], s["collision"])
+
+
+#: Claims the controllers miss today (strict expected failures: a fix shows as an unexpected
+#: pass; the closing note of issue 11 and docs/controllers.md give the figures).
+KNOWN_MISSES = {
+    "env2-crossing-starboard": "gdwa slows and passes astern (compliant), but its first course "
+    "change is a small one to port, not the paper's starboard turn",
+    "emergency-head-on": "udwa never reaches the port half: it leans to starboard from the "
+    "encounter's onset, while nothing yet tells the sides apart, and once turning its one-step "
+    "window holds no port yaw rate; it passes between the two ships as ccdwa does",
+}
+
+
+def _known(names):
+    return [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=KNOWN_MISSES[n]))
+            if n in KNOWN_MISSES else n for n in names]  # fmt: skip
+
+
+@pytest.mark.parametrize("name", _known(PAPER))
+def test_paper_encounter_turns_to_starboard(run, name):
+    s = run(name, "gdwa").summary()
+    first = s["per_target"][0]
+    assert first["class"] != "none"
+    assert first["first_manoeuvre_side"] == PAPER_SIDES[name], first
+
+
+def test_env1_overtaking_passes_on_the_targets_starboard_side(run):
+    """ "It expertly navigates past the red dynamic obstacle ship from its starboard side": the
+    target ends on the own ship's port side (passing_side is where the target is)."""
+    first = run("env1-overtaking", "gdwa").summary()["per_target"][0]
+    assert first["class"] == "overtaking"
+    assert first["passing_side"] == "port", first
+
+
+@pytest.mark.parametrize("name", STATIC)
+def test_static_route_run_arrives(run, name):
+    s = run(name, "gdwa").summary()
+    assert s["arrived"] and s["collision"] is None, (s["time_s"], s["collision"])
+
+
+@pytest.mark.parametrize("name", _known(EMERGENCY))
+def test_emergency_udwa_keeps_further_than_ccdwa(run, name):
+    udwa = run(name, "udwa").summary()
+    ccdwa = run(name, "ccdwa").summary()
+    assert udwa["collision"] is None, (udwa["collision"], udwa["time_s"])
+    assert udwa["min_distance_m"] > ccdwa["min_distance_m"], (
+        udwa["min_distance_m"],
+        ccdwa["min_distance_m"],
+    )
+
+
+@pytest.mark.parametrize("name", WIND)
+def test_wind_udwa_arrives_before_dwa(run, name):
+    udwa = run(name, "udwa").summary()
+    dwa = run(name, "dwa").summary()
+    assert udwa["arrived"] and dwa["arrived"]
+    assert udwa["time_s"] < dwa["time_s"], (udwa["time_s"], dwa["time_s"])
+
+
+def test_channel_encounter_arrives_turning_to_starboard(run):
+    s = run("rudee-inlet-channel", "gdwa").summary()
+    assert s["arrived"] and s["collision"] is None, (s["time_s"], s["collision"])
+    first = s["per_target"][0]
+    assert first["class"] == "head-on" and first["first_manoeuvre_side"] == "starboard", first
+
+
+def test_channel_points_are_navigable(scenario):
+    """The channel scenario's points, and its route's vertices, lie on navigable cells."""
+    sc = scenario("rudee-inlet-channel")
+    grid = read_grid(sc.map)
+    points = [sc.own.start, sc.own.goal]
+    for t in sc.targets:
+        points += [t.start, *t.waypoints]
+    for p in points:
+        x, y = geodesy.lonlat_to_map(grid.crs, p["lon"], p["lat"])
+        assert grid.contains(x, y) and grid.cells[grid.cell_of(x, y)] == NAVIGABLE, p
+    route = json.loads(sc.route.read_text())["features"][0]["properties"]
+    assert route["collision_free"]
+    for x, y in route["map_coordinates"]:
+        assert grid.cells[grid.cell_of(x, y)] == NAVIGABLE
+
+
+def test_wind_fields_are_the_generators():
+    """The bundled wind rasters hold what make_scenarios.py writes, and read as the field the
+    README describes (strong south-east of the diagonal y = x, then north-west of it; the mean
+    speed on it; from the south-west)."""
+    from usvtool.sim.weather import read_weather
+
+    spec = importlib.util.spec_from_file_location("make_scenarios", SCENARIOS / "make_scenarios.py")
+    gen = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(gen)
+    import rasterio
+
+    for name, southeast in (("southeast-strong", True), ("northwest-strong", False)):
+        path = SCENARIOS / "wind" / f"{name}.tif"
+        speed, frm = gen.wind_field(southeast)
+        with rasterio.open(path) as ds:
+            assert ds.crs is None
+            assert list(ds.descriptions) == ["wind_speed", "wind_from"]
+            np.testing.assert_array_equal(ds.read(1), speed)
+            np.testing.assert_array_equal(ds.read(2), frm)
+        w = read_weather(path)
+        # 71 m south-east of the diagonal, 71 m north-west of it, on it
+        c = w.at(np.array([400.0, 300.0, 350.0]), np.array([300.0, 400.0, 350.0]))
+        strong, weak = (0, 1) if southeast else (1, 0)
+        assert c.wind_speed[strong] == pytest.approx(7.0) and c.wind_speed[weak] == pytest.approx(1)
+        assert c.wind_speed[2] == pytest.approx(4.0)
+        np.testing.assert_allclose(geodesy.math_to_compass(c.wind_from), 225.0)
