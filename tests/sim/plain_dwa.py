@@ -15,7 +15,8 @@ import math
 
 def choose(own, targets, samples, *, goal, length, times, weights, clearance=None):
     """(index of the chosen sample, its score, contact time per sample) for the ``dwa`` objective
-    (speed, heading to the goal, clearance capped at ``weights['dist_max']``), or the fallback
+    (speed, heading to the goal where the rollout comes closest to it, clearance capped at
+    ``weights['dist_max']``; no goal tolerance, no domain), or the fallback
     when every sample meets a contact (longest contact time, then most starboard, then slowest;
     admissibility is left out: the tests build cases where it does not decide)."""
     dt = times[1] - times[0]
@@ -23,6 +24,7 @@ def choose(own, targets, samples, *, goal, length, times, weights, clearance=Non
     for v, omega in samples:
         x, y, psi = own.x, own.y, own.psi
         contact, gap = math.inf, math.inf
+        near = (math.inf, 0.0, 0.0, 0.0)  # distance to the goal, x, y, heading there
         for t in times:
             turn = omega * dt
             chord = v * dt * (math.sin(turn / 2) / (turn / 2) if turn else 1.0)
@@ -37,8 +39,12 @@ def choose(own, targets, samples, *, goal, length, times, weights, clearance=Non
             gap = min(gap, here)
             if here <= 0 and contact == math.inf:
                 contact = t
-        bearing = math.atan2(goal[1] - y, goal[0] - x)
-        off = (bearing - psi + math.pi) % (2 * math.pi) - math.pi
+            to_goal = math.hypot(goal[0] - x, goal[1] - y)
+            if to_goal < near[0]:
+                near = (to_goal, x, y, psi)
+        _, nx, ny, npsi = near  # the heading term where the rollout comes closest to the goal
+        bearing = math.atan2(goal[1] - ny, goal[0] - nx)
+        off = (bearing - npsi + math.pi) % (2 * math.pi) - math.pi
         dist = min(max(gap, 0.0), weights["dist_max"])
         rows.append((v, omega, contact, math.pi - abs(off), dist))
     free = [i for i, r in enumerate(rows) if r[2] == math.inf]

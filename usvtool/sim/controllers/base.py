@@ -122,6 +122,8 @@ class Rollouts:
     intrudes: np.ndarray  # (N,) bool: some target enters the own ship's domain
     z: np.ndarray  # (N, T) complex: the predicted positions x + iy
     reached: np.ndarray  # (N,) bool: the rollout passes within the goal tolerance of the goal
+    near: np.ndarray  # (N,) complex: the rollout's point closest to the goal
+    psi_near: np.ndarray  # (N,) the heading there (rad)
 
 
 class Controller(ABC):
@@ -278,9 +280,11 @@ class Controller(ABC):
         psi_end = vessel_model.wrap(own.psi + omega * self.times[-1])
         to_goal = np.square(x - world.goal[0])
         to_goal += np.square(y - world.goal[1])
-        reached = to_goal.min(axis=1) <= world.goal_tolerance**2
+        closest = to_goal.argmin(axis=1)
+        reached = to_goal[np.arange(n), closest] <= world.goal_tolerance**2
+        psi_near = own.psi + omega * self.times[closest]
         return Rollouts(v, omega, z[:, -1], psi_end, contact, static_first, clearance, intrudes,
-                        z, reached)  # fmt: skip
+                        z, reached, z[np.arange(n), closest], psi_near)  # fmt: skip
 
     def side(self, encounter: Encounter | None) -> int:
         """The side the rule asks for in ``encounter``."""
@@ -321,8 +325,18 @@ class Controller(ABC):
     def heading(r: Rollouts, bearing: np.ndarray | float) -> np.ndarray:
         """The heading term: pi less the angle between the rollout's final heading and
         ``bearing`` (rad); pi for a rollout that reaches the goal (its end may lie beyond it,
-        looking away: without this a fast ship circles a goal it keeps overshooting)."""
+        looking away)."""
         return np.where(r.reached, np.pi, np.pi - np.abs(vessel_model.wrap(bearing - r.psi_end)))
+
+    def toward_goal(self, r: Rollouts) -> np.ndarray:
+        """Fox et al.'s heading term toward the goal, taken where the rollout comes closest to
+        it (its end, unless it passes the goal on the way): pi less the angle between the
+        heading there and the bearing from there to the goal; pi for a rollout that reaches the
+        goal. Taken at the end, the rollouts of a ship near the goal end beyond it looking away,
+        and the best score goes to turning back: with a 10 s horizon the ship circled the goal."""
+        goal = self.world.goal[0] + 1j * self.world.goal[1]
+        off = vessel_model.wrap(np.angle(goal - r.near) - r.psi_near)
+        return np.where(r.reached, np.pi, np.pi - np.abs(off))
 
     # -- when no sample is free ------------------------------------------------------------
 
