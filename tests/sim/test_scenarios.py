@@ -157,7 +157,7 @@ KNOWN_MISSES = {
     "change is a small one to port, not the paper's starboard turn",
     "emergency-head-on": "udwa never reaches the port half: it leans to starboard from the "
     "encounter's onset, while nothing yet tells the sides apart, and once turning its one-step "
-    "window holds no port yaw rate; it runs exactly as ccdwa (36.1 m against 36.2 m)",
+    "window holds no port yaw rate; it runs as ccdwa does (35.5 m against 35.3 m)",
     "emergency-crossing": "as in the head-on run: udwa and ccdwa both pass the target to "
     "starboard and run alike (46.3 m each)",
 }
@@ -195,7 +195,8 @@ def test_emergency_udwa_keeps_further_than_ccdwa(run, name):
     udwa = run(name, "udwa").summary()
     ccdwa = run(name, "ccdwa").summary()
     assert udwa["collision"] is None, (udwa["collision"], udwa["time_s"])
-    assert udwa["min_distance_m"] > ccdwa["min_distance_m"], (
+    # larger by a margin, not by noise: the paper's Table 1 has 1.8, 3.3 and 2.1 times
+    assert udwa["min_distance_m"] > 1.1 * ccdwa["min_distance_m"], (
         udwa["min_distance_m"],
         ccdwa["min_distance_m"],
     )

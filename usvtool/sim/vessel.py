@@ -208,7 +208,7 @@ def arcs(x0, y0, psi0, v, omega, dt: float, steps: int, directions: bool = False
     Each period's exact chord (:func:`step`: length ``v·dt·sinc(omega·dt / 2)``, direction
     ``psi0 + omega·dt·(j - 1/2)`` in period ``j``) is summed, the directions by repeated complex
     multiplication: the positions of eq. 16 integrated exactly, with two complex exponentials per
-    sample rather than transcendental functions at every step (each costs as much as a dozen
+    yaw rate rather than transcendental functions at every step (each costs as much as a dozen
     multiplications). ``np.sinc`` is exact at ``omega = 0`` (a straight line) and loses no
     precision near it. With ``directions`` also each period's chord direction, a unit complex
     number ``(N, steps)`` (the heading at the period's middle).
@@ -219,15 +219,22 @@ def arcs(x0, y0, psi0, v, omega, dt: float, steps: int, directions: bool = False
     v = np.atleast_1d(np.asarray(v, float))
     omega = np.atleast_1d(np.asarray(omega, float))
     v, omega = np.broadcast_arrays(v, omega)
-    turn = omega * dt
-    u = np.empty((v.size, steps), complex)
-    u[:, 0] = np.exp(1j * (psi0 + turn / 2))
+    # the directions depend on the yaw rate alone (and the start heading): a window's samples
+    # share a few dozen yaw rates, so they are stepped once per rate; the chord's length is
+    # constant along a rollout, so the positions are it times the summed unit chords
+    if np.ndim(psi0) == 0:
+        rates, which = np.unique(omega, return_inverse=True)
+    else:
+        rates, which = omega, np.arange(omega.size)
+    turn = rates * dt
+    u = np.empty((rates.size, steps), complex)
+    u[:, 0] = np.exp(1j * (np.asarray(psi0, float) + turn / 2))
     u[:, 1:] = np.exp(1j * turn)[:, None]
     np.cumprod(u, axis=1, out=u)
-    z = (v * dt * np.sinc(turn / (2 * np.pi)))[:, None] * u
-    np.cumsum(z, axis=1, out=z)
+    chord = v * dt * np.sinc(omega * dt / (2 * np.pi))
+    z = chord[:, None] * np.cumsum(u, axis=1)[which]
     z += np.asarray(x0, float)[..., None] + 1j * np.asarray(y0, float)[..., None]
-    return (z, u) if directions else z
+    return (z, u[which]) if directions else z
 
 
 def rollout(x0, y0, psi0, v, omega, dt: float, steps: int):

@@ -50,8 +50,9 @@ from usvtool.sim import colregs
 from usvtool.sim import sides as side_rules
 from usvtool.sim import vessel as vessel_model
 
-#: Yaw rates within this of zero (rad/s) belong to neither side.
-STRAIGHT = 1e-9
+#: Seconds between the rollout points at which the ship domain is checked (a target moves a
+#: few metres in that time, the domain is 7 ship lengths long).
+DOMAIN_EVERY = 0.5
 
 
 @dataclass(frozen=True)
@@ -120,7 +121,8 @@ class Rollouts:
     static_hit: np.ndarray  # (N,) bool: the first contact is with the grid
     clearance: np.ndarray  # (N,) smallest distance to anything over the horizon (m)
     intrudes: np.ndarray  # (N,) bool: some target enters the own ship's domain
-    z: np.ndarray  # (N, T) complex: the predicted positions x + iy
+    x: np.ndarray  # (T, N) the predicted positions, east
+    y: np.ndarray  # (T, N) and north
     reached: np.ndarray  # (N,) bool: the rollout passes within the goal tolerance of the goal
     near: np.ndarray  # (N,) complex: the rollout's point closest to the goal
     psi_near: np.ndarray  # (N,) the heading there (rad)
@@ -226,10 +228,10 @@ class Controller(ABC):
         hx, hy = vel / speed
         px = targets.pos[j, 0] + vel[0] * self.times
         py = targets.pos[j, 1] + vel[1] * self.times
-        rx, ry = r.z.real - px, r.z.imag - py
+        rx, ry = r.x - px[:, None], r.y - py[:, None]
         now = hx * (own.y - targets.pos[j, 1]) - hy * (own.x - targets.pos[j, 0])
         across = hx * ry - hy * rx
-        return ((np.sign(across) != np.sign(now)) & (hx * rx + hy * ry > 0)).any(axis=1)
+        return ((np.sign(across) != np.sign(now)) & (hx * rx + hy * ry > 0)).any(axis=0)
 
     def rollouts(self, own: Own, targets: Targets) -> Rollouts:
         """Sample the window, roll every sample out and find its contacts."""
@@ -244,47 +246,52 @@ class Controller(ABC):
         )
         radius = vessel.length / 2
         n, t = v.size, self.times.size
-        x, y = np.ascontiguousarray(z.real), np.ascontiguousarray(z.imag)
+        # (T, N) from here on: reductions over the horizon run along contiguous rows
+        x, y = np.ascontiguousarray(z.real.T), np.ascontiguousarray(z.imag.T)
         if world.clearance is not None:
-            static_gap = world.clearance.at(x, y) - radius  # (N, T)
+            static_gap = world.clearance.at(x, y) - radius
             hit = static_gap <= 0
-            clearance = static_gap.min(axis=1)
+            clearance = static_gap.min(axis=0)
         else:
-            hit = np.zeros((n, t), bool)
+            hit = np.zeros((t, n), bool)
             clearance = np.full(n, np.inf)
         static = hit.copy()
-        # one target at a time: (N, T) temporaries, small enough to stay in the allocator's
-        # cache (fresh (N, k, T) arrays cost more in page faults than in arithmetic)
+        # one target at a time: (T, N) temporaries, small enough to stay in the allocator's
+        # cache (fresh (k, T, N) arrays cost more in page faults than in arithmetic)
         ahead = targets.pos[:, None, :] + targets.vel[:, None, :] * self.times[:, None]
         intrudes = np.zeros(n, bool)
         inv_a2 = 1 / np.square(colregs.DOMAIN_LENGTH_FACTOR * vessel.length / 2)
         inv_b2 = 1 / np.square(colregs.DOMAIN_WIDTH_FACTOR * vessel.length / 2)
-        ux, uy = np.ascontiguousarray(u.real), np.ascontiguousarray(u.imag)
+        # the domain, a soft rule, is looked at every DOMAIN_EVERY seconds of the horizon
+        rows = slice(None, None, max(1, int(round(DOMAIN_EVERY / p["step"]))))
+        ux, uy = np.ascontiguousarray(u.real.T[rows]), np.ascontiguousarray(u.imag.T[rows])
         for j, length in enumerate(targets.length):
-            dx, dy = ahead[j, :, 0] - x, ahead[j, :, 1] - y
+            dx, dy = ahead[j, :, 0, None] - x, ahead[j, :, 1, None] - y
             d2 = np.square(dx)
             d2 += np.square(dy)
             reach = (vessel.length + length) / 2
             hit |= d2 <= reach * reach
-            np.minimum(clearance, np.sqrt(d2.min(axis=1)) - reach, out=clearance)
+            np.minimum(clearance, np.sqrt(d2.min(axis=0)) - reach, out=clearance)
             if p["domain"]:  # the target in the own ship's domain: along and across her heading
                 # along^2 / a^2 + across^2 / b^2, with across^2 = d2 - along^2
-                ellipse = np.square(dx * ux + dy * uy)
+                ellipse = np.square(dx[rows] * ux + dy[rows] * uy)
                 ellipse *= inv_a2 - inv_b2
-                ellipse += d2 * inv_b2
-                intrudes |= (ellipse <= 1).any(axis=1)
-        first = np.where(hit.any(axis=1), hit.argmax(axis=1), t)
+                ellipse += d2[rows] * inv_b2
+                intrudes |= (ellipse <= 1).any(axis=0)
+        first = np.where(hit.any(axis=0), hit.argmax(axis=0), t)
         at = np.minimum(first, t - 1)
+        columns = np.arange(n)
         contact = np.where(first < t, self.times[at], np.inf)
-        static_first = (first < t) & static[np.arange(n), at]
+        static_first = (first < t) & static[at, columns]
         psi_end = vessel_model.wrap(own.psi + omega * self.times[-1])
         to_goal = np.square(x - world.goal[0])
         to_goal += np.square(y - world.goal[1])
-        closest = to_goal.argmin(axis=1)
-        reached = to_goal[np.arange(n), closest] <= world.goal_tolerance**2
+        closest = to_goal.argmin(axis=0)
+        reached = to_goal[closest, columns] <= world.goal_tolerance**2
+        near = x[closest, columns] + 1j * y[closest, columns]
         psi_near = own.psi + omega * self.times[closest]
         return Rollouts(v, omega, z[:, -1], psi_end, contact, static_first, clearance, intrudes,
-                        z, reached, z[np.arange(n), closest], psi_near)  # fmt: skip
+                        x, y, reached, near, psi_near)  # fmt: skip
 
     def side(self, encounter: Encounter | None) -> int:
         """The side the rule asks for in ``encounter``."""

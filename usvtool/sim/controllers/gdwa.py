@@ -68,7 +68,7 @@ class GDWA(Controller):
         p = self.params
         sub = self.subgoal(own)
         theta_c = np.arctan2(sub[1] - own.y, sub[0] - own.x)  # eq. 22
-        path = np.abs(r.z - (sub[0] + 1j * sub[1])).min(axis=1)  # eq. 24, closest point
+        path = np.sqrt((np.square(r.x - sub[0]) + np.square(r.y - sub[1])).min(axis=0))  # eq. 24
         return [
             (p["w_velocity"], self.velocity(r)),
             (p["w_heading"], self.heading(r, theta_c)),  # eq. 23
