@@ -53,6 +53,36 @@ POSITIVE = PositiveFloat()
 NON_NEGATIVE = NonNegativeFloat()
 
 
+def _name_values(ctx, param, values: tuple[str, ...]) -> dict:
+    """``NAME=VALUE`` pairs, each value a JSON number, ``true``, ``false`` or ``null``, else the
+    text itself."""
+    params = {}
+    for item in values:
+        name, sep, text = item.partition("=")
+        name = name.strip()
+        if not sep or not name:
+            raise click.BadParameter(f"{item!r} is not NAME=VALUE")
+        if not text.strip():
+            raise click.BadParameter(f"{item!r} has no value (write {name}=null for none)")
+        try:
+            value = json.loads(text)
+        except ValueError:
+            value = text
+        if isinstance(value, list | dict):
+            raise click.BadParameter(
+                f"{item!r}: the value must be a number, true, false, null or a string"
+            )
+        params[name] = value
+    return params
+
+
+def param_option(help: str):
+    """``--param NAME=VALUE`` (repeatable) into a dict ``params``."""
+    return click.option(
+        "--param", "params", multiple=True, callback=_name_values, metavar="NAME=VALUE", help=help
+    )
+
+
 def emit(summary: dict) -> None:
     """Print the command's summary JSON on stdout."""
     json.dump(summary, sys.stdout, indent=2, default=jsonable)

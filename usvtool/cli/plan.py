@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import json
 import logging
 
 import click
 
-from usvtool.cli.options import NON_NEGATIVE, emit, output_option, seed_option
+from usvtool.cli.options import NON_NEGATIVE, emit, output_option, param_option, seed_option
 from usvtool.plan.planner import algorithm_names
 from usvtool.plan.problem import ENCODINGS
 from usvtool.plan.shorten import SUFFIX
@@ -22,19 +21,6 @@ def _algo(ctx, param, value: str) -> str:
             f"{value!r} is not one of {', '.join(names)} (each also with the suffix {SUFFIX})"
         )
     return value
-
-
-def _params(ctx, param, values: tuple[str, ...]) -> dict:
-    params = {}
-    for item in values:
-        name, sep, text = item.partition("=")
-        if not sep or not name:
-            raise click.BadParameter(f"{item!r} is not NAME=VALUE")
-        try:
-            params[name] = json.loads(text)
-        except ValueError:
-            params[name] = text
-    return params
 
 
 @click.command()
@@ -73,14 +59,7 @@ def _params(ctx, param, values: tuple[str, ...]) -> dict:
     show_default=True,
     help="Route encoding: free waypoints, or one cell per grid column (ISSA).",
 )
-@click.option(
-    "--param",
-    "params",
-    multiple=True,
-    callback=_params,
-    metavar="NAME=VALUE",
-    help="An optimizer parameter (repeatable).",
-)
+@param_option("An optimizer parameter (repeatable).")
 @click.option(
     "--turn-weight",
     type=NON_NEGATIVE,

@@ -10,37 +10,10 @@ from pathlib import Path
 
 import click
 
-from usvtool.cli.options import emit, output_option, seed_option
+from usvtool.cli.options import emit, output_option, param_option, seed_option
 from usvtool.sim.controllers import CONTROLLERS
 
 log = logging.getLogger(__name__)
-
-
-def _params(ctx, param, values: tuple[str, ...]) -> dict:
-    """``NAME=VALUE`` pairs, each value a YAML scalar (number, true/false, null or a string)."""
-    import yaml
-
-    params = {}
-    for item in values:
-        name, sep, text = item.partition("=")
-        if not sep or not name.strip():
-            raise click.BadParameter(f"{item!r} is not NAME=VALUE")
-        if not text.strip():
-            raise click.BadParameter(f"{item!r} has no value (write {name}=null for none)")
-        try:
-            value = yaml.safe_load(text)
-        except yaml.YAMLError:
-            value = text
-        if isinstance(value, str):  # YAML 1.1 reads 1e3 as a string: a number is meant
-            try:
-                value = float(value) if any(c.isdigit() for c in value) else value
-            except ValueError:
-                pass
-        if isinstance(value, list | dict) or hasattr(value, "isoformat"):
-            raise click.BadParameter(f"{item!r}: the value must be a number, true/false, null or "
-                                     "a string")  # fmt: skip
-        params[name.strip()] = value
-    return params
 
 
 @click.command()
@@ -50,14 +23,7 @@ def _params(ctx, param, values: tuple[str, ...]) -> dict:
     type=click.Choice(list(CONTROLLERS)),
     help="The controller to run instead of the scenario's (its parameters are then dropped).",
 )
-@click.option(
-    "--param",
-    "params",
-    multiple=True,
-    callback=_params,
-    metavar="NAME=VALUE",
-    help="A controller parameter (repeatable; the value a YAML scalar), over the scenario's.",
-)
+@param_option("A controller parameter (repeatable), over the scenario's.")
 @seed_option
 @output_option("Trace CSV to write.")
 @click.option("--events", type=click.Path(dir_okay=False), help="Also write the events JSON.")
