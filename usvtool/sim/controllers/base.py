@@ -373,8 +373,8 @@ class Controller(ABC):
         else:
             best_own = float(np.max(np.where(own_side, score, -np.inf)))
             reason = (
-                f"best {side_rules.NAMES[side]} score {best_own:.3f} below "
-                f"{float(np.max(score)):.3f} on the other side"
+                f"best {side_rules.NAMES[side]} score {best_own:.4g} below "
+                f"{float(np.max(score)):.4g} on the other side"
             )
         return {
             "kind": "rule2-departure",
