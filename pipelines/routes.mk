@@ -1,5 +1,5 @@
 # Plan a route with every algorithm on every bundled chart: build/paths/CHART/ALGO.geojson (+ .json
-# summary), then build/paths/summary.csv. Included by report.mk after charts.mk.
+# summary), then build/paths/summary.csv (usvtool metrics). Included by report.mk after charts.mk.
 ALGOS := wso iwso ssa issa pso pso-issa gwo woa mrfo boa iwso+s anyangle astar
 SEED ?= 1
 # optimizer runs at most per route (usvtool plan --attempts): a new run while the best route
@@ -33,5 +33,8 @@ $(foreach c,$(ROUTE_GRIDS),$(foreach a,$(ALGOS),$(eval $(call route_rule,$(c),$(
 
 ROUTES := $(foreach c,$(ROUTE_GRIDS),$(foreach a,$(ALGOS),$(PATHS_DIR)/$(c)/$(a).geojson))
 
-$(PATHS_DIR)/summary.csv: $(ROUTES) pipelines/summarise.py
-	$(BIN)/python pipelines/summarise.py $(PATHS_DIR) > $@.tmp && mv $@.tmp $@
+# the table of the papers' metrics (docs/metrics.md): usvtool metrics writes it atomically; the
+# any-angle route of each chart's directory is the reference of length_ratio
+METRICS_SRC := $(wildcard usvtool/measure/*.py) usvtool/metrics.py usvtool/route.py usvtool/cli/metrics.py
+$(PATHS_DIR)/summary.csv: $(ROUTES) $(METRICS_SRC)
+	$(USV) metrics $(ROUTES) -o $@ > $(@:.csv=.json)

@@ -24,6 +24,7 @@ SUBCOMMANDS = {
     "plan": ("usvtool.cli.plan", "Plan a global route on a navigation grid."),
     "simulate": ("usvtool.cli.simulate", "Run an encounter scenario: trace, events, tracks."),
     "functions": ("usvtool.cli.functions", "Run the optimizers on benchmark functions F1-F10."),
+    "metrics": ("usvtool.cli.metrics", "Tabulate the papers' metrics of routes and runs."),
 }
 
 

@@ -17,9 +17,14 @@ distance to any target, ``mean_distance_m`` the mean over the steps with a latch
 the distance to the nearest target (the UDWA paper's "average distance", Table 1),
 ``domain_intrusion_s`` the time some target is inside the own ship's domain, ``path_length_m``
 the length of her track, ``turns`` and ``mot`` (:mod:`usvtool.metrics`) on her track sampled
-every ``TURN_WINDOW`` seconds: a turn is a course change between two such legs (per 0.1 s step a
-smooth turn would count once per step, or never), ``step_time_ms`` the mean time of one control
-decision.
+every ``metrics.TURN_WINDOW`` seconds (:func:`usvtool.metrics.track_samples`): a turn is a course
+change between two such legs (per 0.1 s step a smooth turn would count once per step, or never),
+``step_time_ms`` the mean time of one control decision.
+
+The events JSON's ``run`` object makes the trace and events pair self-describing (``usvtool
+metrics`` reads it): ``scenario``, ``controller``, ``parameters``, ``seed``, ``arrived``,
+``collision``, ``time_s``, ``dt``, ``goal`` [x, y] (map metres), ``goal_tolerance``, ``own_length``,
+``domain_intrusion_s``.
 """
 
 from __future__ import annotations
@@ -38,9 +43,6 @@ from usvtool.sim import vessel as vessel_model
 from usvtool.sim.controllers import Encounter, Own, Targets, World, make_controller
 from usvtool.sim.scenario import Scenario
 from usvtool.trace import Trace
-
-#: Seconds between the track samples on which turns and mot are counted.
-TURN_WINDOW = 10.0
 
 
 @dataclass(frozen=True)
@@ -280,9 +282,7 @@ def _result(scenario, setup, opts, controller, times, own, ahead, lengths, contr
         speed[:, 1:], setup.vessel.length, lengths, rule2,
     )  # fmt: skip
     track = np.column_stack([x[:, 0], y[:, 0]])
-    sampled = track[:: max(1, int(round(TURN_WINDOW / dt)))]
-    if not np.array_equal(sampled[-1], track[-1]):
-        sampled = np.vstack([sampled, track[-1]])
+    sampled = metrics.track_samples(track, dt)
     figures = {
         "scenario": scenario.name,
         "controller": controller.name,
@@ -308,6 +308,20 @@ def _result(scenario, setup, opts, controller, times, own, ahead, lengths, contr
         "encounters": evaluation["events"],
         "thresholds": evaluation["thresholds"],
         "unmatched_rule2": evaluation["unmatched_rule2"],
+        "run": {
+            "scenario": scenario.name,
+            "controller": controller.name,
+            "parameters": controller.params,
+            "seed": opts.seed,
+            "arrived": figures["arrived"],
+            "collision": figures["collision"],
+            "time_s": figures["time_s"],
+            "dt": float(dt),
+            "goal": [float(v) for v in setup.goal],
+            "goal_tolerance": float(scenario.sim.goal_tolerance),
+            "own_length": float(setup.vessel.length),
+            "domain_intrusion_s": figures["domain_intrusion_s"],
+        },
     }
     return Result(scenario, trace, events, figures, setup.crs)
 

@@ -1,0 +1,16 @@
+"""The papers' metrics of planned routes and simulated runs, one row each (``usvtool metrics``).
+
+Reads the route contract (:mod:`usvtool.route`, path GeoJSON) and the trace contract
+(:mod:`usvtool.trace`, trace CSV + events JSON); every figure comes from :mod:`usvtool.metrics`.
+The columns and their definitions: docs/metrics.md.
+"""
+
+from usvtool.measure.table import (
+    ROUTE_COLUMNS,
+    RUN_COLUMNS,
+    MeasureOptions,
+    MeasureResult,
+    measure,
+)
+
+__all__ = ["ROUTE_COLUMNS", "RUN_COLUMNS", "MeasureOptions", "MeasureResult", "measure"]
