@@ -1,11 +1,12 @@
 """Global path planning on the bundled charts' routes of `make report`, over several seeds.
 
-For each chart (the grids `make report` writes to build/grids/, the start and goal of
-pipelines/routes.mk) and optimizer: the collision-free rate over N seeds, and over the
-collision-free routes the median length relative to the any-angle optimum and the median
-planning time (all runs of a seed). `make report` plans one seed; this shows how typical that
-seed's outcome is. With ``--attempts N`` each seed runs the optimizer up to N times until its
-route is collision-free (``usvtool plan --attempts``), and ``runs`` gives the mean number of runs.
+For each chart (the grids `make report` writes to build/grids/, the start and goal of the route
+matrix of pipelines/report.yaml, read by usvtool.pipeline) and optimizer: the collision-free
+rate over N seeds, and over the collision-free routes the median length relative to the
+any-angle optimum and the median planning time (all runs of a seed). `make report` plans one
+seed; this shows how typical that seed's outcome is. With ``--attempts N`` each seed runs the
+optimizer up to N times until its route is collision-free (``usvtool plan --attempts``), and
+``runs`` gives the mean number of runs.
 
 Usage: python benchmarks/bench_charts.py [--seeds 10] [--charts us5ma12m,grid50]
        [--algos ssa,issa] [--pop 50] [--iters 300] [--waypoints 3] [--attempts 1]
@@ -14,8 +15,6 @@ Usage: python benchmarks/bench_charts.py [--seeds 10] [--charts us5ma12m,grid50]
 from __future__ import annotations
 
 import argparse
-import re
-import shlex
 import sys
 from pathlib import Path
 
@@ -23,30 +22,27 @@ import numpy as np
 
 from usvtool.geodesy import WGS84, transformer
 from usvtool.grid import read_grid
+from usvtool.pipeline import Ends, load
 from usvtool.plan.optimizers import OPTIMIZERS
 from usvtool.plan.planner import PlanOptions, plan_route
 
 ROOT = Path(__file__).resolve().parent.parent
 GRIDS = ROOT / "build" / "grids"
-ROUTES_MK = ROOT / "pipelines" / "routes.mk"
 
 
-def bundled_ends() -> dict[str, list[str]]:
-    """``ENDS_<chart> := --start … --goal …`` of pipelines/routes.mk, as argument lists."""
-    pattern = re.compile(r"^ENDS_(\w+)\s*:=\s*(.+)$")
-    found = (pattern.match(line) for line in ROUTES_MK.read_text().splitlines())
-    return {m[1]: shlex.split(m[2]) for m in found if m}
+def bundled_ends() -> dict[str, Ends]:
+    """The start and goal of each chart of the bundled route matrix (pipelines/report.yaml)."""
+    return load().routes.ends
 
 
-def map_points(grid, args: list[str]) -> tuple[tuple[float, float], tuple[float, float]]:
-    """The start and goal in the grid's map metres from ``--start X Y --goal-lonlat LON LAT``…"""
-    points = {}
-    for i in range(0, len(args), 3):
-        name, xy = args[i].lstrip("-"), (float(args[i + 1]), float(args[i + 2]))
-        if name.endswith("-lonlat"):
-            name, xy = name.removesuffix("-lonlat"), transformer(WGS84, grid.crs).transform(*xy)
-        points[name] = tuple(float(v) for v in xy)
-    return points["start"], points["goal"]
+def map_points(grid, ends: Ends) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The start and goal in the grid's map metres (lon/lat ends projected to its CRS)."""
+    points = [ends.start, ends.goal]
+    if ends.frame == "lonlat":
+        to_map = transformer(WGS84, grid.crs)
+        points = [to_map.transform(*p) for p in points]
+    start, goal = (tuple(float(v) for v in p) for p in points)
+    return start, goal
 
 
 def main() -> None:

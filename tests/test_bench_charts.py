@@ -1,4 +1,4 @@
-"""benchmarks/bench_charts.py reads the bundled routes from pipelines/routes.mk: one source."""
+"""benchmarks/bench_charts.py reads the bundled routes through usvtool.pipeline: one source."""
 
 import importlib.util
 from pathlib import Path
@@ -8,6 +8,7 @@ import pytest
 from affine import Affine
 
 from usvtool.grid import Grid
+from usvtool.pipeline import Ends, load
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -21,18 +22,20 @@ def bench():
     return module
 
 
-def test_every_bundled_chart_has_its_route(bench):
+def test_the_bench_reads_the_route_matrix_of_the_pipeline(bench):
     ends = bench.bundled_ends()
-    assert set(ends) == {"env1", "env2", "grid20", "grid50", "us5ma12m", "head_of_passes",
-                         "rudee_inlet", "south_san_diego"}  # fmt: skip
-    assert ends["grid20"] == ["--start", "0.5", "0.5", "--goal", "19.5", "19.5"]
-    assert ends["us5ma12m"][0] == "--start-lonlat" and ends["us5ma12m"][3] == "--goal-lonlat"
+    assert ends == load().routes.ends
+    # every route chart but the 25-million-cell approach cell, which is preprocessed only
+    assert set(ends) == set(load().charts) - {"us4md81m"}
+    assert ends["grid20"].args() == ["--start", "0.5", "0.5", "--goal", "19.5", "19.5"]
+    assert ends["us5ma12m"].frame == "lonlat"
 
 
 def test_lon_lat_ends_become_map_metres(bench):
     grid = Grid(np.zeros((10, 10), np.uint8), Affine(10, 0, 330000, 0, -10, 4690000), "EPSG:32619")
-    start, goal = bench.map_points(grid, ["--start", "1", "2", "--goal-lonlat", "-70.9", "42.33"])
-    assert start == (1.0, 2.0)
+    # a route's ends are in one frame; the lon/lat pair goes through the grid's CRS
+    assert bench.map_points(grid, Ends((1, 2), (3, 4))) == ((1.0, 2.0), (3.0, 4.0))
+    _, goal = bench.map_points(grid, Ends((-70.9, 42.33), (-70.9, 42.33), "lonlat"))
     # 1.9 degrees west of zone 19N's central meridian (69 W) at 42.33 N: about
     # 500 km - 1.9 x 111.3 km x cos(42.33) = 343.6 km east; 42.33 x 111.1 km = 4 703 km north,
     # less the ellipsoid's flattening near 4 688 km (pyproj: 343 459, 4 688 165)

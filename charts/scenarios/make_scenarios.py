@@ -2,14 +2,15 @@
 
 * ``routes/env1-iwso.geojson``, ``routes/env2-iwso.geojson``: the IWSO routes of the static runs
   (IWSO-DWA paper, Figs. 7h and 9h), planned on ``charts/env1.tif`` / ``env2.tif`` with the
-  options of ``pipelines/routes.mk`` (``--algo iwso+s --seed 1 --attempts 5``, ends
-  ``--start 10 10 --goal 490 490``) and ``--no-timing`` (byte-identical per seed).
+  route matrix of ``pipelines/report.yaml`` (its seed, attempts and env ends: ``--algo iwso+s
+  --seed 1 --attempts 5``, ``--start 10 10 --goal 490 490``) and ``--no-timing``
+  (byte-identical per seed).
 * ``grids/rudee_inlet.tif``: the navigation grid of NOAA chart 12205 inset 2 (Rudee Inlet), made
-  by ``usvtool preprocess`` with the options of ``pipelines/charts.mk`` (none: the paper's rule,
+  by ``usvtool preprocess`` with the options of ``pipelines/report.yaml`` (none: the paper's rule,
   cells of 1.5 x 2.5 m = 3.75 m). It is 490 x 369 cells, under 10 kB compressed: no crop needed
   (``--bounds`` only applies to GeoJSON obstacle maps anyway).
 * ``routes/rudee-inlet.geojson``: a route planned on that grid up Lake Rudee's channel, from
-  :data:`RUDEE_START` to the goal of ``ENDS_rudee_inlet`` in ``pipelines/routes.mk`` (its start
+  :data:`RUDEE_START` to the goal of ``rudee_inlet`` in ``pipelines/report.yaml`` (its start
   lies 1.2 km away, in the south-west lake: a run from there would take four minutes of
   simulated time, too long for the test suite).
 * ``wind/southeast-strong.tif``, ``wind/northwest-strong.tif``: the wind fields of the two wind
@@ -34,18 +35,23 @@ from pathlib import Path
 
 import numpy as np
 
+from usvtool.pipeline import load
+
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
 CHARTS = ROOT / "charts"
 
-#: The options of pipelines/routes.mk for an IWSO route (SEED 1, ATTEMPTS 5, ENDS_env*).
-PLAN_OPTIONS = ["--algo", "iwso+s", "--seed", "1", "--attempts", "5", "--no-timing"]
-ENV_ENDS = ["--start", "10", "10", "--goal", "490", "490"]
+#: The route matrix of pipelines/report.yaml (`make report`'s seed, attempts and ends).
+ROUTES = load().routes
+#: Its options for an IWSO route (seed 1, 5 attempts) and the ends of env1 and env2 (the same).
+PLAN_OPTIONS = ["--algo", "iwso+s", "--seed", str(ROUTES.seed), "--attempts", str(ROUTES.attempts)]
+PLAN_OPTIONS += ["--no-timing"]
+ENV_ENDS = ROUTES.ends["env1"].args()
 
 #: Rudee Inlet: the route's start, in Lake Rudee's channel (lon, lat), and the goal of
-#: ENDS_rudee_inlet (routes.mk), at the channel's east end below the fixed bridges.
+#: rudee_inlet's route (report.yaml), at the channel's east end below the fixed bridges.
 RUDEE_START = (-75.978958, 36.828728)
-RUDEE_GOAL = (-75.973358, 36.831274)
+RUDEE_GOAL = ROUTES.ends["rudee_inlet"].goal
 
 #: Wind fields: a square of WIND_SIZE m in cells of WIND_CELL m (local frame, origin lower-left).
 WIND_SIZE = 700.0
@@ -93,7 +99,8 @@ def env_routes(out: Path) -> None:
 
 def rudee(out: Path) -> None:
     grid = out / "grids" / "rudee_inlet.tif"
-    run("preprocess", rel(CHARTS / "noaa" / "12205_2.KAP"), "-o", rel(grid))
+    options = load().charts["rudee_inlet"].args()
+    run("preprocess", rel(CHARTS / "noaa" / "12205_2.KAP"), *options, "-o", rel(grid))
     start = [f"{v:.6f}" for v in RUDEE_START]
     goal = [f"{v:.6f}" for v in RUDEE_GOAL]
     route = out / "routes" / "rudee-inlet.geojson"

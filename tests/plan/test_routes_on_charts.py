@@ -8,13 +8,19 @@ from scipy import ndimage
 from usvtool.chart.preprocess import Options, preprocess
 from usvtool.geodesy import WGS84, transformer
 from usvtool.grid import read_grid
+from usvtool.pipeline import load
 from usvtool.plan.optimizers import OPTIMIZERS
 from usvtool.plan.planner import PlanOptions, plan_route
 
+# the routes of `make report` (pipelines/report.yaml): the seed and runs of its route matrix
+MATRIX = load().routes
+SEED, ATTEMPTS = MATRIX.seed, MATRIX.attempts
 # the Mississippi's main channel on chart 11361_4, Pilottown to Head of Passes (lon, lat)
-CHANNEL_START, CHANNEL_GOAL = (-89.2677, 29.1840), (-89.2619, 29.1240)
-# Boston (ENC US5MA12M): Nantasket Roads to Massachusetts Bay, the route of `make report`
-ROADS_START, ROADS_GOAL = (-70.93391, 42.32119), (-70.79426, 42.31806)
+CHANNEL = MATRIX.ends["head_of_passes"]
+# Boston (ENC US5MA12M): Nantasket Roads to Massachusetts Bay
+ROADS = MATRIX.ends["us5ma12m"]
+# env1 and env2: corner to corner (map metres)
+ENV_ENDS = {env: (MATRIX.ends[env].start, MATRIX.ends[env].goal) for env in ("env1", "env2")}
 
 
 def cells(grid, points) -> np.ndarray:
@@ -31,7 +37,7 @@ def river(kap):
     """The KAP chart gridded at 10 m cells, the channel's ends in its UTM metres, and the
     length of the exact any-angle route between them."""
     grid = preprocess(kap, Options(cell_size=10.0)).grid
-    ends = on_chart(grid, CHANNEL_START, CHANNEL_GOAL)
+    ends = on_chart(grid, CHANNEL.start, CHANNEL.goal)
     return grid, ends, plan_route(grid, *ends, PlanOptions("anyangle")).route.length_m
 
 
@@ -42,7 +48,7 @@ def test_every_algorithm_on_the_river_channel(river, algo, reference):
     # single runs on this river were free in 96 % of 25 seeds, docs/planning.md; on this grid
     # its seed-1 run collides since the ink rule changed the grid)
     route = plan_route(
-        grid, start, goal, PlanOptions(algo, pop=50, iters=300, seed=1, attempts=5)
+        grid, start, goal, PlanOptions(algo, pop=50, iters=300, seed=SEED, attempts=ATTEMPTS)
     ).route
     assert reference(grid.blocked).route_free(cells(grid, route.points))
     assert route.collision_free
@@ -58,10 +64,11 @@ def test_every_algorithm_on_the_river_channel(river, algo, reference):
 def test_iwso_on_the_bundled_environments(charts, env, reference):
     grid = read_grid(charts / f"{env}.tif")
     ref = reference(grid.blocked)
-    optimum = plan_route(grid, (10, 10), (490, 490), PlanOptions("anyangle")).route.length_m
+    start, goal = ENV_ENDS[env]
+    optimum = plan_route(grid, start, goal, PlanOptions("anyangle")).route.length_m
     for seed in range(3):
         route = plan_route(
-            grid, (10, 10), (490, 490), PlanOptions("iwso", pop=50, iters=300, seed=seed)
+            grid, start, goal, PlanOptions("iwso", pop=50, iters=300, seed=seed)
         ).route
         assert ref.route_free(cells(grid, route.points))
         assert optimum * (1 - 1e-9) <= route.length_m <= optimum * 1.25
@@ -70,16 +77,18 @@ def test_iwso_on_the_bundled_environments(charts, env, reference):
 @pytest.fixture(scope="module", params=["env1", "env2"])
 def environment(request, charts):
     grid = read_grid(charts / f"{request.param}.tif")
-    return grid, plan_route(grid, (10, 10), (490, 490), PlanOptions("anyangle")).route.length_m
+    start, goal = ENV_ENDS[request.param]
+    optimum = plan_route(grid, start, goal, PlanOptions("anyangle")).route.length_m
+    return grid, start, goal, optimum
 
 
 @pytest.mark.parametrize("algo", OPTIMIZERS)
 def test_every_optimizer_with_attempts_on_the_bundled_environments(environment, algo, reference):
     """With up to 5 runs (`make report`'s setting) every optimizer ends collision-free on env1
     and env2 (single runs of PSO and WOA do not always: docs/planning.md)."""
-    grid, optimum = environment
+    grid, start, goal, optimum = environment
     route = plan_route(
-        grid, (10, 10), (490, 490), PlanOptions(algo, pop=50, iters=300, seed=1, attempts=5)
+        grid, start, goal, PlanOptions(algo, pop=50, iters=300, seed=SEED, attempts=ATTEMPTS)
     ).route
     assert reference(grid.blocked).route_free(cells(grid, route.points))
     assert optimum * (1 - 1e-9) <= route.length_m <= optimum * 1.5
@@ -95,8 +104,9 @@ def roads(enc, reference):
     lies in the free cell it was crossing, so that square is a shore cell. Most of this grid is
     blocked (2.9 M cells) and its shore is 12 000 cells: this fixture takes 0.9 s, not 6.8 s.
     """
-    grid = preprocess(enc, Options(cell_size=10.0)).grid
-    ends = on_chart(grid, ROADS_START, ROADS_GOAL)
+    cell_size = float(dict(load().charts["us5ma12m"].options)["cell-size"])
+    grid = preprocess(enc, Options(cell_size=cell_size)).grid
+    ends = on_chart(grid, ROADS.start, ROADS.goal)
     shore = grid.blocked & ndimage.binary_dilation(~grid.blocked, structure=np.ones((3, 3)))
     optimum = plan_route(grid, *ends, PlanOptions("anyangle")).route.length_m
     return grid, ends, optimum, reference(shore)
@@ -108,7 +118,7 @@ def test_every_optimizer_with_attempts_on_the_boston_route(roads, algo):
     GWO end colliding for some seeds; within 5 runs every optimizer finds a free route."""
     grid, (start, goal), optimum, reference = roads
     route = plan_route(
-        grid, start, goal, PlanOptions(algo, pop=50, iters=300, seed=1, attempts=5)
+        grid, start, goal, PlanOptions(algo, pop=50, iters=300, seed=SEED, attempts=ATTEMPTS)
     ).route
     assert reference.route_free(cells(grid, route.points))
     assert optimum * (1 - 1e-9) <= route.length_m <= optimum * 2.5
