@@ -8,6 +8,8 @@ USV := $(BIN)/usvtool
 BUILD := build
 
 .PHONY: test report charts lint bench clean
+# a recipe that fails removes the target it was making (no half-written file looks up to date)
+.DELETE_ON_ERROR:
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)

@@ -4,8 +4,16 @@
 BIN ?= .venv/bin
 USV := $(BIN)/usvtool -q
 OUT := build/grids
-# every output depends on the code that makes it: a change re-runs the stages
-SRC := $(shell find usvtool -name '*.py')
+# a recipe that fails removes its target: a half-written file never looks up to date
+.DELETE_ON_ERROR:
+
+# each stage's outputs depend on the code of that stage, the CLI basics and the contract modules
+# (usvtool/NAME.py) it imports: a change re-runs that stage (and what depends on its outputs) only
+CLI_SRC := usvtool/__init__.py usvtool/cli/__init__.py usvtool/cli/options.py
+contracts = $(patsubst %,usvtool/%.py,$(1))
+CHART_CONTRACTS := grid geodesy atomic errors
+CHART_SRC := $(shell find usvtool/chart -name '*.py') usvtool/cli/preprocess.py $(CLI_SRC) \
+	$(call contracts,$(CHART_CONTRACTS))
 
 # the pipeline's lists as Make variables (GRIDS, CHART_SOURCE_*, PREPROCESS_*, ROUTE_GRIDS, ALGOS,
 # ENDS_*, ROUTES, ...), regenerated when the YAML or its reader changes (Make then restarts)
@@ -22,7 +30,8 @@ $(OUT):
 	mkdir -p $@
 
 define grid_rule
-$(OUT)/$(1).tif: $(CHART_SOURCE_$(1)) $(CHART_INPUTS_$(1)) $(SRC) | $(OUT)
-	$(USV) preprocess $$< -o $$@ --preview $$(@:.tif=.png) $(PREPROCESS_$(1)) > $$(@:.tif=.json)
+$(OUT)/$(1).tif: $(CHART_SOURCE_$(1)) $(CHART_INPUTS_$(1)) $(CHART_SRC) | $(OUT)
+	$(USV) preprocess $$< -o $$@ --preview $$(@:.tif=.png) --summary $$(@:.tif=.json) \
+		$(PREPROCESS_$(1)) > /dev/null
 endef
 $(foreach c,$(GRIDS),$(eval $(call grid_rule,$(c))))

@@ -1,6 +1,7 @@
 # The report at this stage: every bundled chart preprocessed (charts.mk), a route planned on each
 # with every algorithm (routes.mk), and the table of the papers' metrics (build/paths/summary.csv).
 BIN ?= .venv/bin
+.DELETE_ON_ERROR:
 include pipelines/charts.mk
 include pipelines/routes.mk
 

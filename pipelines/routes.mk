@@ -3,16 +3,23 @@
 # Included by report.mk after charts.mk, whose build/pipeline.mk (from pipelines/report.yaml)
 # gives ROUTE_GRIDS, ALGOS, SEED, ATTEMPTS, PLAN_OPTIONS, ENDS_<chart> and ROUTES: no list here.
 PATHS_DIR := build/paths
+# the plan stage's code (CLI_SRC and contracts from charts.mk): a chart-only change re-plans nothing
+PLAN_CONTRACTS := grid route collision metrics geodesy atomic errors
+PLAN_SRC := $(shell find usvtool/plan -name '*.py') usvtool/cli/plan.py $(CLI_SRC) \
+	$(call contracts,$(PLAN_CONTRACTS))
 
 define route_rule
-$(PATHS_DIR)/$(1)/$(2).geojson: $(OUT)/$(1).tif $(SRC)
+$(PATHS_DIR)/$(1)/$(2).geojson: $(OUT)/$(1).tif $(PLAN_SRC)
 	@mkdir -p $$(@D)
-	$(USV) plan $$< $(ENDS_$(1)) --algo $(2) --seed $(SEED) --attempts $(ATTEMPTS) $(PLAN_OPTIONS) -o $$@ > $$(@:.geojson=.json)
+	$(USV) plan $$< $(ENDS_$(1)) --algo $(2) --seed $(SEED) --attempts $(ATTEMPTS) $(PLAN_OPTIONS) \
+		-o $$@ --summary $$(@:.geojson=.json) > /dev/null
 endef
 $(foreach c,$(ROUTE_GRIDS),$(foreach a,$(ALGOS),$(eval $(call route_rule,$(c),$(a)))))
 
 # the table of the papers' metrics (docs/metrics.md): usvtool metrics writes it atomically; the
 # any-angle route of each chart's directory is the reference of length_ratio
-METRICS_SRC := $(wildcard usvtool/measure/*.py) usvtool/metrics.py usvtool/route.py usvtool/cli/metrics.py
+METRICS_CONTRACTS := metrics route trace grid geodesy atomic errors
+METRICS_SRC := $(wildcard usvtool/measure/*.py) usvtool/cli/metrics.py $(CLI_SRC) \
+	$(call contracts,$(METRICS_CONTRACTS))
 $(PATHS_DIR)/summary.csv: $(ROUTES) $(METRICS_SRC)
-	$(USV) metrics $(ROUTES) -o $@ > $(@:.csv=.json)
+	$(USV) metrics $(ROUTES) -o $@ --summary $(@:.csv=.json) > /dev/null

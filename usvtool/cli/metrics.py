@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from usvtool.cli.options import emit
+from usvtool.cli.options import emit, summary_option, write_summary
 
 
 @click.command()
@@ -31,23 +31,29 @@ from usvtool.cli.options import emit
     help="Optimisation rates of the runs against this controller's run of the same scenario "
     "and seed.",
 )  # fmt: skip
-def metrics(inputs, output, references, events, reference_controller) -> None:
+@summary_option
+def metrics(inputs, output, references, events, reference_controller, summary_path) -> None:
     """One row of metrics per route (*.geojson) or run (*.csv trace with its events JSON).
 
-    With -o the summary JSON goes to stdout; without it the CSV table does.
+    With -o the summary JSON goes to stdout (and to --summary); without it the CSV table does.
     """
     import sys
 
-    from usvtool.atomic import check_output_path, write_text
+    from usvtool.atomic import check_outputs, staged
     from usvtool.measure import MeasureOptions, measure
 
-    if output is not None:
-        check_output_path(output)
+    if summary_path is not None and output is None:
+        raise click.UsageError("--summary: give -o too (without it stdout has the table)")
+    check_outputs([("-o", output), ("--summary", summary_path)])
     options = MeasureOptions(tuple(references), tuple(events), reference_controller)
     result = measure(inputs, options)
     if output is None:
         sys.stdout.write(result.to_csv())
         return
     as_json = Path(output).suffix.lower() == ".json"
-    write_text(output, result.to_json() if as_json else result.to_csv())
-    emit({"output": output, "format": "json" if as_json else "csv", **result.summary()})
+    summary = {"output": output, "format": "json" if as_json else "csv", **result.summary()}
+    with staged(output, summary_path) as (table_tmp, summary_tmp):  # the table renamed last
+        table_tmp.write_text(result.to_json() if as_json else result.to_csv(), encoding="utf-8")
+        if summary_tmp:
+            write_summary(summary_tmp, summary)
+    emit(summary)

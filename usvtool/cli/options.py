@@ -83,7 +83,27 @@ def param_option(help: str):
     )
 
 
+def summary_option(f):
+    """``--summary FILE``: also write the summary JSON to FILE (atomically, with the outputs)."""
+    return click.option(
+        "--summary", "summary_path", type=click.Path(dir_okay=False), metavar="FILE.json",
+        help="Also write the summary JSON printed on stdout to this file (atomically, together "
+        "with the outputs: none is written when the command fails).",
+    )(f)  # fmt: skip
+
+
+def summary_text(summary: dict) -> str:
+    """The summary JSON as :func:`emit` prints it (and ``--summary`` writes it)."""
+    return json.dumps(summary, indent=2, default=jsonable) + "\n"
+
+
+def write_summary(path, summary: dict) -> None:
+    """Write the summary JSON to ``path`` (a staged temporary, or atomically by itself)."""
+    from usvtool.atomic import write_text
+
+    write_text(path, summary_text(summary))
+
+
 def emit(summary: dict) -> None:
     """Print the command's summary JSON on stdout."""
-    json.dump(summary, sys.stdout, indent=2, default=jsonable)
-    sys.stdout.write("\n")
+    sys.stdout.write(summary_text(summary))

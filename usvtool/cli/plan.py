@@ -6,7 +6,15 @@ import logging
 
 import click
 
-from usvtool.cli.options import NON_NEGATIVE, emit, output_option, param_option, seed_option
+from usvtool.cli.options import (
+    NON_NEGATIVE,
+    emit,
+    output_option,
+    param_option,
+    seed_option,
+    summary_option,
+    write_summary,
+)
 from usvtool.plan.planner import algorithm_names
 from usvtool.plan.problem import ENCODINGS
 from usvtool.plan.shorten import SUFFIX
@@ -82,6 +90,7 @@ def _algo(ctx, param, value: str) -> str:
     help="Record planning_time_s (--no-timing writes null: byte-identical outputs per seed).",
 )
 @output_option("Path GeoJSON to write.")
+@summary_option
 def plan(
     grid_path: str,
     start,
@@ -99,15 +108,16 @@ def plan(
     attempts: int,
     timing: bool,
     output: str,
+    summary_path: str | None,
 ) -> None:
     """Plan a route from --start to --goal on GRID.tif and write it to -o as GeoJSON."""
-    from usvtool.atomic import check_output_path
+    from usvtool.atomic import check_outputs, staged
     from usvtool.errors import UsvError
     from usvtool.grid import read_grid
     from usvtool.plan.planner import PlanOptions, check_ends, plan_route
     from usvtool.route import write_path_geojson
 
-    check_output_path(output)
+    check_outputs([("-o", output), ("--summary", summary_path)])
     grid = read_grid(grid_path)
     start = _point(grid, grid_path, "start", start, start_lonlat)
     goal = _point(grid, grid_path, "goal", goal, goal_lonlat)
@@ -127,8 +137,12 @@ def plan(
             "algorithm",
             grid_path, algo, attempts,
         )
-    write_path_geojson(output, result.route, grid)
-    emit({"output": output, "grid": grid_path, **result.summary()})
+    summary = {"output": output, "grid": grid_path, **result.summary()}
+    with staged(output, summary_path) as (path_tmp, summary_tmp):  # the route renamed last
+        write_path_geojson(path_tmp, result.route, grid)
+        if summary_tmp:
+            write_summary(summary_tmp, summary)
+    emit(summary)
 
 
 def _point(grid, grid_path: str, name: str, xy, lonlat) -> tuple[float, float]:

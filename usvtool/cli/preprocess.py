@@ -6,7 +6,15 @@ import logging
 
 import click
 
-from usvtool.cli.options import NON_NEGATIVE, POSITIVE, emit, output_option, seed_option
+from usvtool.cli.options import (
+    NON_NEGATIVE,
+    POSITIVE,
+    emit,
+    output_option,
+    seed_option,
+    summary_option,
+    write_summary,
+)
 
 log = logging.getLogger(__name__)
 
@@ -68,9 +76,10 @@ class Colour(click.ParamType):
 @click.option("--hazard-radius", type=NON_NEGATIVE,
               help="S-57: buffer (m) around rocks, wrecks and obstructions [default: 10].")
 @seed_option
+@summary_option
 def preprocess(chart, output, preview, ship_length, cell_size, margin, swell, resolution, bounds,
                clusters, land_colours, channel, threshold, min_area, occupancy, min_depth,
-               hazard_radius, seed, preview_resolution, ink, cutline):
+               hazard_radius, seed, preview_resolution, ink, cutline, summary_path):
     """Turn CHART (image, GeoTIFF, BSB/KAP, S-57 cell or GeoJSON) into a navigation grid.
 
     Fuzzy C-means colour clustering, Otsu binarisation, clutter removal, gridding at
@@ -82,7 +91,7 @@ def preprocess(chart, output, preview, ship_length, cell_size, margin, swell, re
     from usvtool.chart.sources import chart_kind
     from usvtool.grid import write_grid
 
-    check_outputs([("-o", output), ("--preview", preview)])
+    check_outputs([("-o", output), ("--preview", preview), ("--summary", summary_path)])
     if not preview and preview_resolution is not None:
         raise click.UsageError("--preview-resolution: give --preview too")
     opts = Options(
@@ -113,10 +122,12 @@ def preprocess(chart, output, preview, ship_length, cell_size, margin, swell, re
             background = s57_background(chart, px)
         image = render_preview(result.grid, background, preview_resolution)  # before any file
         summary["preview"] = preview
-    with staged(output, preview) as (grid_tmp, preview_tmp):  # renamed together at the end
-        write_grid(grid_tmp, result.grid)
+    with staged(output, preview, summary_path) as (grid_tmp, preview_tmp, summary_tmp):
+        write_grid(grid_tmp, result.grid)  # all renamed together at the end, the grid last
         if preview_tmp:
             write_png(preview_tmp, image)
+        if summary_tmp:
+            write_summary(summary_tmp, summary)
     log.info("%s: %d x %d cells of %g m", output, result.grid.width, result.grid.height,
              result.grid.cell_size)
     emit(summary)

@@ -10,7 +10,14 @@ from pathlib import Path
 
 import click
 
-from usvtool.cli.options import emit, output_option, param_option, seed_option
+from usvtool.cli.options import (
+    emit,
+    output_option,
+    param_option,
+    seed_option,
+    summary_option,
+    write_summary,
+)
 from usvtool.sim.controllers import CONTROLLERS
 
 log = logging.getLogger(__name__)
@@ -28,8 +35,10 @@ log = logging.getLogger(__name__)
 @output_option("Trace CSV to write.")
 @click.option("--events", type=click.Path(dir_okay=False), help="Also write the events JSON.")
 @click.option("--tracks", type=click.Path(dir_okay=False), help="Also write the tracks GeoJSON.")
+@summary_option
 def simulate(scenario_path: str, controller: str | None, params: dict, seed: int, output: str,
-             events: str | None, tracks: str | None) -> None:  # fmt: skip
+             events: str | None, tracks: str | None,
+             summary_path: str | None) -> None:  # fmt: skip
     """Run SCENARIO.yaml (own ship, targets, weather, controller) and write its trace to -o.
 
     All the outputs are written, or none. The summary JSON goes to stdout.
@@ -42,7 +51,8 @@ def simulate(scenario_path: str, controller: str | None, params: dict, seed: int
     from usvtool.sim.scenario import controller_params, read_scenario
     from usvtool.trace import write_events, write_trace, write_tracks
 
-    outputs = [("-o", output), ("--events", events), ("--tracks", tracks)]
+    outputs = [("-o", output), ("--events", events), ("--tracks", tracks),
+               ("--summary", summary_path)]  # fmt: skip
     check_outputs(outputs)
     for option, path in outputs:
         if path is not None and Path(path).resolve() == Path(scenario_path).resolve():
@@ -60,13 +70,21 @@ def simulate(scenario_path: str, controller: str | None, params: dict, seed: int
     log.info("%s: running %s for %g s in steps of %g s", scenario_path, name,
              scenario.sim.duration, scenario.sim.dt)  # fmt: skip
     result = run(scenario, Options(controller=controller, params=params, seed=seed))
-    with staged(output, events, tracks) as (trace_tmp, events_tmp, tracks_tmp):
+    summary = result.summary()
+    extra = {"output": output, "scenario_file": scenario_path}
+    if events:
+        extra["events"] = events
+    if tracks:
+        extra["tracks"] = tracks
+    targets = (output, events, tracks, summary_path)
+    with staged(*targets) as (trace_tmp, events_tmp, tracks_tmp, summary_tmp):
         write_trace(trace_tmp, result.trace)
         if events_tmp:
             write_events(events_tmp, result.events)
         if tracks_tmp:
             write_tracks(tracks_tmp, result.trace, result.crs)
-    summary = result.summary()
+        if summary_tmp:
+            write_summary(summary_tmp, {**extra, **summary})
     if summary.get("collision"):
         log.warning("%s: the own ship collided with %s at t %g s", scenario_path,
                     summary["collision"], summary["time_s"])  # fmt: skip
@@ -74,9 +92,4 @@ def simulate(scenario_path: str, controller: str | None, params: dict, seed: int
         log.info("%s: the own ship did not reach the goal in %g s", scenario_path,
                  summary["time_s"])  # fmt: skip
     log.info("%s: %d steps of %d ships", output, result.trace.n_steps, len(result.trace.ships))
-    extra = {"output": output, "scenario_file": scenario_path}
-    if events:
-        extra["events"] = events
-    if tracks:
-        extra["tracks"] = tracks
     emit({**extra, **summary})
