@@ -26,6 +26,7 @@ SUBCOMMANDS = {
     "functions": ("usvtool.cli.functions", "Run the optimizers on benchmark functions F1-F10."),
     "metrics": ("usvtool.cli.metrics", "Tabulate the papers' metrics of routes and runs."),
     "batch": ("usvtool.cli.batch", "Run a pipeline's jobs in a local pool, resumable."),
+    "compare": ("usvtool.cli.compare", "Regression report: a results table against a baseline."),
 }
 
 
