@@ -1,0 +1,121 @@
+"""The canvas every figure is drawn on: one style, deterministic PNG bytes, the data as CSV.
+
+A figure is a :class:`matplotlib.figure.Figure` on an Agg canvas (no pyplot: nothing global is
+switched or left open, and the figure is freed with its last reference), drawn inside
+:func:`figure`, which sets Matplotlib's defaults plus :data:`STYLE` whatever the user's
+matplotlibrc holds. The PNG is written at :data:`DPI` with no ``Software`` or date metadata, so
+the same inputs give the same bytes in any process.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
+
+import numpy as np
+
+from usvtool.errors import UsvError
+
+DPI = 100
+STYLE = {
+    "font.family": "DejaVu Sans",
+    "font.size": 9.0,
+    "axes.titlesize": 10.0,
+    "figure.titlesize": 11.0,
+    "legend.fontsize": 8.0,
+    "axes.grid": True,
+    "grid.alpha": 0.35,
+    "grid.linewidth": 0.6,
+    "axes.axisbelow": True,
+    "image.interpolation": "antialiased",
+    "figure.dpi": DPI,
+    "savefig.dpi": DPI,
+    "figure.facecolor": "white",
+    "savefig.facecolor": "white",
+}
+#: Thirteen distinct colours (tab10 and three more) for the series of a figure, in order.
+COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
+           "#7f7f7f", "#bcbd22", "#17becf", "#000000", "#393b79", "#b8860b")  # fmt: skip
+LINESTYLES = ("-", "--", "-.", ":")
+
+
+@dataclass(frozen=True)
+class Plot:
+    """A figure: its PNG and the CSV text (header row, ``\\n`` line ends) of what it plots."""
+
+    png: bytes
+    data: str
+
+
+def series_style(i: int) -> dict:
+    """Colour and line style of the ``i``-th series: every one of 13 in its own colour, and
+    neighbours in different line styles (readable in grey print too)."""
+    return {"color": COLOURS[i % len(COLOURS)], "linestyle": LINESTYLES[i % len(LINESTYLES)]}
+
+
+@contextmanager
+def figure(width: float, height: float) -> Iterator:
+    """A new constrained-layout figure of ``width`` x ``height`` inches under the fixed style;
+    draw and :func:`png` it inside the block (the style applies when it is drawn)."""
+    import matplotlib as mpl
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    with mpl.rc_context():
+        mpl.rcdefaults()
+        mpl.rcParams.update(STYLE)
+        fig = Figure(figsize=(width, height), dpi=DPI, layout="constrained")
+        FigureCanvasAgg(fig)
+        yield fig
+
+
+def png(fig) -> bytes:
+    """The figure's PNG bytes: fixed size and dpi, no metadata that varies."""
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=DPI, metadata={"Software": None},
+                pil_kwargs={"optimize": True})  # fmt: skip
+    return buf.getvalue()
+
+
+def csv_text(header: Iterable[str], rows: Iterable[Iterable]) -> str:
+    """CSV text with a header row and ``\\n`` line ends."""
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow(header)
+    writer.writerows(rows)
+    return buf.getvalue()
+
+
+def fixed(values, decimals: int) -> list[str]:
+    """Fixed-point texts with ``decimals`` decimals, never ``-0.0…``.
+
+    >>> fixed([1.23456, -0.0001, 2], 3)
+    ['1.235', '0.000', '2.000']
+    """
+    texts = [f"{v:.{decimals}f}" for v in np.asarray(values, float).ravel().tolist()]
+    return [s[1:] if s.startswith("-") and not s.strip("-0.") else s for s in texts]
+
+
+def finite_array(where: str, values, ndim: int | None = None, columns: int | None = None):
+    """``values`` as a float array, refused (one line naming ``where``) unless it is finite and
+    of ``ndim`` dimensions with ``columns`` columns when given."""
+    try:
+        a = np.asarray(values, float)
+    except (TypeError, ValueError):
+        raise UsvError(f"{where}: not an array of numbers") from None
+    if ndim is not None and a.ndim != ndim or columns is not None and a.shape[-1:] != (columns,):
+        want = f"({'n, ' * (ndim - 1) if ndim else ''}{columns if columns else 'n'})"
+        raise UsvError(f"{where}: has shape {a.shape}, expected {want}")
+    if not np.isfinite(a).all():
+        raise UsvError(f"{where}: holds NaN or infinite values")
+    return a
+
+
+def panel_grid(n: int, columns: int) -> tuple[int, int]:
+    """(rows, columns) of a grid of ``n`` panels at most ``columns`` wide."""
+    cols = max(1, min(n, columns))
+    return math.ceil(n / cols), cols

@@ -1,0 +1,153 @@
+"""Figures of runs against time and over the weather: the own ship's x, y and heading
+(IWSO-DWA Figs. 12, 14, …, 26), the distance to the nearest ship per controller (UDWA Figs. 10,
+13, 16), and the own-ship tracks over the wind field (UDWA Figs. 19-20)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from usvtool.errors import UsvError
+from usvtool.metrics import target_distances
+from usvtool.report.figures.canvas import (
+    Plot,
+    csv_text,
+    figure,
+    finite_array,
+    fixed,
+    png,
+    series_style,
+)
+from usvtool.report.figures.raster import MAX_SIDE, map_axes
+from usvtool.trace import OWN, Trace
+
+#: Quiver arrows along the longer side of the wind field.
+ARROWS = 20
+
+
+def unwrapped_heading(heading) -> np.ndarray:
+    """Compass headings unwrapped into a continuous curve (no jump at 0/360), shifted by whole
+    turns so that the first lies in [0, 360).
+
+    >>> unwrapped_heading([350.0, 5.0, 20.0, 340.0]).tolist()
+    [350.0, 365.0, 380.0, 340.0]
+    """
+    h = np.unwrap(np.asarray(heading, float), period=360.0)
+    return h - 360.0 * np.floor(h[0] / 360.0)
+
+
+def states_against_time(trace: Trace, title: str = "") -> Plot:
+    """The own ship's x, y and heading against time, three panels sharing the time axis; the
+    heading unwrapped (:func:`unwrapped_heading`), so a turn through north stays one curve.
+
+    Data: ``t,x,y,heading_unwrapped`` (3 decimals), one row per step.
+    """
+    own = trace.ship(OWN)
+    heading = unwrapped_heading(own[:, 2])
+    columns = (own[:, 0], own[:, 1], heading)
+    with figure(8.0, 7.2) as fig:
+        axes = fig.subplots(3, 1, sharex=True)
+        for ax, values, label in zip(axes, columns, ("x (m)", "y (m)", "heading (°, compass)"),
+                                     strict=True):  # fmt: skip
+            ax.plot(trace.t, values, color="#1f4fd8", linewidth=1.3)
+            ax.set_ylabel(label)
+        axes[-1].set_xlabel("t (s)")
+        fig.suptitle(title or "own ship: position and heading")
+        image = png(fig)
+    rows = zip(fixed(trace.t, 3), *(fixed(c, 3) for c in columns), strict=True)
+    return Plot(image, csv_text(("t", "x", "y", "heading_unwrapped"), rows))
+
+
+def nearest_ship_distance(trace: Trace) -> np.ndarray:
+    """``(n,)``: the centre distance from the own ship to the nearest other ship at each step."""
+    if len(trace.ships) < 2:
+        raise UsvError("nearest_distance: a trace has no ship but the own ship")
+    j = trace.ships.index(OWN)
+    others = [k for k in range(len(trace.ships)) if k != j]
+    d = target_distances(trace.x[:, j], trace.y[:, j], trace.x[:, others], trace.y[:, others])
+    return d.min(axis=1)
+
+
+def nearest_distance(traces: dict[str, Trace], title: str, limit: float | None = None) -> Plot:
+    """The distance to the nearest ship against time, one line per controller (the order and
+    styles of ``traces``), its minimum marked and given in the legend, and a dotted line at
+    ``limit`` metres when given (a domain, a safe distance: the caption says which).
+
+    Data: ``controller,t,distance_m`` (3 decimals), one row per step of each trace.
+    """
+    if not traces:
+        raise UsvError("nearest_distance: no trace")
+    series = {name: nearest_ship_distance(tr) for name, tr in traces.items()}
+    with figure(9.0, 5.0) as fig:
+        ax = fig.add_subplot()
+        for i, (name, d) in enumerate(series.items()):
+            t, k = traces[name].t, int(np.argmin(d))
+            style = series_style(i)
+            ax.plot(t, d, linewidth=1.4, label=f"{name} (closest {d[k]:.2f} m at {t[k]:.1f} s)",
+                    **style)  # fmt: skip
+            ax.plot(t[k], d[k], marker="o", markersize=5, color=style["color"])
+        if limit is not None:
+            ax.axhline(float(limit), color="black", linestyle=":", linewidth=1.0,
+                       label=f"{float(limit):g} m")  # fmt: skip
+        ax.set_ylim(bottom=0)
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel("distance to the nearest ship (m)")
+        ax.set_title(title)
+        ax.legend(loc="best")
+        image = png(fig)
+    rows = [(name, tt, dd) for name, d in series.items()
+            for tt, dd in zip(fixed(traces[name].t, 3), fixed(d, 3), strict=True)]  # fmt: skip
+    return Plot(image, csv_text(("controller", "t", "distance_m"), rows))
+
+
+def wind_runs(u, v, extent, traces: dict[str, Trace], title: str) -> Plot:
+    """The wind field, ``u`` and ``v`` ``(h, w)`` (m/s toward east and north, row 0 the northern
+    edge, cells covering ``extent`` = (left, right, bottom, top) map metres), as its speed in a
+    colour map with a colour bar and arrows (one every ``ceil(max(h, w) / 20)`` cells, at cell
+    centres, pointing where the wind blows), and each controller's own-ship track over it
+    (the styles of ``traces``; the legend gives the time of its last step).
+
+    Data: ``controller,t,x,y`` (3 decimals), the tracks; the field is the scenario's raster.
+    """
+    u = finite_array("wind_runs: u", u, ndim=2)
+    v = finite_array("wind_runs: v", v, ndim=2)
+    if u.shape != v.shape:
+        raise UsvError(f"wind_runs: u has shape {u.shape} and v {v.shape}")
+    left, right, bottom, top = finite_array("wind_runs: extent", extent, ndim=1, columns=4)
+    if not (left < right and bottom < top):
+        raise UsvError(f"wind_runs: extent {tuple(extent)} is not (left, right, bottom, top)")
+    if not traces:
+        raise UsvError("wind_runs: no trace")
+    h, w = u.shape
+    speed = np.hypot(u, v)
+    shown = speed[:: math.ceil(h / MAX_SIDE), :: math.ceil(w / MAX_SIDE)]
+    k = math.ceil(max(h, w) / ARROWS)
+    rows_i, cols_j = np.arange(k // 2, h, k), np.arange(k // 2, w, k)
+    ax_x = left + (cols_j + 0.5) * (right - left) / w
+    ax_y = top - (rows_i + 0.5) * (top - bottom) / h
+    from matplotlib import patheffects
+
+    outline = [patheffects.withStroke(linewidth=3.2, foreground="white")]
+    with figure(8.6, 7.0) as fig:
+        ax = fig.add_subplot()
+        image = ax.imshow(shown, extent=(left, right, bottom, top), origin="upper",
+                          cmap="coolwarm", vmin=0.0, interpolation="nearest", zorder=0)
+        fig.colorbar(image, ax=ax, label="wind speed (m/s)", shrink=0.85)
+        ax.quiver(*np.meshgrid(ax_x, ax_y), u[np.ix_(rows_i, cols_j)], v[np.ix_(rows_i, cols_j)],
+                  color="black", alpha=0.6, pivot="middle", zorder=1)  # fmt: skip
+        for i, (name, tr) in enumerate(traces.items()):
+            own = tr.ship(OWN)
+            ax.plot(own[:, 0], own[:, 1], linewidth=1.8, path_effects=outline, zorder=2,
+                    label=f"{name} ({tr.t[-1]:.1f} s)", **series_style(i))  # fmt: skip
+        ax.set_xlim(left, right)
+        ax.set_ylim(bottom, top)
+        ax.grid(False)
+        map_axes(ax, max(right - left, top - bottom))
+        ax.set_title(title)
+        ax.legend(loc="best")
+        picture = png(fig)
+    rows = [(name, *values) for name, tr in traces.items()
+            for values in zip(*(fixed(c, 3) for c in (tr.t, tr.ship(OWN)[:, 0],
+                                                       tr.ship(OWN)[:, 1])), strict=True)]
+    return Plot(picture, csv_text(("controller", "t", "x", "y"), rows))

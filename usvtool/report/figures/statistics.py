@@ -1,0 +1,100 @@
+"""Figures over seeds: convergence curves (IWSO-DWA Figs. 8, 10) and box plots of the route
+metrics (IWSO-DWA Table 2 and ISSA Table 3 as distributions)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from usvtool.errors import UsvError
+from usvtool.report.figures.canvas import (
+    Plot,
+    csv_text,
+    figure,
+    finite_array,
+    fixed,
+    panel_grid,
+    png,
+    series_style,
+)
+
+#: Decimals of the costs and metric values in the data CSV.
+DECIMALS = 6
+
+
+def convergence_bands(where: str, runs: list[list[float]]) -> np.ndarray:
+    """``(3, iterations)``: the median, first and third quartile over the seeds of the best
+    cost after each iteration (NumPy's linear percentiles: seeds 1, 2, 3 give 2, 1.5, 2.5).
+
+    >>> convergence_bands("x", [[3.0, 1.0], [1.0, 1.0], [2.0, 1.0]]).tolist()
+    [[2.0, 1.0], [1.5, 1.0], [2.5, 1.0]]
+    """
+    lengths = {len(r) for r in runs}
+    if not runs or 0 in lengths:
+        raise UsvError(f"{where}: no convergence curve (the exact planners have none)")
+    if len(lengths) > 1:
+        raise UsvError(f"{where}: the seeds' curves have different lengths "
+                       f"({', '.join(map(str, sorted(lengths)))} iterations)")  # fmt: skip
+    a = finite_array(where, runs, ndim=2)
+    return np.percentile(a, [50, 25, 75], axis=0)
+
+
+def convergence(curves: dict[str, list[list[float]]], title: str) -> Plot:
+    """Best cost against iteration (1, 2, …) per algorithm: the median over its seeds as a line
+    and the interquartile range as a band, in the order and styles of ``curves``.
+
+    Data: ``algorithm,iteration,median,q1,q3``, costs to 6 decimals.
+    """
+    bands = {name: convergence_bands(f"convergence: {name!r}", runs)
+             for name, runs in curves.items()}  # fmt: skip
+    with figure(9.6, 5.6) as fig:
+        ax = fig.add_subplot()
+        for i, (name, (median, q1, q3)) in enumerate(bands.items()):
+            it = np.arange(1, median.size + 1)
+            style = series_style(i)
+            n = len(curves[name])
+            ax.plot(it, median, linewidth=1.4, label=f"{name} ({n} seed{'s' * (n != 1)})",
+                    **style)  # fmt: skip
+            ax.fill_between(it, q1, q3, color=style["color"], alpha=0.15, linewidth=0)
+        ax.set_xlabel("iteration")
+        ax.set_ylabel("best cost (m)")
+        ax.set_title(title)
+        fig.legend(loc="outside right upper")
+        image = png(fig)
+    rows = [(name, i + 1, *fixed(b[:, i], DECIMALS)) for name, b in bands.items()
+            for i in range(b.shape[1])]  # fmt: skip
+    return Plot(image, csv_text(("algorithm", "iteration", "median", "q1", "q3"), rows))
+
+
+def boxplots(values: dict[str, dict[str, list[float]]], title: str) -> Plot:
+    """One panel per metric (the outer keys, in order; two panels a row), one box per algorithm
+    (the inner keys, in order) over its seeds: the median, the quartile box, whiskers to the
+    furthest value within 1.5 IQR, the values beyond as points. An algorithm without values in
+    a metric keeps its place, empty. Each algorithm has one colour in every panel (the order of
+    first appearance).
+
+    Data: ``metric,algorithm,seed_index,value``, one row per value (6 decimals).
+    """
+    if not values:
+        raise UsvError("boxplots: no metric")
+    data = {metric: {name: finite_array(f"boxplots: {metric!r}, {name!r}", v, ndim=1)
+                     for name, v in per.items()} for metric, per in values.items()}  # fmt: skip
+    names = list(dict.fromkeys(name for per in data.values() for name in per))
+    rows, cols = panel_grid(len(data), 2)
+    with figure(10.0, 7.6) as fig:
+        axes = fig.subplots(rows, cols, squeeze=False).ravel()
+        for ax, (metric, per) in zip(axes, data.items(), strict=False):
+            box = ax.boxplot(list(per.values()), tick_labels=list(per), patch_artist=True,
+                             widths=0.6, medianprops={"color": "black"},
+                             flierprops={"markersize": 3})  # fmt: skip
+            for patch, name in zip(box["boxes"], per, strict=True):
+                patch.set_facecolor(series_style(names.index(name))["color"])
+                patch.set_alpha(0.55)
+            ax.set_title(metric)
+            ax.tick_params(axis="x", labelrotation=60, labelsize=7.5)
+        for ax in axes[len(data):]:
+            ax.set_visible(False)
+        fig.suptitle(title)
+        image = png(fig)
+    table = [(metric, name, i, v) for metric, per in data.items() for name, a in per.items()
+             for i, v in enumerate(fixed(a, DECIMALS))]  # fmt: skip
+    return Plot(image, csv_text(("metric", "algorithm", "seed_index", "value"), table))
