@@ -25,6 +25,7 @@ SUBCOMMANDS = {
     "simulate": ("usvtool.cli.simulate", "Run an encounter scenario: trace, events, tracks."),
     "functions": ("usvtool.cli.functions", "Run the optimizers on benchmark functions F1-F10."),
     "metrics": ("usvtool.cli.metrics", "Tabulate the papers' metrics of routes and runs."),
+    "report": ("usvtool.cli.report", "Write the comparison report (HTML and PDF) of results."),
     "batch": ("usvtool.cli.batch", "Run a pipeline's jobs in a local pool, resumable."),
     "compare": ("usvtool.cli.compare", "Regression report: a results table against a baseline."),
 }

@@ -1,0 +1,155 @@
+"""The report's inputs: results tables (:mod:`usvtool.results`) and the job files they point to.
+
+Each row of a table is one metric of one job; :func:`load` gathers a job's rows into a
+:class:`Job` with its directory (``<table's directory>/<kind>/<key>/``), its ``job.json`` (what
+the batch engine ran: the grid of a route, the scenario of a run) and its timings (the
+``timings.csv`` beside the table, when there is one). Several tables may be given (several
+batches); a key found in two of them is refused, as the report could not tell which is meant.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from usvtool.errors import UsvError
+from usvtool.results import Row, job_dir, read_results, timings_path
+
+#: The order methods are shown in: the papers' algorithms, then the project's variants, then
+#: the exact planners; the controllers (a name not listed comes after, alphabetically).
+ORDER = ("wso", "iwso", "ssa", "issa", "pso", "pso-issa", "gwo", "woa", "mrfo", "boa",
+         "anyangle", "astar", "dwa", "gdwa", "ccdwa", "udwa")  # fmt: skip
+
+
+def method_order(name: str) -> tuple:
+    """Sort key of a method: its base name's place in :data:`ORDER`, then its variant suffix."""
+    base, plus, variant = name.partition("+")
+    place = ORDER.index(base) if base in ORDER else len(ORDER)
+    return (place, base, plus + variant)
+
+
+@dataclass
+class Job:
+    """One job of a results table: its metrics, files and configuration."""
+
+    key: str
+    kind: str
+    case: str
+    method: str
+    seed: int | None
+    dir: Path
+    metrics: dict[str, Row] = field(default_factory=dict)
+    timings: dict[str, float] = field(default_factory=dict)
+    config: dict = field(default_factory=dict)
+
+    def number(self, metric: str) -> float | None:
+        """The metric as a number (timings included); None when absent or a word."""
+        if metric in self.timings:
+            return self.timings[metric]
+        row = self.metrics.get(metric)
+        return None if row is None else row.number
+
+    def grid_dir(self) -> Path | None:
+        """A route's grid job directory (``<batch>/grids/<key>``, the key in ``job.json``'s
+        ``grid``), when it is there."""
+        key = self.config.get("grid")
+        path = self.dir.parent.parent / "grids" / str(key)
+        return path if key and path.is_dir() else None
+
+    def text(self, metric: str) -> str | None:
+        row = self.metrics.get(metric)
+        return None if row is None else row.value
+
+
+@dataclass
+class Results:
+    """Every job of the tables given, in key order."""
+
+    jobs: list[Job]
+    tables: list[Path]
+
+    def select(self, kind: str, case: str | None = None, method: str | None = None) -> list[Job]:
+        return [j for j in self.jobs if j.kind == kind and case in (None, j.case)
+                and method in (None, j.method)]  # fmt: skip
+
+    def cases(self, kind: str) -> list[str]:
+        return sorted({j.case for j in self.jobs if j.kind == kind})
+
+    def methods(self, kind: str, case: str | None = None) -> list[str]:
+        return sorted({j.method for j in self.select(kind, case)}, key=method_order)
+
+    def values(self, kind: str, case: str, method: str, metric: str) -> list[float]:
+        """The metric's numbers over the seeds of (kind, case, method), in seed order."""
+        jobs = sorted(self.select(kind, case, method), key=lambda j: (j.seed is None, j.seed))
+        return [v for v in (j.number(metric) for j in jobs) if v is not None]
+
+
+def load(tables) -> Results:
+    """Read the tables, their timings and every job's ``job.json``."""
+    if not tables:
+        raise UsvError("no results table given")
+    jobs: dict[str, Job] = {}
+    where: dict[str, Path] = {}
+    for table in map(Path, tables):
+        rows = read_results(table)
+        timings = read_results(timings_path(table)) if timings_path(table).is_file() else []
+        mine: dict[str, Job] = {}
+        for row in rows:
+            if row.key in where and where[row.key] != table:
+                raise UsvError(f"{table}: job {row.key} is also in {where[row.key]}")
+            where[row.key] = table
+            job = mine.get(row.key)
+            if job is None:
+                job = mine[row.key] = Job(row.key, row.kind, row.case, row.method, row.seed,
+                                          job_dir(table, row))  # fmt: skip
+                config = job.dir / "job.json"
+                if config.is_file():
+                    try:
+                        job.config = json.loads(config.read_text(encoding="utf-8"))
+                    except ValueError as e:
+                        raise UsvError(f"{config}: not JSON ({e})") from None
+            job.metrics[row.metric] = row
+        for row in timings:
+            if row.key in mine and row.number is not None:
+                mine[row.key].timings[row.metric] = row.number
+        jobs.update(mine)
+    return Results([jobs[k] for k in sorted(jobs)], [Path(t) for t in tables])
+
+
+def stats(values) -> dict[str, float | None]:
+    """Best, worst, median, mean, sample variance and standard deviation (ddof 1; None for one
+    value) and the count of a list of numbers."""
+    a = np.asarray(values, float)
+    if a.size == 0:
+        return {"n": 0, "best": None, "worst": None, "median": None, "mean": None,
+                "variance": None, "std": None}  # fmt: skip
+    var = float(a.var(ddof=1)) if a.size > 1 else None
+    return {"n": int(a.size), "best": float(a.min()), "worst": float(a.max()),
+            "median": float(np.median(a)), "mean": float(a.mean()), "variance": var,
+            "std": None if var is None else float(np.sqrt(var))}  # fmt: skip
+
+
+def seed_text(seeds: list[int]) -> str:
+    """Seeds for a caption: ``1-25 (25)`` for a run of consecutive seeds, else a list."""
+    if not seeds:
+        return "none"
+    if len(seeds) > 2 and seeds == list(range(seeds[0], seeds[-1] + 1)):
+        return f"{seeds[0]}-{seeds[-1]} ({len(seeds)})"
+    return ", ".join(map(str, seeds))
+
+
+def statistic(results: Results, kind: str, case: str, method: str, metric: str,
+              name: str) -> float | None:  # fmt: skip
+    """A figure of our runs as a paper states one (:data:`usvtool.report.papers.STATISTICS`):
+    ``value`` and ``median`` the median over seeds, ``min``, ``max``, ``mean``, ``variance``,
+    ``std`` (ddof 1), ``of-best`` the metric of the run with the lowest ``fitness``; None when
+    there is no data (or one run for a spread)."""
+    if name == "of-best":
+        jobs = [j for j in results.select(kind, case, method)
+                if j.number("fitness") is not None and j.number(metric) is not None]  # fmt: skip
+        return min(jobs, key=lambda j: j.number("fitness")).number(metric) if jobs else None
+    figures = stats(results.values(kind, case, method, metric))
+    return figures["median" if name == "value" else {"min": "best", "max": "worst"}.get(name, name)]

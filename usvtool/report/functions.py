@@ -1,0 +1,41 @@
+"""The report's benchmark-function section: the IWSO paper's Table 1 (best, worst, mean and
+standard deviation of the final cost over the runs) with ours beside the paper's figures, then
+the same statistics for every optimizer we ran, those the paper has not included."""
+
+from __future__ import annotations
+
+from usvtool.report import published
+from usvtool.report.data import Results, stats
+from usvtool.report.document import Cell, Section, Table, number
+
+STATS = ("best", "worst", "mean", "std")
+
+
+def _function_order(name: str) -> tuple:
+    digits = name.lstrip("Ff")
+    return (0, int(digits)) if digits.isdigit() else (1, name)
+
+
+def table(results: Results) -> Table:
+    """One row per function and algorithm, over its runs."""
+    rows = []
+    for f in sorted(results.cases("functions"), key=_function_order):
+        for a in results.methods("functions", f):
+            s = stats(results.values("functions", f, a, "final_cost"))
+            rows.append([Cell(f), Cell(a), Cell(str(s["n"]), "num"),
+                         *(number(s[name], 3) for name in STATS)])  # fmt: skip
+    return Table("functions-table", "Benchmark functions: every optimizer",
+                 "Final cost after the last iteration, over the runs of each optimizer.",
+                 ["function", "algorithm", "runs", *STATS], rows)
+
+
+def section(results: Results) -> Section | None:
+    if not results.cases("functions"):
+        return None
+    s = Section("functions", "Benchmark functions")
+    s.paragraphs.append(
+        "Each optimizer minimises F1-F10 (unimodal F1-F7, multimodal F8-F10; "
+        "usvtool/plan/functions.py) from its own seeds.")
+    s.blocks += published.tables(results, "functions")
+    s.blocks.append(table(results))
+    return s

@@ -1,0 +1,124 @@
+"""The report's global-planning section: per chart, the routes of every algorithm, their
+convergence, box plots over seeds and a table of the papers' route metrics.
+
+A route job's grid is that of its grid job (:meth:`Job.grid_dir`); the route drawn for an
+algorithm is that of its first seed, the figures over seeds use all of them.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+from pathlib import Path
+
+import numpy as np
+
+from usvtool.grid import read_grid
+from usvtool.report import figures, published
+from usvtool.report.data import Job, Results, seed_text, stats
+from usvtool.report.document import Cell, Figure, Section, Table, number
+from usvtool.route import read_path_geojson
+
+#: The box-plot panels: (metric, label).
+BOXES = (("length_m", "length (m)"), ("turns", "turns"), ("mot", "mot"),
+         ("planning_time_s", "time (s)"))  # fmt: skip
+#: The per-chart table: (metric, column, decimals).
+COLUMNS = (("length_m", "length (m)", 2), ("length_ratio", "length / optimum", 4),
+           ("turns", "turns", 1), ("mot", "mot", 4),
+           ("planning_time_s", "time (s)", 3))  # fmt: skip
+
+
+@cache
+def _grid(path: Path):
+    return read_grid(path)
+
+
+def grid_of(job: Job):
+    """The route job's grid (None when its grid job is not beside it)."""
+    where = job.grid_dir()
+    return _grid(where / "grid.tif") if where and (where / "grid.tif").is_file() else None
+
+
+def _route(job: Job) -> tuple[np.ndarray, dict] | None:
+    path = job.dir / "route.geojson"
+    return read_path_geojson(path) if path.is_file() else None
+
+
+def _first(jobs: list[Job]) -> Job:
+    return min(jobs, key=lambda j: (j.seed is None, j.seed))
+
+
+def chart_section(results: Results, chart: str) -> Section:
+    """Routes, convergence, box plots and the metrics table of one chart."""
+    methods = results.methods("routes", chart)
+    jobs = {m: results.select("routes", chart, m) for m in methods}
+    seeds = sorted({j.seed for js in jobs.values() for j in js if j.seed is not None})
+    section = Section(f"routes-{chart}", f"Chart {chart}")
+    section.paragraphs.append(
+        f"{len(methods)} algorithms, {len(seeds)} seed(s) each for the optimizers "
+        f"(seeds {seed_text(seeds)}); the exact planners run once.")
+    first = {m: _first(js) for m, js in jobs.items()}
+    grid = next((g for g in map(grid_of, first.values()) if g is not None), None)
+    routes = {m: r[0] for m, r in ((m, _route(j)) for m, j in first.items()) if r is not None}
+    if grid is not None and routes:
+        start, goal = next(iter(routes.values()))[[0, -1]]
+        plot = figures.routes_on_grid(grid, routes, tuple(start), tuple(goal),
+                                      f"{chart}: routes (first seed)")  # fmt: skip
+        section.blocks.append(Figure(f"routes-{chart}-map", f"Routes on {chart}",
+                                     "Each algorithm's route of its first seed on the "
+                                     "navigation grid (obstacles dark, safety margin grey).",
+                                     plot.png, plot.data))  # fmt: skip
+    curves = {m: [c for c in (_convergence(j) for j in js) if c] for m, js in jobs.items()}
+    curves = {m: c for m, c in curves.items() if c}
+    if curves:
+        plot = figures.convergence(curves, f"{chart}: convergence")
+        section.blocks.append(Figure(f"routes-{chart}-convergence", f"Convergence on {chart}",
+                                     "Best cost (m) after each iteration: the median over "
+                                     "seeds and the interquartile band.",
+                                     plot.png, plot.data))  # fmt: skip
+    if len(seeds) > 1:
+        values = {label: {m: results.values("routes", chart, m, metric) for m in methods}
+                  for metric, label in BOXES}  # fmt: skip
+        plot = figures.boxplots(values, f"{chart}: over {len(seeds)} seeds")
+        section.blocks.append(Figure(f"routes-{chart}-boxes", f"Route metrics on {chart}",
+                                     "Length, turns, smoothness mot and planning time over "
+                                     "the seeds of each algorithm.", plot.png, plot.data))
+    section.blocks.append(metrics_table(results, chart, methods))
+    return section
+
+
+def metrics_table(results: Results, chart: str, methods: list[str]) -> Table:
+    """Medians over seeds of the route metrics, the collision-free rate and the run count."""
+    rows = []
+    for m in methods:
+        cells = [Cell(m)]
+        for metric, _, digits in COLUMNS:
+            cells.append(number(stats(results.values("routes", chart, m, metric))["median"],
+                                digits))  # fmt: skip
+        free = results.values("routes", chart, m, "collision_free")
+        cells.append(number(100 * float(np.mean(free)) if free else None, 0))
+        cells.append(Cell(str(len(results.select("routes", chart, m))), "num"))
+        rows.append(cells)
+    columns = ["algorithm", *(c for _, c, _ in COLUMNS), "collision-free (%)", "runs"]
+    return Table(f"routes-{chart}-table", f"Route metrics on {chart}",
+                 "Medians over seeds (docs/metrics.md gives each definition); time is the "
+                 "planning time of the machine of the methods section.", columns, rows)
+
+
+def _convergence(job: Job) -> list[float]:
+    route = _route(job)
+    return list(route[1].get("convergence") or []) if route else []
+
+
+def section(results: Results) -> Section | None:
+    """The planning section: one subsection per chart."""
+    charts = results.cases("routes")
+    if not charts:
+        return None
+    top = Section("planning", "Global path planning")
+    top.paragraphs.append(
+        "Every algorithm plans a route from start to goal on each chart with the papers' cost "
+        "(length, turn cost, inside-obstacle penalty). The any-angle route is the optimum of "
+        "length; the optimizers run over several seeds.")
+    top.blocks += published.tables(results, "routes")
+    top.subsections = [chart_section(results, c) for c in charts]
+    return top

@@ -1,0 +1,58 @@
+"""The report's preprocessing section: each chart's preview (the chart with its obstacle and
+margin cells, legend and scale, as ``usvtool preprocess --preview`` draws it) beside its
+navigation grid, and a table of the grids' figures (their ``summary.json``)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+from usvtool.grid import read_grid
+from usvtool.report import figures
+from usvtool.report.data import Results
+from usvtool.report.document import Cell, Figure, Section, Table, number
+
+
+def _preview(path) -> np.ndarray | None:
+    import cv2
+
+    image = cv2.imread(str(path), cv2.IMREAD_COLOR) if path.is_file() else None
+    return None if image is None else image[:, :, ::-1].copy()  # BGR -> RGB
+
+
+def section(results: Results) -> Section | None:
+    grids = {}
+    for chart in results.cases("routes"):
+        where = next((d for d in (j.grid_dir() for j in results.select("routes", chart)) if d),
+                     None)  # fmt: skip
+        if where is not None and (where / "grid.tif").is_file():
+            grids[chart] = where
+    if not grids:
+        return None
+    s = Section("preprocessing", "Charts and their navigation grids")
+    s.paragraphs.append(
+        "Each chart as usvtool preprocess turns it into a grid: obstacle cells (land, shallows, "
+        "hazards) and the safety margin around them; docs/preprocess.md gives the method.")
+    rows = []
+    for chart, where in grids.items():
+        grid = read_grid(where / "grid.tif")
+        summary = where / "summary.json"
+        info = json.loads(summary.read_text(encoding="utf-8")) if summary.is_file() else {}
+        obstacle = float(np.mean(grid.cells == 1))
+        margin = float(np.mean(grid.cells == 2))
+        rows.append([Cell(chart), Cell(str(info.get("source", "-"))),
+                     number(grid.cell_size, 2), Cell(f"{grid.width} x {grid.height}", "num"),
+                     number(100 * obstacle, 1), number(100 * margin, 1),
+                     Cell(str(grid.crs) if grid.crs else "local metres")])  # fmt: skip
+        if grid.crs is None:
+            continue  # a synthetic map: its routes figure shows it
+        plot = figures.preprocessing(_preview(where / "preview.png"), grid, chart)
+        s.blocks.append(Figure(f"chart-{chart}", f"Chart {chart}",
+                               "Left: the chart with its obstacle (red) and margin (yellow) "
+                               "cells; right: the navigation grid.", plot.png, plot.data))
+    s.blocks.append(Table("charts-table", "Navigation grids",
+                          "Cell size, size, and the share of obstacle and margin cells.",
+                          ["chart", "source", "cell (m)", "cells", "obstacle (%)", "margin (%)",
+                           "CRS"], rows))  # fmt: skip
+    return s

@@ -1,0 +1,71 @@
+"""A paper's published table beside our figures, in the paper's form.
+
+For each row of a :class:`~usvtool.report.papers.PaperTable` (a method in a case) and each
+column with a counterpart metric, our figure is the column's statistic over our seeds
+(:func:`usvtool.report.data.statistic`) times its ``scale`` (the paper's unit), set beside the
+paper's printed figure. A row whose setup is not ours (``comparable`` false) shows the paper's
+figure alone. An optimisation rate (``*_rate``) that the runs do not carry is computed from our
+medians against the reference controller's, as :func:`usvtool.metrics.optimisation_rate`
+defines it (UDWA Table 1: (UDWA - CCDWA) / CCDWA of the average distance).
+"""
+
+from __future__ import annotations
+
+from usvtool import metrics
+from usvtool.report.data import Results, statistic
+from usvtool.report.document import Cell, Table, number
+from usvtool.report.papers import PAPERS, TABLES, PaperTable
+
+#: The reference controller of the optimisation rates (UDWA paper, Table 1).
+REFERENCE = "ccdwa"
+
+
+def ours(results: Results, table: PaperTable, method: str, case: str, column) -> float | None:
+    value = statistic(results, table.kind, case, method, column.metric, column.statistic)
+    if value is None and column.metric.endswith("_rate"):
+        base = column.metric.removesuffix("_rate") + "_m"
+        mine = statistic(results, table.kind, case, method, base, "median")
+        ref = statistic(results, table.kind, case, REFERENCE, base, "median")
+        if mine is not None and ref not in (None, 0.0) and method != REFERENCE:
+            value = float(metrics.optimisation_rate(mine, ref))
+    return None if value is None else value * column.scale
+
+
+def _digits(printed: str | None) -> int:
+    if not printed or "e" in printed.lower() or "." not in printed:
+        return 2 if printed and "e" in printed.lower() else 0
+    return len(printed.split(".")[1])
+
+
+def table(results: Results, paper_table: PaperTable) -> Table:
+    t = paper_table
+    columns = [c for c in t.columns if c.metric is not None]
+    rows = []
+    for r in t.rows:
+        cells = [Cell(r.method), Cell(r.case)]
+        for c in columns:
+            i = t.columns.index(c)
+            printed = r.printed[i]
+            mine = ours(results, t, r.method, r.case, c) if r.comparable else None
+            cells.append(number(mine, max(_digits(printed), 1)) if r.comparable
+                         else Cell("n/c", "num untested"))  # fmt: skip
+            cells.append(Cell(printed or "-", "num paper"))
+        rows.append(cells)
+    headings = ["method", "case"]
+    for c in columns:
+        unit = f" ({c.unit})" if c.unit else ""
+        headings += [f"{c.heading}{unit}", "paper"]
+    paper = PAPERS[t.paper]
+    caption = (f"{t.caption} Ours (statistics over our seeds, in the paper's units) beside the "
+               f"paper's printed figures (grey); n/c: our setup is not the paper's. Setup: "
+               f"{t.setup}")  # fmt: skip
+    return Table(f"paper-{t.id}", f"{t.label} of the {paper.id.upper()} paper", caption,
+                 headings, rows)
+
+
+def tables(results: Results, kind: str) -> list[Table]:
+    """The published tables of ``kind`` with a counterpart metric and some case of ours."""
+    have = set(results.cases(kind))
+    return [table(results, t) for t in TABLES.values()
+            if t.kind == kind and any(c.metric for c in t.columns)
+            and have & {r.case for r in t.rows}]  # fmt: skip
