@@ -3,9 +3,8 @@ domains, the own ship's states against time, the distance to the nearest ship fo
 controller, and a table of the run metrics; then COLREGs compliance per encounter.
 
 A run job's files are ``trace.csv`` and ``trace.events.json`` in its directory; the events'
-``run`` object gives the ship lengths (``lengths``), and the map and weather field of the
-scenario (``map``, ``weather_field``, paths relative to the scenario file named by the job's
-``job.json``), when the simulation recorded them.
+``run`` object gives the ship lengths (``lengths``, when the simulation recorded them), and
+the scenario file named by the job's ``job.json`` its map and weather field.
 """
 
 from __future__ import annotations
@@ -22,6 +21,7 @@ from usvtool.report import figures, published
 from usvtool.report.data import Job, Results, stats
 from usvtool.report.document import Cell, Figure, Section, Table, number
 from usvtool.trace import Trace, read_trace
+from usvtool.wind import read_wind_field
 
 #: The controller whose snapshots are shown, by the scenario's family (its name's first word):
 #: the one its paper runs there.
@@ -52,14 +52,27 @@ def run_files(job: Job) -> tuple[Trace, dict] | None:
     return _trace(trace), _events(events)
 
 
-def scenario_file(job: Job, name: str) -> Path | None:
-    """A file the run's scenario names (``map``, ``weather_field``), resolved."""
-    events = run_files(job)
-    relative = events and events[1].get("run", {}).get(name)
+@cache
+def _scenario(path: str) -> dict:
+    import yaml
+
+    try:
+        data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
+    except (OSError, yaml.YAMLError) as e:
+        raise UsvError(f"{path}: cannot read the scenario ({' '.join(str(e).split())})") from None
+    return data if isinstance(data, dict) else {}
+
+
+def scenario_file(job: Job, *keys: str) -> Path | None:
+    """A file the run's scenario names (``map``; ``weather``, ``field``), resolved against the
+    scenario file of the job's ``job.json`` (docs/scenario.md: paths are relative to it)."""
     scenario = job.config.get("scenario")
-    if not relative or not scenario:
+    value = _scenario(scenario) if scenario and Path(scenario).is_file() else {}
+    for key in keys:
+        value = value.get(key) if isinstance(value, dict) else None
+    if not isinstance(value, str):
         return None
-    path = (Path(scenario).parent / relative).resolve()
+    path = (Path(scenario).parent / value).resolve()
     return path if path.is_file() else None
 
 
@@ -83,9 +96,10 @@ def scenario_section(results: Results, scenario: str) -> Section:
             for c in controllers}  # fmt: skip
     main = primary(scenario, controllers)
     files = run_files(runs[main])
+    grid_path = scenario_file(runs[main], "map")
+    field_path = scenario_file(runs[main], "weather", "field")
     if files is not None:
         trace, events = files
-        grid_path = scenario_file(runs[main], "map")
         grid = read_grid(grid_path) if grid_path else None
         times = figures.snapshot_times(trace, events)
         plot = figures.encounter_snapshots(trace, times, lengths(trace, events), grid=grid,
@@ -100,6 +114,15 @@ def scenario_section(results: Results, scenario: str) -> Section:
             f"encounter-{scenario}-states", f"{scenario} with {main}: states",
             "The own ship's x, y and heading against time.", plot.png, plot.data))
     traces = {c: f[0] for c, f in ((c, run_files(j)) for c, j in runs.items()) if f}
+    if field_path is not None and traces:
+        field = read_wind_field(field_path)
+        plot = figures.wind_runs(field.layers[0], field.layers[1], field.extent, traces,
+                                 f"{scenario}: tracks over the wind field")  # fmt: skip
+        section.blocks.append(Figure(
+            f"encounter-{scenario}-wind", f"{scenario}: tracks over the wind field",
+            "Wind speed (colour) and direction (arrows, where it blows) of the scenario's "
+            "field, with each controller's track (UDWA paper, Figs. 19-20).", plot.png,
+            plot.data))
     if traces and any(len(t.ships) > 1 for t in traces.values()):
         plot = figures.nearest_distance(traces, f"{scenario}: distance to the nearest ship")
         section.blocks.append(Figure(
