@@ -7,7 +7,7 @@ STAMP := $(VENV)/.installed
 USV := $(BIN)/usvtool
 BUILD := build
 
-.PHONY: test report charts lint bench clean
+.PHONY: test report regression baseline charts routes lint bench clean
 # a recipe that fails removes the target it was making (no half-written file looks up to date)
 .DELETE_ON_ERROR:
 
@@ -17,16 +17,65 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet -e '.[test]'
 	touch $(STAMP)
 
-test: $(STAMP)
+# Debian packages the tests use: Chromium (the report's browser test) and Pango (WeasyPrint's PDF).
+# Installed with apt-get when missing and running as root; otherwise a note (the browser test is
+# then skipped and report.pdf not written, each saying why).
+SYSTEM_STAMP := $(VENV)/.system-packages
+$(SYSTEM_STAMP):
+	@if command -v chromium >/dev/null && ldconfig -p | grep -q libpangoft2-1.0; then :; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+		echo "installing Debian packages: chromium libpango-1.0-0 libpangoft2-1.0-0"; \
+		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+			--no-install-recommends chromium libpango-1.0-0 libpangoft2-1.0-0 \
+			fonts-dejavu-core >/dev/null; \
+	else echo "note: install chromium, libpango-1.0-0 and libpangoft2-1.0-0 for the report's PDF and browser test"; fi
+	@mkdir -p $(VENV) && touch $@
+
+test: $(STAMP) $(SYSTEM_STAMP)
 	$(BIN)/python -m pytest -q
 
 lint: $(STAMP)
 	$(BIN)/ruff check .
 
+# the full comparison (docs/report.md): pipelines/full.yaml run by usvtool batch into build/batch
+# (a job runs again only when its configuration or its stage's code changed: docs/batch.md),
+# then the report from its table. A second `make report` with nothing changed does nothing; a
+# change to a template or to the report stage renders the report again, and only that.
+JOBS ?= 2
+BATCH_DIR := $(BUILD)/batch
+REPORT_DIR := $(BUILD)/report
+REPORT_SRC := $(shell find usvtool/report -name '*.py') usvtool/cli/report.py $(wildcard templates/*)
+BATCH_INPUTS := $(filter-out $(REPORT_SRC),$(shell find usvtool -name '*.py')) \
+	$(shell find charts -type f -not -name '*.pyc') $(wildcard pipelines/*.yaml)
+
+report: $(REPORT_DIR)/index.html
+
+$(BATCH_DIR)/metrics.csv: $(STAMP) $(BATCH_INPUTS)
+	@mkdir -p $(BUILD)
+	$(USV) batch pipelines/full.yaml -j $(JOBS) -o $(BATCH_DIR) --summary $(BUILD)/batch.json > /dev/null
+
+$(REPORT_DIR)/index.html: $(BATCH_DIR)/metrics.csv $(REPORT_SRC) $(SYSTEM_STAMP)
+	$(USV) report $< -o $(REPORT_DIR) --summary $(BUILD)/report.json > /dev/null
+
+# the CI regression report (docs/compare.md): pipelines/ci.yaml against baselines/ci.csv; exits
+# 1 when a metric got worse or went missing. `make baseline` refreshes the baseline on purpose.
+CI_DIR := $(BUILD)/ci
+regression: $(STAMP)
+	$(USV) batch pipelines/ci.yaml -j $(JOBS) -o $(CI_DIR) > /dev/null
+	$(USV) compare baselines/ci.csv $(CI_DIR)/metrics.csv -o $(BUILD)/regression > /dev/null
+
+baseline: $(STAMP)
+	$(USV) batch pipelines/ci.yaml -j $(JOBS) -o $(CI_DIR) > /dev/null
+	@mkdir -p baselines
+	cp $(CI_DIR)/metrics.csv baselines/ci.csv
+	cp $(CI_DIR)/timings.csv baselines/timings.csv
+
+# the bundled charts' grids and one route on each with every algorithm (pipelines/report.yaml)
+# through Make's own rules: build/grids/ and build/paths/summary.csv
 charts: $(STAMP)
 	$(MAKE) -f pipelines/charts.mk BIN=$(abspath $(BIN)) all
 
-report: charts
+routes: charts
 	$(MAKE) -j2 -f pipelines/report.mk BIN=$(abspath $(BIN)) report
 
 # speed and quality figures (several minutes): preprocessing, planning, ISSA 20 x 20, the

@@ -32,7 +32,7 @@ GRIDS = ROOT / "build" / "grids"
 
 def bundled_ends() -> dict[str, Ends]:
     """The start and goal of each chart of the bundled route matrix (pipelines/report.yaml)."""
-    return load().routes.ends
+    return load().routes["report"].ends
 
 
 def map_points(grid, ends: Ends) -> tuple[tuple[float, float], tuple[float, float]]:

@@ -1,7 +1,11 @@
-"""``usvtool batch`` (docs/batch.md): the local pool, resume, failures, a killed batch."""
+"""``usvtool batch`` (docs/batch.md): the tables, job.json, -j 1 / -j 2 / Dask bytes, failures,
+a worker killed in a job, a killed batch resumed, bad pipelines refused before anything runs."""
 
 from __future__ import annotations
 
+import csv
+import importlib.util
+import io
 import json
 import os
 import shutil
@@ -12,14 +16,28 @@ import time
 from pathlib import Path
 
 import pytest
+from click.testing import CliRunner
+
+from usvtool.batch.jobs import expand
+from usvtool.batch.progress import Bar, Lines
+from usvtool.cli import cli
+from usvtool.cli.batch import stage_names
+from usvtool.pipeline import load
+from usvtool.results import TIMING_METRICS, read_results
 
 ROOT = Path(__file__).resolve().parent.parent
 TINY = ROOT / "tests" / "batch" / "tiny.yaml"
+SCENARIO = ROOT / "tests" / "batch" / "scenarios" / "open-head-on.yaml"
+# the tiny pipeline: 1 grid; astar (exact: 1 route) and pso at seeds 1, 2; 1 scenario x dwa, gdwa;
+# F1 x pso, gwo at seeds 1, 2
+JOBS = 1 + (1 + 2) + 2 + 4
+PYARROW = importlib.util.find_spec("pyarrow") is not None
+TABLES = ("metrics.csv", "metrics.parquet") if PYARROW else ("metrics.csv",)
 
 
-def batch(*args, cwd=ROOT):
+def batch(*args, cwd=ROOT, env=None):
     cmd = [sys.executable, "-m", "usvtool.cli", "batch", *map(str, args)]
-    return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True)
+    return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, env=env)
 
 
 @pytest.fixture(scope="module")
@@ -31,63 +49,251 @@ def reference(tmp_path_factory):
     return out
 
 
-def test_j1_and_j2_give_the_same_table_and_a_rerun_skips_everything(reference, tmp_path):
-    table = (reference / "metrics.csv").read_bytes()
-    assert table.startswith(b"key,kind,job,metric,value\n")
-    r = batch(TINY, "-j", 2, "-o", tmp_path)
-    assert r.returncode == 0, r.stderr
-    summary = json.loads(r.stdout)
-    assert (summary["jobs"], summary["done"], summary["skipped"], summary["failed"]) == (5, 5, 0, 0)
-    assert (tmp_path / "metrics.csv").read_bytes() == table
-    again = batch(TINY, "-o", tmp_path)
-    assert again.returncode == 0, again.stderr
-    assert json.loads(again.stdout)["skipped"] == 5 and json.loads(again.stdout)["done"] == 0
-    assert (tmp_path / "metrics.csv").read_bytes() == table
-
-
-def test_a_failing_job_is_recorded_and_the_others_complete(tmp_path):
-    (tmp_path / "charts").mkdir()
-    shutil.copy(ROOT / "charts" / "grid20.geojson", tmp_path / "charts")
-    (tmp_path / "s").mkdir()
-    good = (ROOT / "tests" / "batch" / "scenarios" / "open-head-on.yaml").read_text()
-    (tmp_path / "s" / "good.yaml").write_text(good)
-    (tmp_path / "s" / "bad.yaml").write_text(good.replace("speed: 4}", "speed: 4, max_speed: 0}"))
-    pipeline = TINY.read_text().replace("root: ../..", "root: .")
-    pipeline = pipeline.replace("tests/batch/scenarios/*.yaml", "s/*.yaml")
-    (tmp_path / "p.yaml").write_text(pipeline)
-    out = tmp_path / "out"
-    r = batch(tmp_path / "p.yaml", "-j", 2, "-o", out)
-    assert r.returncode == 1
-    assert "2 of 7 jobs failed" in r.stderr
-    summary = json.loads(r.stdout)
-    assert (summary["done"], summary["failed"]) == (5, 2)
-    errors = sorted(out.glob("runs/*/error.txt"))
-    assert len(errors) == 2
-    assert all("max_speed must be > 0" in e.read_text() for e in errors)
-    assert len(errors[0].read_text().splitlines()) == 1
-    table = (out / "metrics.csv").read_text()
-    assert table.count("routes,route grid20 astar,length_m") == 1
-    assert "good.yaml" in table and "bad.yaml" not in table
-    again = batch(tmp_path / "p.yaml", "-o", out)  # a failed job is tried again
-    assert again.returncode == 1 and json.loads(again.stdout)["skipped"] == 5
-
-
-def test_a_killed_batch_rerun_gives_the_table_of_an_uninterrupted_run(reference, tmp_path):
-    cmd = [sys.executable, "-m", "usvtool.cli", "batch", str(TINY), "-j", "1", "-o", str(tmp_path)]
+def test_j2_killed_and_resumed_gives_the_bytes_of_j1_and_a_rerun_skips_all(reference, tmp_path):
+    cmd = [sys.executable, "-m", "usvtool.cli", "batch", str(TINY), "-j", "2", "-o", str(tmp_path)]
     proc = subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             start_new_session=True)  # fmt: skip
-    deadline = time.monotonic() + 20
+    deadline = time.monotonic() + 30
 
     def done():  # results renamed into place (not the temporaries of the jobs running)
-        return [p for p in tmp_path.glob("routes/*/route.geojson") if p.parent.name[0] != "."]
+        return [p for p in tmp_path.glob("runs/*/trace.csv") if p.parent.name[0] != "."]
 
     while not done() and time.monotonic() < deadline:
         time.sleep(0.02)
-    os.killpg(proc.pid, signal.SIGKILL)  # the batch and the job it is running
+    os.killpg(proc.pid, signal.SIGKILL)  # the batch and its workers, with no warning
     proc.wait()
-    assert not (tmp_path / "metrics.csv").exists()
-    r = batch(TINY, "-o", tmp_path)
+    assert done() and not (tmp_path / "metrics.csv").exists()
+    r = batch(TINY, "-j", 2, "-o", tmp_path)
     assert r.returncode == 0, r.stderr
-    assert json.loads(r.stdout)["skipped"] >= 2
+    summary = json.loads(r.stdout)
+    assert summary["jobs"] == JOBS and summary["failed"] == 0 and summary["skipped"] >= 2
+    assert summary["done"] + summary["skipped"] == JOBS
+    assert set(summary["stage_time_s"]) <= {"grids", "routes", "runs", "functions", "table"}
     assert not list(tmp_path.glob("*/.tmp-*"))
+    for name in TABLES:
+        assert (tmp_path / name).read_bytes() == (reference / name).read_bytes()
+    again = batch(TINY, "-o", tmp_path, "--summary", tmp_path / "summary.json")
+    assert again.returncode == 0, again.stderr
+    assert json.loads(again.stdout)["skipped"] == JOBS and json.loads(again.stdout)["done"] == 0
+    assert (tmp_path / "summary.json").read_text() == again.stdout
     assert (tmp_path / "metrics.csv").read_bytes() == (reference / "metrics.csv").read_bytes()
+    assert f"batch: {JOBS} jobs: 0 done, {JOBS} skipped, 0 failed in " in again.stderr
+
+
+def test_the_table_holds_every_job_but_the_grid_and_no_timing(reference):
+    rows = read_results(reference / "metrics.csv")
+    jobs = {(r.kind, r.case, r.method, r.seed) for r in rows}
+    assert jobs == {("routes", "grid20", "astar", None), ("routes", "grid20", "pso", 1),
+                    ("routes", "grid20", "pso", 2), ("runs", "open-head-on", "dwa", 1),
+                    ("runs", "open-head-on", "gdwa", 1), ("functions", "F1", "pso", 1),
+                    ("functions", "F1", "pso", 2), ("functions", "F1", "gwo", 1),
+                    ("functions", "F1", "gwo", 2)}  # fmt: skip
+    assert not {r.metric for r in rows} & set(TIMING_METRICS)
+    assert [r.key for r in rows] == sorted(r.key for r in rows)
+    timings = read_results(reference / "timings.csv")
+    walls = {r.key for r in timings if r.metric == "wall_time_s"}
+    assert walls == {r.key for r in rows} and all(r.number >= 0 for r in timings)
+    assert sum(r.metric == "planning_time_s" for r in timings) == 3  # the routes
+    if PYARROW:  # the same rows, seeds as integers (null for the exact planner)
+        import pyarrow.parquet as pq
+
+        table = pq.read_table(reference / "metrics.parquet").to_pylist()
+        assert [tuple(r.values()) for r in table] == [
+            (r.key, r.kind, r.case, r.method, r.seed, r.metric, r.value) for r in rows]
+    else:
+        assert not (reference / "metrics.parquet").exists()
+    # the figures are those of the commands run on their own
+    pso = next(r for r in rows if r.method == "pso" and r.kind == "functions" and r.seed == 1)
+    alone = subprocess.run([sys.executable, "-m", "usvtool.cli", "functions", "--function", "F1",
+                            "--algo", "pso", "--runs", "1", "--seed", "1", "--pop", "10",
+                            "--iters", "20", "--dim", "5", "--format", "csv"],
+                           capture_output=True, text=True, check=True)  # fmt: skip
+    assert float(pso.value) == float(next(csv.DictReader(io.StringIO(alone.stdout)))["best"])
+    route = next(r for r in rows if r.method == "astar" and r.metric == "length_m")
+    measured = subprocess.run([sys.executable, "-m", "usvtool.cli", "metrics",
+                               reference / "routes" / route.key / "route.geojson"],
+                              capture_output=True, text=True, check=True)  # fmt: skip
+    assert route.value == next(csv.DictReader(io.StringIO(measured.stdout)))["length_m"]
+
+
+def _without_timing(route: Path) -> dict:
+    data = json.loads(route.read_text())
+    for feature in data["features"]:
+        feature["properties"].pop("planning_time_s")
+    return data
+
+
+def test_a_job_run_in_process_gives_the_files_of_a_command_of_its_own(reference, tmp_path):
+    key = next(r.key for r in read_results(reference / "metrics.csv") if r.seed == 2
+               and r.method == "pso" and r.kind == "routes")  # fmt: skip
+    job = json.loads((reference / "routes" / key / "job.json").read_text())
+    grid = str(reference / "grids" / job["grid"] / "grid.tif")
+    args = [grid if a.endswith("/grid.tif") else a for a in job["args"][:-1]]
+    subprocess.run([sys.executable, "-m", "usvtool.cli", *args, tmp_path / "alone.geojson"],
+                   check=True, capture_output=True)  # fmt: skip
+    assert _without_timing(tmp_path / "alone.geojson") == _without_timing(
+        reference / "routes" / key / "route.geojson")
+
+
+def test_job_json_says_what_ran_and_where_its_inputs_are(reference):
+    rows = read_results(reference / "metrics.csv")
+    route = next(r for r in rows if r.kind == "routes" and r.method == "pso" and r.seed == 2)
+    job = json.loads((reference / "routes" / route.key / "job.json").read_text())
+    assert (job["kind"], job["case"], job["method"], job["seed"]) == ("routes", "grid20", "pso", 2)
+    assert (job["start"], job["goal"], job["frame"]) == ([0.5, 0.5], [19.5, 19.5], "map")
+    grid = reference / "grids" / job["grid"]
+    assert {"grid.tif", "preview.png", "summary.json", "job.json"} <= {p.name for p in
+                                                                       grid.iterdir()}
+    assert job["args"][:2] == ["plan", f"../../grids/{job['grid']}/grid.tif"]
+    assert job["args"][job["args"].index("--seed") + 1] == "2" and job["wall_time_s"] > 0
+    run = next(r for r in rows if r.kind == "runs" and r.method == "gdwa")
+    job = json.loads((reference / "runs" / run.key / "job.json").read_text())
+    assert Path(job["scenario"]) == SCENARIO and job["args"][0] == "simulate"
+    assert (reference / "runs" / run.key / "trace.csv").is_file()
+    fn = next(r for r in rows if r.kind == "functions" and r.method == "gwo" and r.seed == 2)
+    job = json.loads((reference / "functions" / fn.key / "job.json").read_text())
+    assert (job["pop"], job["iters"], job["dim"]) == (10, 20, 5)
+    assert job["args"][job["args"].index("--runs") + 1] == "1"
+
+
+def _pipeline(tmp_path: Path, scenarios: dict[str, str]) -> Path:
+    """The tiny pipeline in tmp_path with these scenario files (name: YAML text)."""
+    (tmp_path / "charts").mkdir()
+    shutil.copy(ROOT / "charts" / "grid20.geojson", tmp_path / "charts")
+    (tmp_path / "s").mkdir()
+    for name, text in scenarios.items():
+        (tmp_path / "s" / f"{name}.yaml").write_text(text)
+    pipeline = TINY.read_text().replace("root: ../..", "root: .")
+    (tmp_path / "p.yaml").write_text(pipeline.replace("tests/batch/scenarios/*.yaml", "s/*.yaml"))
+    return tmp_path / "p.yaml"
+
+
+def _cwd(pid: str) -> str:
+    try:
+        return os.readlink(f"/proc/{pid}/cwd")
+    except OSError:
+        return ""
+
+
+def test_a_failing_job_and_killed_workers_fail_alone(tmp_path):
+    good = SCENARIO.read_text()
+    path = _pipeline(tmp_path, {"good": good, "bad": good.replace("speed: 4}", "speed: 4, "
+                                "max_speed: 0}"),  # the command raises
+                                "long": good.replace("duration: 6", "duration: 400")})
+    names = stage_names()
+    long = {j.key for j in expand(load(path, names), names) if j.case == "long"}
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "usvtool.cli", "batch", str(path), "-j", "2", "-o", str(out)]
+    proc = subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)  # fmt: skip
+    deadline = time.monotonic() + 90
+    killed: set[str] = set()
+    while killed != long and time.monotonic() < deadline and proc.poll() is None:
+        for pid in (p for p in os.listdir("/proc") if p.isdigit()):  # a worker running "long"
+            key = Path(_cwd(pid)).name.removeprefix(".tmp-").split("-")[0]
+            if key in long - killed:
+                os.kill(int(pid), signal.SIGKILL)
+                killed.add(key)
+        time.sleep(0.05)
+    stdout, stderr = proc.communicate(timeout=120)
+    assert killed == long and proc.returncode == 1, stderr
+    assert f"4 of {JOBS + 4} jobs failed" in stderr
+    summary = json.loads(stdout)
+    assert (summary["done"], summary["failed"]) == (JOBS, 4)
+    errors = {(f["case"], f["method"]): f["error"] for f in summary["failures"]}
+    assert set(errors) == {(case, c) for case in ("bad", "long") for c in ("dwa", "gdwa")}
+    assert all("max_speed must be > 0" in errors["bad", c] for c in ("dwa", "gdwa"))
+    assert {errors["long", c] for c in ("dwa", "gdwa")} == {
+        "its worker process died (killed by SIGKILL)"}
+    recorded = sorted(p.read_text() for p in out.glob("runs/*/error.txt"))
+    assert len(recorded) == 4 and all(text.count("\n") == 1 for text in recorded)
+    rows = read_results(out / "metrics.csv")
+    assert {r.case for r in rows if r.kind == "runs"} == {"good"}
+    assert not list(out.glob("*/.tmp-*"))
+    (tmp_path / "s" / "long.yaml").unlink()
+    again = batch(path, "-o", out)  # a failed job runs again, a finished one is skipped
+    assert again.returncode == 1 and json.loads(again.stdout)["skipped"] == JOBS
+
+
+def test_a_dask_cluster_gives_the_same_bytes(reference, tmp_path):
+    distributed = pytest.importorskip("distributed", reason="dask[distributed] is not installed "
+                                      "(pip install 'usvtool[dask]')")  # fmt: skip
+    with distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1,
+                                  dashboard_address=None) as cluster:  # fmt: skip
+        r = batch(TINY, "--scheduler", cluster.scheduler_address, "-o", tmp_path)
+    assert r.returncode == 0, r.stderr
+    summary = json.loads(r.stdout)
+    assert summary["executor"].startswith("dask ") and summary["done"] == JOBS
+    for name in TABLES:
+        assert (tmp_path / name).read_bytes() == (reference / name).read_bytes()
+
+
+def invoke(*args):
+    return CliRunner().invoke(cli, ["batch", *map(str, args)])
+
+
+@pytest.mark.parametrize(
+    "old, new, field",
+    [
+        ("algorithms: [astar, pso]", "algorithms: [astar, psoo]", "routes.tiny.algorithms[1]: "
+         "unknown algorithm 'psoo'"),
+        ("charts: [grid20]", "charts: [grid20, grid21]", "routes.tiny.charts[1]: unknown chart "
+         "'grid21'"),
+        ("source: charts/grid20.geojson", "source: charts/grid21.geojson", "charts.grid20.source: "
+         "charts/grid21.geojson: no such file"),
+        ("seeds: {first: 1, count: 2}", "seeds: {first: 1, count: 0}", "routes.tiny.seeds.count: "
+         "expected an integer >= 1, got 0"),
+        ("simulation:", "routes:\n  tiny: {charts: [grid20], algorithms: [pso], seeds: [3]}\n"
+         "simulation:", "line 14: 'routes' named twice"),
+        ("routes:\n  tiny:", "routes:\n  tiny2: {charts: [grid20], algorithms: [pso], seeds: [1],"
+         " attempts: 3}\n  tiny:", "routes.tiny: grid20 pso seed 1 is also in routes.tiny2 with "
+         "other options"),
+        ("controllers: [dwa, gdwa]", "controllers: [dwa, gdwa, dwa]", "simulation.controllers: "
+         "named twice: dwa"),
+    ],
+)  # fmt: skip
+def test_a_bad_pipeline_is_one_line_exit_1_and_nothing_runs(tmp_path, old, new, field):
+    text = TINY.read_text()
+    assert old in text
+    path = tmp_path / "bad.yaml"
+    path.write_text(text.replace("root: ../..", f"root: {ROOT}").replace(old, new, 1))
+    r = invoke(path, "-o", tmp_path / "out")
+    assert r.exit_code == 1
+    assert r.output == f"Error: {path}: {field}" + r.output.split(field, 1)[1]
+    assert r.output.count("\n") == 1
+    assert not (tmp_path / "out").exists()
+
+
+def test_scheduler_errors_are_one_line(tmp_path, monkeypatch):
+    r = invoke(TINY, "--scheduler", "tcp://127.0.0.1:1", "-o", tmp_path / "out")
+    assert r.exit_code == 1 and r.output.count("\n") == 1
+    assert "--scheduler tcp://127.0.0.1:1: cannot reach the scheduler" in r.output
+    assert not (tmp_path / "out").exists()
+    r = invoke(TINY, "--scheduler", "localhost", "-o", tmp_path / "out")
+    assert r.exit_code == 1 and "not a scheduler address" in r.output
+    assert invoke(TINY, "-j", "2", "--scheduler", "tcp://127.0.0.1:1").exit_code == 2
+    fake = tmp_path / "fake"  # an environment without dask: its import fails
+    (fake / "distributed").mkdir(parents=True)
+    (fake / "distributed" / "__init__.py").write_text("raise ImportError('no dask here')\n")
+    env = {**os.environ, "PYTHONPATH": str(fake)}
+    r = batch(TINY, "--scheduler", "tcp://127.0.0.1:1", "-o", tmp_path / "out", env=env)
+    assert r.returncode == 1
+    assert r.stderr == ("Error: --scheduler: dask.distributed is not installed (pip install "
+                        "'usvtool[dask]')\n")  # fmt: skip
+
+
+def test_progress_lines_and_bar(capsys, monkeypatch):
+    stream = io.StringIO()
+    lines = Lines(3, 1, "here", stream)
+    lines.advance("runs a dwa seed 1", None)
+    lines.advance("runs b dwa seed 1", "Error: boom")
+    lines.close()
+    text = stream.getvalue().splitlines()
+    assert text[0] == "batch: 3 jobs, 1 already done, on here"
+    assert text[1] == "batch: FAILED runs b dwa seed 1: Error: boom"
+    assert text[-1].startswith("batch: 3 jobs: 1 done, 1 skipped, 1 failed in ")
+    bar = Bar(2, 0, "there")
+    bar.advance("x", None)
+    bar.advance("y", None)
+    bar.close()
+    assert "batch: 2 jobs: 2 done, 0 skipped, 0 failed in " in capsys.readouterr().err

@@ -24,13 +24,17 @@ def tree(tmp_path_factory):
     fragment = tmp / "pipeline.mk"
     subprocess.run([sys.executable, "-m", "usvtool.pipeline", "make", "pipelines/report.yaml",
                     "-o", fragment], cwd=ROOT, check=True)  # fmt: skip
-    targets = [fragment, tmp / "grids" / "env1.tif", tmp / "paths" / "env1" / "astar.geojson"]
+    _newer_than_every_source(fragment, tmp / "grids" / "env1.tif",
+                             tmp / "paths" / "env1" / "astar.geojson")  # fmt: skip
+    return tmp
+
+
+def _newer_than_every_source(*targets: Path) -> None:
     future = time.time() + 3600
     for t in targets:
         t.parent.mkdir(parents=True, exist_ok=True)
         t.touch()
         os.utime(t, (future, future))
-    return tmp
 
 
 def make(tree: Path, *args: str) -> subprocess.CompletedProcess:
@@ -82,3 +86,40 @@ def test_summaries_are_written_by_the_commands(tree):
     lines = [line for line in out.splitlines() if "usvtool" in line]
     assert lines and all("--summary " in line for line in lines)
     assert all(line.endswith("> /dev/null") and line.count(">") == 1 for line in lines)
+
+
+@pytest.fixture(scope="module")
+def report_tree(tmp_path_factory):
+    """A build directory whose batch table and report are newer than every source."""
+    tmp = tmp_path_factory.mktemp("report")
+    _newer_than_every_source(tmp / "stamp", tmp / "system", tmp / "batch" / "metrics.csv",
+                             tmp / "report" / "index.html")  # fmt: skip
+    return tmp
+
+
+def make_report(tree: Path, *args: str) -> subprocess.CompletedProcess:
+    variables = [f"BIN={Path(sys.executable).parent}", f"BUILD={tree}", f"STAMP={tree / 'stamp'}",
+                 f"SYSTEM_STAMP={tree / 'system'}"]  # fmt: skip
+    return subprocess.run(["make", *variables, *args, "report"], cwd=ROOT, capture_output=True,
+                          text=True)  # fmt: skip
+
+
+def test_a_second_make_report_does_nothing(report_tree):
+    assert make_report(report_tree, "-q").returncode == 0
+
+
+@pytest.mark.parametrize("changed", ["templates/report.html.j2", "templates/style.css",
+                                     "usvtool/report/planning.py", "usvtool/cli/report.py"])
+def test_a_template_or_report_change_renders_only_the_report(report_tree, changed):
+    r = make_report(report_tree, "-n", "-W", changed)
+    assert r.returncode == 0, r.stderr
+    assert "usvtool report" in r.stdout and "usvtool batch" not in r.stdout
+
+
+@pytest.mark.parametrize("changed", ["usvtool/plan/planner.py", "usvtool/sim/run.py",
+                                     "pipelines/full.yaml", "charts/env1.geojson"])
+def test_a_stage_chart_or_pipeline_change_runs_the_batch_then_the_report(report_tree, changed):
+    r = make_report(report_tree, "-n", "-W", changed)
+    assert r.returncode == 0, r.stderr
+    batch = r.stdout.find("usvtool batch pipelines/full.yaml")
+    assert 0 <= batch < r.stdout.find("usvtool report"), r.stdout

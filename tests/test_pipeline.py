@@ -1,5 +1,5 @@
-"""usvtool.pipeline: the bundled pipeline reads, its route matrix expands, bad files give one
-line naming the file and the field, and the Make fragment names every route target."""
+"""usvtool.pipeline: the bundled pipelines read, their matrices expand, bad files give one line
+naming the file and the field, and the Make fragment names every route target."""
 
 from __future__ import annotations
 
@@ -10,57 +10,72 @@ from pathlib import Path
 import pytest
 import yaml
 
+from usvtool.cli.batch import stage_names
 from usvtool.errors import UsvError
-from usvtool.pipeline import BUNDLED, load, make_fragment
-from usvtool.plan.optimizers import OPTIMIZERS
+from usvtool.pipeline import BUNDLED, Names, load, make_fragment
 
 ROOT = Path(__file__).resolve().parent.parent
+NAMES = stage_names()
 
 
 @pytest.fixture(scope="module")
 def bundled():
-    return load(BUNDLED)
+    return load(BUNDLED, NAMES)
 
 
 def test_the_bundled_pipeline_reads(bundled):
     assert BUNDLED == ROOT / "pipelines" / "report.yaml"
     assert bundled.root == ROOT
     assert all((ROOT / c.source).is_file() for c in bundled.charts.values())
-    assert set(bundled.routes.ends) <= set(bundled.charts)
-    assert bundled.routes.seed >= 0 and bundled.routes.attempts >= 1
-    # every algorithm is one the planner knows (the reader itself imports no stage)
-    known = {*OPTIMIZERS, "anyangle", "astar"}
-    assert all(a.removesuffix("+s") in known for a in bundled.routes.algorithms)
+    assert list(bundled.routes) == ["report"]
+    matrix = bundled.routes["report"]
+    assert set(matrix.charts) == set(bundled.charts) - {"us4md81m"}
+    assert matrix.seed == 1 and matrix.attempts == 5
     assert dict(bundled.charts["env1"].options) == {"cell-size": 1, "margin": 3}
-    assert bundled.charts["grid20"].args() == [
-        "--cell-size",
-        "1",
-        "--no-swell",
-        "--occupancy",
-        "0.5",
-    ]
+    assert bundled.charts["grid20"].args() == ["--cell-size", "1", "--no-swell", "--occupancy",
+                                               "0.5"]  # fmt: skip
+    assert bundled.charts["us4md81m"].ends is None
 
 
-def test_the_route_matrix_expands_into_charts_x_algorithms(bundled):
+def test_a_route_matrix_expands_into_charts_x_algorithms_x_seeds(bundled):
     jobs = bundled.route_jobs()
-    routes = bundled.routes
-    assert len(jobs) == len(routes.ends) * len(routes.algorithms)
+    m = bundled.routes["report"]
+    assert len(jobs) == len(m.charts) * len(m.algorithms) == 8 * 13
     assert len({(j.chart, j.algorithm) for j in jobs}) == len(jobs)
     job = next(j for j in jobs if j.chart == "us5ma12m" and j.algorithm == "iwso")
-    assert job.frame == "lonlat" and job.start == routes.ends["us5ma12m"].start
-    assert job.args()[0] == "--start-lonlat" and job.args()[3] == "--goal-lonlat"
-    assert job.args()[6:] == ["--algo", "iwso", "--seed", str(routes.seed), "--attempts",
-                              str(routes.attempts)]  # fmt: skip
+    assert job.ends.frame == "lonlat" and job.ends == m.ends["us5ma12m"]
+    assert job.args() == ["--start-lonlat", "-70.93391", "42.32119", "--goal-lonlat",
+                          "-70.79426", "42.31806", "--algo", "iwso", "--seed", "1",
+                          "--attempts", "5"]  # fmt: skip
+    # with the stages' names, an exact planner is one job without a seed
+    exact = [j for j in bundled.route_jobs(NAMES) if j.algorithm in ("anyangle", "astar")]
+    assert len(exact) == 2 * 8 and {j.seed for j in exact} == {None}
+    assert "--seed" not in exact[0].args() and "--attempts" not in exact[0].args()
 
 
-def test_the_simulation_matrix_is_scenarios_x_controllers(bundled):
+def test_the_simulation_matrix_is_scenarios_x_controllers_x_seeds(bundled):
     sim = bundled.simulation
-    assert set(sim.controllers) == {"dwa", "gdwa", "ccdwa", "udwa"}
-    expected = sorted(
-        p.relative_to(ROOT).as_posix() for p in (ROOT / "charts/scenarios").glob("*.yaml")
-    )
+    assert sim.controllers == ("dwa", "gdwa", "ccdwa", "udwa") and sim.seeds == (1,)
+    expected = sorted(p.relative_to(ROOT).as_posix()
+                      for p in (ROOT / "charts/scenarios").glob("*.yaml"))  # fmt: skip
     assert list(sim.scenarios) == expected
     assert len(bundled.simulation_jobs()) == len(expected) * 4
+
+
+def test_full_and_ci_read_with_the_stages_names():
+    full = load(ROOT / "pipelines" / "full.yaml", NAMES)
+    assert full.charts == load(BUNDLED).charts  # included, not repeated
+    env = full.routes["env"]
+    assert env.seeds == tuple(range(25)) and env.charts == ("env1", "env2")
+    assert {"wso", "iwso", "ssa", "issa", "pso", "gwo", "woa", "mrfo", "boa"} <= set(
+        full.functions.algorithms)
+    assert full.functions.functions == tuple(f"F{i}" for i in range(1, 11))
+    # env: 9 optimizers x 25 seeds + 2 exact planners, on 2 charts; grid20: 3 x 50 + anyangle
+    routes = full.route_jobs(NAMES)
+    assert sum(j.matrix == "env" for j in routes) == 2 * (9 * 25 + 2)
+    assert sum(j.matrix == "grid20" for j in routes) == 3 * 50 + 1
+    ci = load(ROOT / "pipelines" / "ci.yaml", NAMES)
+    assert len(ci.route_jobs(NAMES)) + len(ci.simulation_jobs()) + len(ci.function_jobs()) < 120
 
 
 def test_the_make_fragment_names_every_route_target(bundled):
@@ -71,6 +86,7 @@ def test_the_make_fragment_names_every_route_target(bundled):
         assert f"CHART_SOURCE_{name} := {chart.source}\n" in text
     assert "ENDS_grid20 := --start 0.5 0.5 --goal 19.5 19.5\n" in text
     assert f"GRIDS := {' '.join(bundled.charts)}\n" in text
+    assert "SEED ?= 1\nATTEMPTS ?= 5\n" in text
 
 
 def test_the_module_writes_the_fragment(tmp_path, bundled):
@@ -78,6 +94,11 @@ def test_the_module_writes_the_fragment(tmp_path, bundled):
     subprocess.run([sys.executable, "-m", "usvtool.pipeline", "make", str(BUNDLED), "-o", str(out)],
                    check=True)  # fmt: skip
     assert out.read_text() == make_fragment(bundled)
+
+
+def test_the_fragment_needs_one_matrix_of_one_seed():
+    with pytest.raises(UsvError, match=r"full\.yaml: routes: the Make fragment needs exactly one"):
+        make_fragment(load(ROOT / "pipelines" / "full.yaml"))
 
 
 def write(tmp_path: Path, data: dict) -> Path:
@@ -90,19 +111,29 @@ def write(tmp_path: Path, data: dict) -> Path:
 
 def minimal() -> dict:
     return {
-        "charts": {"m": {"source": "map.geojson", "options": {"cell-size": 1}}},
-        "routes": {
-            "algorithms": ["iwso"],
-            "seed": 1,
-            "ends": {"m": {"start": [1, 1], "goal": [5, 5]}},
-        },
+        "charts": {"m": {"source": "map.geojson", "options": {"cell-size": 1},
+                         "start": [1, 1], "goal": [5, 5]}},  # fmt: skip
+        "routes": {"a": {"charts": ["m"], "algorithms": ["iwso", "astar"], "seeds": [1]}},
     }
 
 
 def test_a_minimal_pipeline_reads(tmp_path):
-    p = load(write(tmp_path, minimal()))
-    assert [(j.chart, j.algorithm) for j in p.route_jobs()] == [("m", "iwso")]
-    assert p.simulation is None and p.routes.attempts == 1
+    p = load(write(tmp_path, minimal()), NAMES)
+    assert [(j.chart, j.algorithm, j.seed) for j in p.route_jobs(NAMES)] == [("m", "iwso", 1),
+                                                                              ("m", "astar", None)]
+    assert p.simulation is None and p.functions is None and p.routes["a"].attempts == 1
+
+
+def test_a_seed_range_counts_from_first(tmp_path):
+    data = minimal()
+    data["routes"]["a"]["seeds"] = {"first": 3, "count": 4}
+    data["functions"] = {"functions": ["F1", "F2"], "algorithms": ["pso"], "seeds": [7, 9]}
+    p = load(write(tmp_path, data), NAMES)
+    assert p.routes["a"].seeds == (3, 4, 5, 6)
+    assert [j.seed for j in p.route_jobs() if j.algorithm == "iwso"] == [3, 4, 5, 6]
+    assert p.function_jobs() == [("F1", "pso", 7), ("F1", "pso", 9), ("F2", "pso", 7),
+                                 ("F2", "pso", 9)]  # fmt: skip
+    assert (p.functions.pop, p.functions.iters, p.functions.dim) == (50, 300, 30)
 
 
 def edit(data: dict, dotted: str, value) -> dict:
@@ -117,40 +148,105 @@ def edit(data: dict, dotted: str, value) -> dict:
     return data
 
 
+FUNCS = {"functions": ["F1"], "algorithms": ["pso"], "seeds": [1]}
+SIM = {"scenarios": ["map.geojson"], "controllers": ["dwa"], "seeds": [1]}
+
+
 @pytest.mark.parametrize(
     "dotted, value, field, words",
     [
         ("charts.m.source", KeyError, "charts.m.source", "missing"),
-        ("routes.seed", KeyError, "routes.seed", "missing"),
+        ("routes.a.seeds", KeyError, "routes.a.seeds", "missing"),
         ("charts.m.source", "nowhere.geojson", "charts.m.source", "nowhere.geojson: no such file"),
-        ("routes.ends.m.start", [1], "routes.ends.m.start", "two numbers"),
-        ("routes.ends.m.start", ["a", 2], "routes.ends.m.start", "two numbers"),
-        ("routes.ends.m.frame", "lonlat", "routes.ends.m.start", "lon, lat"),  # start [1, 1] ok
-        ("routes.ends.x", {"start": [1, 1], "goal": [2, 2]}, "routes.ends.x", "unknown chart"),
-        ("routes.seed", -1, "routes.seed", "integer >= 0"),
-        ("routes.attempts", 0, "routes.attempts", "integer >= 1"),
-        ("routes.algorithms", ["iwso", "iwso"], "routes.algorithms", "named twice"),
-        ("routes.options", {"seed": 2}, "routes.options.seed", "set by the matrix"),
-        ("routes.colour", "red", "routes.colour", "unknown field"),
+        ("charts.m.start", [1], "charts.m.start", "two numbers"),
+        ("charts.m.start", ["a", 2], "charts.m.start", "two numbers"),
+        ("charts.m.goal", KeyError, "charts.m.goal", "missing"),
+        ("charts.m.frame", "lonlat", "charts.m.start", "lon, lat"),  # start [200, 1]
+        ("routes.a.charts", ["m", "x"], "routes.a.charts[1]", "unknown chart 'x'"),
+        ("routes.a.algorithms", ["iwso", "zzz"], "routes.a.algorithms[1]",
+         "unknown algorithm 'zzz'"),
+        ("routes.a.algorithms", ["iwso", "iwso"], "routes.a.algorithms", "named twice"),
+        ("routes.a.seeds", {"first": 1, "count": 0}, "routes.a.seeds.count", "integer >= 1"),
+        ("routes.a.seeds", {"first": -1, "count": 3}, "routes.a.seeds.first", "integer >= 0"),
+        ("routes.a.seeds", {"first": 1}, "routes.a.seeds.count", "missing"),
+        ("routes.a.seeds", {"first": 1, "count": 2, "step": 2}, "routes.a.seeds.step",
+         "unknown field"),
+        ("routes.a.seeds", "1-5", "routes.a.seeds", "a list of seeds or {first: F, count: N}"),
+        ("routes.a.seeds", [1, 2, 1], "routes.a.seeds", "named twice: 1"),
+        ("routes.a.seeds", [1, 2.5], "routes.a.seeds[1]", "integer >= 0"),
+        ("routes.a.attempts", 0, "routes.a.attempts", "integer >= 1"),
+        ("routes.a.options", {"seed": 2}, "routes.a.options.seed", "set by the matrix"),
+        ("routes.a.colour", "red", "routes.a.colour", "unknown field"),
         ("charts.m.options", {"cell-size": [1]}, "charts.m.options.cell-size", "expected a number"),
+        ("functions", dict(FUNCS, functions=["F11"]), "functions.functions[0]",
+         "unknown function 'F11'"),
+        ("functions", dict(FUNCS, algorithms=["astar"]), "functions.algorithms[0]",
+         "unknown optimizer 'astar'"),
+        ("functions", dict(FUNCS, pop=1), "functions.pop", "integer >= 2"),
+        ("simulation", dict(SIM, controllers=["dwa", "xdwa"]), "simulation.controllers[1]",
+         "unknown controller 'xdwa'"),
+        ("simulation", dict(SIM, reference_controller="udwa"),
+         "simulation.reference_controller", "not one of the controllers"),
+        ("simulation", dict(SIM, seeds={"first": 0, "count": -2}), "simulation.seeds.count",
+         "integer >= 1"),
     ],
-)
+)  # fmt: skip
 def test_errors_name_the_file_and_the_field(tmp_path, dotted, value, field, words):
     data = minimal()
-    if dotted == "routes.ends.m.frame":
-        data["routes"]["ends"]["m"]["start"] = [200, 1]
+    if dotted == "charts.m.frame":
+        data["charts"]["m"]["start"] = [200, 1]
     path = write(tmp_path, edit(data, dotted, value))
     with pytest.raises(UsvError) as info:
-        load(path)
+        load(path, NAMES)
     message = str(info.value)
     assert "\n" not in message
     assert message.startswith(f"{path}: {field}: ")
     assert words in message
 
 
+def test_without_names_any_algorithm_reads(tmp_path):
+    data = edit(minimal(), "routes.a.algorithms", ["zzz"])
+    assert load(write(tmp_path, data)).routes["a"].algorithms == ("zzz",)
+
+
+def test_a_chart_without_ends_cannot_be_routed(tmp_path):
+    data = minimal()
+    del data["charts"]["m"]["start"], data["charts"]["m"]["goal"]
+    with pytest.raises(UsvError, match=r"p\.yaml: routes\.a\.charts\[0\]: chart 'm' has no start"):
+        load(write(tmp_path, data))
+
+
+def test_a_name_given_twice_is_refused_with_its_line(tmp_path):
+    (tmp_path / "map.geojson").write_text("{}")
+    path = tmp_path / "p.yaml"
+    path.write_text("charts:\n  m: {source: map.geojson, start: [1, 1], goal: [2, 2]}\n"
+                    "routes:\n  a: {charts: [m], algorithms: [iwso], seeds: [1]}\n"
+                    "  a: {charts: [m], algorithms: [pso], seeds: [1]}\n")  # fmt: skip
+    with pytest.raises(UsvError) as info:
+        load(path)
+    assert str(info.value) == f"{path}: line 5: 'a' named twice"
+
+
+def test_include_takes_the_charts_of_another_pipeline(tmp_path):
+    base = write(tmp_path, minimal())
+    (tmp_path / "q.yaml").write_text(
+        "include: p.yaml\nroutes:\n  b: {charts: [m], algorithms: [pso], seeds: [2]}\n")
+    q = load(tmp_path / "q.yaml", NAMES)
+    assert q.charts == load(base).charts and list(q.routes) == ["b"]
+    (tmp_path / "r.yaml").write_text(
+        "include: p.yaml\ncharts:\n  m: {source: map.geojson}\nfunctions: "
+        "{functions: [F1], algorithms: [pso], seeds: [1]}\n")
+    with pytest.raises(UsvError, match=r"r\.yaml: charts\.m: named twice \(also in p\.yaml\)$"):
+        load(tmp_path / "r.yaml")
+    (tmp_path / "s.yaml").write_text("include: s.yaml\nfunctions: {functions: [F1], "
+                                     "algorithms: [pso], seeds: [1]}\n")  # fmt: skip
+    with pytest.raises(UsvError, match=r"s\.yaml: include: s\.yaml: includes itself"):
+        load(tmp_path / "s.yaml")
+
+
 def test_a_scenario_glob_matching_nothing_is_refused(tmp_path):
     data = minimal()
-    data["simulation"] = {"scenarios": ["none/*.yaml"], "controllers": ["dwa"]}
+    data["simulation"] = {"scenarios": ["none/*.yaml"], "controllers": ["dwa"], "seeds": [1]}
     with pytest.raises(
         UsvError, match=r"p\.yaml: simulation\.scenarios\[0\]: none/\*\.yaml: matches no file$"
     ):
@@ -167,12 +263,15 @@ def test_bad_yaml_and_a_missing_file_are_one_line(tmp_path):
         load(tmp_path / "absent.yaml")
 
 
+def test_names_know_exact_planners_with_shortening():
+    names = Names(optimizers=("pso",), exact=("astar",), controllers=(), functions=())
+    assert names.is_exact("astar+s") and not names.is_exact("pso")
+
+
 def test_the_module_exits_1_with_one_line(tmp_path):
-    path = write(tmp_path, edit(minimal(), "routes.seed", "one"))
+    path = write(tmp_path, edit(minimal(), "routes.a.seeds", "one"))
     run = subprocess.run([sys.executable, "-m", "usvtool.pipeline", "make", str(path)],
                          capture_output=True, text=True)  # fmt: skip
     assert run.returncode == 1 and run.stdout == ""
-    assert (
-        run.stderr
-        == f"usvtool.pipeline: {path}: routes.seed: expected an integer >= 0, got 'one'\n"
-    )
+    assert run.stderr == (f"usvtool.pipeline: {path}: routes.a.seeds: expected a list of seeds "
+                          "or {first: F, count: N}, got 'one'\n")  # fmt: skip

@@ -1,18 +1,22 @@
 """Experiment matrices in YAML (``pipelines/*.yaml``): the one source of Make, benchmarks, tests.
 
-A pipeline names its charts (a source file, ``usvtool preprocess`` options, extra inputs), a
-route matrix (start and goal per chart, algorithms, seed, attempts, ``usvtool plan`` options)
-and a simulation matrix (scenario files x controllers). :func:`load` reads and validates one;
-a bad file raises :class:`usvtool.errors.UsvError` in one line naming the file and the field.
-The schema is in docs/pipelines.md. This is a contract module: it imports no stage.
+A pipeline names its charts (a source file, ``usvtool preprocess`` options, extra inputs, the
+start and goal of its routes), named route matrices (charts x algorithms x seeds, with attempts
+and ``usvtool plan`` options), a simulation matrix (scenario files x controllers x seeds) and a
+benchmark-function matrix (functions x optimizers x seeds). :func:`load` reads and validates
+one; a bad file raises :class:`usvtool.errors.UsvError` in one line naming the file and the
+field. The schema is in docs/pipelines.md. This is a contract module: it imports no stage, so
+the names of algorithms, controllers and functions are checked against a :class:`Names` that
+the caller takes from the stages (``usvtool batch`` does).
 
 ``python -m usvtool.pipeline make PIPELINE.yaml [-o build/pipeline.mk]`` writes the Make
 fragment that ``pipelines/charts.mk`` includes (its variables feed ``pipelines/routes.mk``).
 
 >>> p = load()
->>> len(p.route_jobs()) == len(p.routes.ends) * len(p.routes.algorithms)
+>>> m = p.routes["report"]
+>>> len(p.route_jobs()) == len(m.charts) * len(m.algorithms) * len(m.seeds)
 True
->>> p.routes.ends["grid20"].args()
+>>> m.ends["grid20"].args()
 ['--start', '0.5', '0.5', '--goal', '19.5', '19.5']
 """
 
@@ -24,6 +28,7 @@ import math
 import re
 import shlex
 import sys
+from collections.abc import Collection
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -36,6 +41,9 @@ BUNDLED = Path(__file__).resolve().parent.parent / "pipelines" / "report.yaml"
 #: Where the Make fragment puts the grids and routes (relative to the project root).
 GRIDS_DIR = "build/grids"
 PATHS_DIR = "build/paths"
+#: ``usvtool plan`` options a route matrix sets itself (or the batch does).
+RESERVED_PLAN_OPTIONS = {"seed", "attempts", "algo", "start", "goal", "start-lonlat",
+                         "goal-lonlat", "output", "summary", "timing", "no-timing"}  # fmt: skip
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
 _OPTION = re.compile(r"^[a-z][a-z0-9-]*$")
@@ -53,19 +61,6 @@ def option_args(options: Options) -> list[str]:
     for key, value in options:
         out += [f"--{key}"] if value is True else [f"--{key}", _arg(value)]
     return out
-
-
-@dataclass(frozen=True)
-class Chart:
-    """A chart to preprocess into ``build/grids/NAME.tif``."""
-
-    name: str
-    source: str  # relative to the pipeline's root, as written
-    inputs: tuple[str, ...] = ()  # globs of further files the grid depends on
-    options: Options = ()  # usvtool preprocess options
-
-    def args(self) -> list[str]:
-        return option_args(self.options)
 
 
 @dataclass(frozen=True)
@@ -87,39 +82,93 @@ class Ends:
 
 
 @dataclass(frozen=True)
-class RouteMatrix:
-    """Every chart of ``ends`` with every algorithm, at one seed and attempt count."""
+class Chart:
+    """A chart to preprocess into a grid, with the start and goal of its routes (if any)."""
 
+    name: str
+    source: str  # relative to the pipeline's root, as written
+    inputs: tuple[str, ...] = ()  # globs of further files the grid depends on
+    options: Options = ()  # usvtool preprocess options
+    ends: Ends | None = None
+
+    def args(self) -> list[str]:
+        return option_args(self.options)
+
+
+@dataclass(frozen=True)
+class Names:
+    """The names the stages know, for :func:`load` to check a pipeline's entries against:
+    optimizers, exact planners (deterministic: their routes take no seed), controllers and
+    benchmark functions."""
+
+    optimizers: Collection[str]
+    exact: Collection[str]
+    controllers: Collection[str]
+    functions: Collection[str]
+
+    def is_exact(self, algorithm: str) -> bool:
+        """``anyangle``, ``astar+s``: an exact planner, with or without shortening."""
+        return algorithm.removesuffix("+s") in self.exact
+
+
+@dataclass(frozen=True)
+class RouteMatrix:
+    """Every chart of ``charts`` with every algorithm at every seed."""
+
+    name: str
+    charts: tuple[str, ...]
     algorithms: tuple[str, ...]
-    seed: int
+    seeds: tuple[int, ...]
     attempts: int
     options: Options  # further usvtool plan options
-    ends: dict[str, Ends]
+    ends: dict[str, Ends]  # the charts' start and goal
+
+    @property
+    def seed(self) -> int:
+        """The matrix's one seed (a matrix of several has none)."""
+        if len(self.seeds) != 1:
+            raise UsvError(f"routes.{self.name}: {len(self.seeds)} seeds, not one")
+        return self.seeds[0]
 
 
 @dataclass(frozen=True)
 class RouteJob:
-    """One route to plan: ``usvtool plan build/grids/CHART.tif *args()``."""
+    """One route to plan: ``usvtool plan GRID *args()``; ``seed`` None for an exact planner."""
 
+    matrix: str
     chart: str
     algorithm: str
-    start: tuple[float, float]
-    goal: tuple[float, float]
-    frame: str
-    options: Options  # seed, attempts and the matrix's plan options
+    ends: Ends
+    seed: int | None
+    attempts: int
+    options: Options  # the matrix's plan options
 
     def args(self) -> list[str]:
-        ends = Ends(self.start, self.goal, self.frame).args()
-        return [*ends, "--algo", self.algorithm, *option_args(self.options)]
+        seeded = [] if self.seed is None else ["--seed", str(self.seed), "--attempts",
+                                               str(self.attempts)]  # fmt: skip
+        return [*self.ends.args(), "--algo", self.algorithm, *seeded, *option_args(self.options)]
 
 
 @dataclass(frozen=True)
 class SimulationMatrix:
-    """Every scenario file with every controller."""
+    """Every scenario file with every controller at every seed."""
 
     scenarios: tuple[str, ...]  # files, relative to the root, sorted
     controllers: tuple[str, ...]
-    seed: int
+    seeds: tuple[int, ...]
+    reference_controller: str | None = None  # the optimisation rates' reference
+
+
+@dataclass(frozen=True)
+class FunctionMatrix:
+    """Every benchmark function with every optimizer, one run per seed."""
+
+    functions: tuple[str, ...]
+    algorithms: tuple[str, ...]
+    seeds: tuple[int, ...]
+    pop: int = 50
+    iters: int = 300
+    dim: int = 30
 
 
 @dataclass(frozen=True)
@@ -127,25 +176,53 @@ class Pipeline:
     path: Path
     root: Path
     charts: dict[str, Chart]
-    routes: RouteMatrix
+    routes: dict[str, RouteMatrix]
     simulation: SimulationMatrix | None = None
+    functions: FunctionMatrix | None = None
 
-    def route_jobs(self) -> list[RouteJob]:
-        """The route matrix expanded: charts (in file order) x algorithms."""
-        r = self.routes
-        opts = (("seed", r.seed), ("attempts", r.attempts), *r.options)
-        return [
-            RouteJob(chart, algo, e.start, e.goal, e.frame, opts)
-            for chart, e in r.ends.items()
-            for algo in r.algorithms
-        ]
+    def route_jobs(self, exact: Names | None = None) -> list[RouteJob]:
+        """The route matrices expanded, in file order: charts x algorithms x seeds. With
+        ``exact``, an exact planner's route is one job without a seed."""
+        jobs = []
+        for m in self.routes.values():
+            for chart in m.charts:
+                for algo in m.algorithms:
+                    once = exact is not None and exact.is_exact(algo)
+                    for seed in (None,) if once else m.seeds:
+                        jobs.append(RouteJob(m.name, chart, algo, m.ends[chart], seed,
+                                             m.attempts, m.options))  # fmt: skip
+        return jobs
 
     def simulation_jobs(self) -> list[tuple[str, str, int]]:
-        """(scenario file, controller, seed) for every pair of the simulation matrix."""
+        """(scenario file, controller, seed) for every cell of the simulation matrix."""
         s = self.simulation
         if s is None:
             return []
-        return [(f, c, s.seed) for f in s.scenarios for c in s.controllers]
+        return [(f, c, seed) for f in s.scenarios for c in s.controllers for seed in s.seeds]
+
+    def function_jobs(self) -> list[tuple[str, str, int]]:
+        """(function, algorithm, seed) for every cell of the function matrix."""
+        f = self.functions
+        if f is None:
+            return []
+        return [(fn, a, seed) for fn in f.functions for a in f.algorithms for seed in f.seeds]
+
+
+class _Twice(yaml.constructor.ConstructorError):
+    """A key given twice in one mapping."""
+
+
+class _Loader(yaml.SafeLoader):
+    """YAML's safe loader refusing a key given twice in one mapping (PyYAML keeps the last)."""
+
+    def construct_mapping(self, node, deep=False):
+        seen: set = set()
+        for key_node, _ in node.value:
+            key = self.construct_object(key_node, deep=True)
+            if key in seen:
+                raise _Twice(None, None, f"{key!r} named twice", key_node.start_mark)
+            seen.add(key)
+        return super().construct_mapping(node, deep)
 
 
 class _Reader:
@@ -168,12 +245,15 @@ class _Reader:
             self.fail(f"{field}.{key}" if field else key, "missing")
         return value
 
-    def names(self, value, field: str, what: str = "name") -> tuple[str, ...]:
+    def names(self, value, field: str, what: str = "name", known=None) -> tuple[str, ...]:
+        """A non-empty list of distinct names; each in ``known`` (a predicate) when given."""
         if isinstance(value, str) or not isinstance(value, list) or not value:
             self.fail(field, f"expected a non-empty list, got {_show(value)}")
         for i, v in enumerate(value):
             if not isinstance(v, str) or not _NAME.match(v):
                 self.fail(f"{field}[{i}]", f"not a valid {what}: {_show(v)}")
+            if known is not None and not known[0](v):
+                self.fail(f"{field}[{i}]", f"unknown {what} {v!r} (known: {known[1]})")
         dup = sorted({v for v in value if value.count(v) > 1})
         if dup:
             self.fail(field, f"named twice: {', '.join(dup)}")
@@ -183,6 +263,23 @@ class _Reader:
         if isinstance(value, bool) or not isinstance(value, int) or value < least:
             self.fail(field, f"expected an integer >= {least}, got {_show(value)}")
         return value
+
+    def seeds(self, value, field: str) -> tuple[int, ...]:
+        """A list of distinct integers >= 0, or ``{first: F, count: N}`` (F, F+1, ..., F+N-1)."""
+        if isinstance(value, dict):
+            self.mapping(value, field, {"first", "count"}, {"first", "count"})
+            first = self.integer(value["first"], f"{field}.first", 0)
+            count = self.integer(value["count"], f"{field}.count", 1)
+            return tuple(range(first, first + count))
+        if not isinstance(value, list) or not value:
+            self.fail(field, f"expected a list of seeds or {{first: F, count: N}}, got "
+                      f"{_show(value)}")  # fmt: skip
+        for i, v in enumerate(value):
+            self.integer(v, f"{field}[{i}]", 0)
+        dup = sorted({v for v in value if value.count(v) > 1})
+        if dup:
+            self.fail(field, f"named twice: {', '.join(map(str, dup))}")
+        return tuple(value)
 
     def options(self, value, field: str) -> Options:
         if value is None:
@@ -229,20 +326,30 @@ def _show(value) -> str:
     return text if len(text) <= 60 else text[:57] + "..."
 
 
-def load(path: str | Path = BUNDLED) -> Pipeline:
-    """Read and validate a pipeline file (the bundled one by default)."""
-    path = Path(path)
-    r = _Reader(path)
+def _read_yaml(path: Path):
     try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
+        return yaml.load(path.read_text(encoding="utf-8"), Loader=_Loader)
     except FileNotFoundError:
         raise UsvError(f"{path}: no such file") from None
+    except _Twice as exc:
+        raise UsvError(f"{path}: line {exc.problem_mark.line + 1}: {exc.problem}") from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         line = f" (line {mark.line + 1})" if mark else ""
         problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
         raise UsvError(f"{path}: not valid YAML{line}: {problem}") from None
-    r.mapping(data, "", {"root", "charts", "routes", "simulation"}, {"charts", "routes"})
+
+
+def load(path: str | Path = BUNDLED, names: Names | None = None) -> Pipeline:
+    """Read and validate a pipeline file (the bundled one by default); with ``names``, also
+    refuse an algorithm, controller or function the stages do not know."""
+    return _load(Path(path), names, ())
+
+
+def _load(path: Path, names: Names | None, including: tuple[Path, ...]) -> Pipeline:
+    r = _Reader(path)
+    data = _read_yaml(path)
+    r.mapping(data, "", {"root", "include", "charts", "routes", "simulation", "functions"})
     root_field = data.get("root", ".")
     if not isinstance(root_field, str):
         r.fail("root", f"expected a directory, got {_show(root_field)}")
@@ -251,62 +358,149 @@ def load(path: str | Path = BUNDLED) -> Pipeline:
         r.fail("root", f"{root_field}: no such directory")
 
     charts: dict[str, Chart] = {}
-    if not isinstance(data["charts"], dict) or not data["charts"]:
-        r.fail("charts", f"expected a mapping of chart names, got {_show(data['charts'])}")
-    for name, entry in data["charts"].items():
-        field = f"charts.{name}"
-        if not isinstance(name, str) or not _NAME.match(name):
-            r.fail(field, "not a valid chart name (letters, digits, _ . + -)")
-        r.mapping(entry, field, {"source", "inputs", "options"}, {"source"})
-        source = r.files(root, [entry["source"]], f"{field}.source", glob_ok=False)[0]
-        inputs = entry.get("inputs", [])
-        if not isinstance(inputs, list):
-            r.fail(f"{field}.inputs", f"expected a list of paths or globs, got {_show(inputs)}")
-        r.files(root, inputs, f"{field}.inputs", glob_ok=True)
-        options = r.options(entry.get("options"), f"{field}.options")
-        charts[name] = Chart(name, source, tuple(inputs), options)
+    if data.get("include") is not None:
+        charts.update(_included_charts(r, data["include"], root, names, (*including, path)))
+    if data.get("charts") is not None:
+        if not isinstance(data["charts"], dict) or not data["charts"]:
+            r.fail("charts", f"expected a mapping of chart names, got {_show(data['charts'])}")
+        for name, entry in data["charts"].items():
+            if name in charts:
+                r.fail(f"charts.{name}", f"named twice (also in {data['include']})")
+            charts[name] = _chart(r, root, name, entry)
 
-    rt = r.mapping(data["routes"], "routes", {"algorithms", "seed", "attempts", "options", "ends"},
-                   {"algorithms", "seed", "ends"})  # fmt: skip
-    algorithms = r.names(rt["algorithms"], "routes.algorithms", "algorithm name")
-    seed = r.integer(rt["seed"], "routes.seed", 0)
-    attempts = r.integer(rt.get("attempts", 1), "routes.attempts", 1)
-    plan_options = r.options(rt.get("options"), "routes.options")
-    for key, _ in plan_options:
-        if key in {"seed", "attempts", "algo", "start", "goal", "start-lonlat", "goal-lonlat"}:
-            r.fail(f"routes.options.{key}", "set by the matrix itself, not an option")
-    if not isinstance(rt["ends"], dict) or not rt["ends"]:
-        r.fail(
-            "routes.ends", f"expected a mapping of chart: start and goal, got {_show(rt['ends'])}"
-        )
-    ends: dict[str, Ends] = {}
-    for chart, entry in rt["ends"].items():
-        field = f"routes.ends.{chart}"
-        if chart not in charts:
-            r.fail(field, f"unknown chart (not under charts: {', '.join(charts)})")
-        r.mapping(entry, field, {"start", "goal", "frame"}, {"start", "goal"})
+    routes: dict[str, RouteMatrix] = {}
+    if data.get("routes") is not None:
+        if not isinstance(data["routes"], dict) or not data["routes"]:
+            r.fail("routes", f"expected a mapping of route matrix names, got "
+                   f"{_show(data['routes'])}")  # fmt: skip
+        for name, entry in data["routes"].items():
+            routes[name] = _route_matrix(r, name, entry, charts, names)
+    simulation = None
+    if data.get("simulation") is not None:
+        simulation = _simulation(r, root, data["simulation"], names)
+    functions = None
+    if data.get("functions") is not None:
+        functions = _functions(r, data["functions"], names)
+    if not including and not (routes or simulation or functions):
+        r.fail("routes", "missing: a pipeline needs routes, simulation or functions")
+    return Pipeline(path, root, charts, routes, simulation, functions)
+
+
+def _included_charts(r: _Reader, value, root: Path, names, including) -> dict[str, Chart]:
+    """The charts of the pipeline ``include`` names (relative to this file), of the same root."""
+    if not isinstance(value, str) or not value:
+        r.fail("include", f"expected a pipeline file, got {_show(value)}")
+    other = (r.path.parent / value).resolve()
+    if other in {p.resolve() for p in including}:
+        r.fail("include", f"{value}: includes itself (through {including[0]})")
+    if not other.is_file():
+        r.fail("include", f"{value}: no such file")
+    included = _load(other, names, including)
+    if included.root != root:
+        r.fail("include", f"{value}: its root {included.root} is not this file's {root}")
+    return included.charts
+
+
+def _chart(r: _Reader, root: Path, name, entry) -> Chart:
+    field = f"charts.{name}"
+    if not isinstance(name, str) or not _NAME.match(name):
+        r.fail(field, "not a valid chart name (letters, digits, _ . + -)")
+    r.mapping(entry, field, {"source", "inputs", "options", "start", "goal", "frame"}, {"source"})
+    source = r.files(root, [entry["source"]], f"{field}.source", glob_ok=False)[0]
+    inputs = entry.get("inputs", [])
+    if not isinstance(inputs, list):
+        r.fail(f"{field}.inputs", f"expected a list of paths or globs, got {_show(inputs)}")
+    r.files(root, inputs, f"{field}.inputs", glob_ok=True)
+    options = r.options(entry.get("options"), f"{field}.options")
+    ends = None
+    if "start" in entry or "goal" in entry or "frame" in entry:
+        for key in ("start", "goal"):
+            if key not in entry:
+                r.fail(f"{field}.{key}", "missing (a chart with a route has a start and a goal)")
         frame = entry.get("frame", "map")
         if frame not in ("map", "lonlat"):
             r.fail(f"{field}.frame", f"expected map or lonlat, got {_show(frame)}")
         start = r.point(entry["start"], f"{field}.start", frame)
         goal = r.point(entry["goal"], f"{field}.goal", frame)
-        ends[chart] = Ends(start, goal, frame)
-    routes = RouteMatrix(algorithms, seed, attempts, plan_options, ends)
+        ends = Ends(start, goal, frame)
+    return Chart(name, source, tuple(inputs), options, ends)
 
-    simulation = None
-    if data.get("simulation") is not None:
-        sm = r.mapping(data["simulation"], "simulation", {"scenarios", "controllers", "seed"},
-                       {"scenarios", "controllers"})  # fmt: skip
-        patterns = sm["scenarios"]
-        if isinstance(patterns, str) or not isinstance(patterns, list) or not patterns:
-            r.fail(
-                "simulation.scenarios", f"expected a list of files or globs, got {_show(patterns)}"
-            )
-        files = r.files(root, patterns, "simulation.scenarios", glob_ok=True)
-        controllers = r.names(sm["controllers"], "simulation.controllers", "controller name")
-        sim_seed = r.integer(sm.get("seed", seed), "simulation.seed", 0)
-        simulation = SimulationMatrix(tuple(dict.fromkeys(files)), controllers, sim_seed)
-    return Pipeline(path, root, charts, routes, simulation)
+
+def _known(names: Names | None, kind: str):
+    """The predicate and the list :meth:`_Reader.names` checks ``kind`` names against."""
+    if names is None:
+        return None
+    if kind == "route":
+        known = sorted({*names.optimizers, *names.exact})
+        return (lambda a: a.removesuffix("+s") in known, ", ".join(known) + "; +s for shortening")
+    pool = {"optimizer": names.optimizers, "controller": names.controllers,
+            "function": names.functions}[kind]  # fmt: skip
+    return (lambda a: a in pool, ", ".join(pool))
+
+
+def _route_matrix(r: _Reader, name, entry, charts: dict[str, Chart], names) -> RouteMatrix:
+    field = f"routes.{name}"
+    if not isinstance(name, str) or not _NAME.match(name):
+        r.fail(field, "not a valid matrix name (letters, digits, _ . + -)")
+    r.mapping(entry, field, {"charts", "algorithms", "seeds", "attempts", "options"},
+              {"charts", "algorithms", "seeds"})  # fmt: skip
+    matrix_charts = r.names(entry["charts"], f"{field}.charts", "chart name")
+    ends = {}
+    for i, chart in enumerate(matrix_charts):
+        if chart not in charts:
+            r.fail(f"{field}.charts[{i}]", f"unknown chart {chart!r} (not under charts: "
+                   f"{', '.join(charts) or 'none'})")  # fmt: skip
+        if charts[chart].ends is None:
+            r.fail(f"{field}.charts[{i}]", f"chart {chart!r} has no start and goal")
+        ends[chart] = charts[chart].ends
+    algorithms = r.names(entry["algorithms"], f"{field}.algorithms", "algorithm",
+                         _known(names, "route"))  # fmt: skip
+    matrix_seeds = r.seeds(entry["seeds"], f"{field}.seeds")
+    attempts = r.integer(entry.get("attempts", 1), f"{field}.attempts", 1)
+    plan_options = r.options(entry.get("options"), f"{field}.options")
+    for key, _ in plan_options:
+        if key in RESERVED_PLAN_OPTIONS:
+            r.fail(f"{field}.options.{key}", "set by the matrix itself, not an option")
+    return RouteMatrix(name, matrix_charts, algorithms, matrix_seeds, attempts, plan_options,
+                       ends)  # fmt: skip
+
+
+def _simulation(r: _Reader, root: Path, entry, names) -> SimulationMatrix:
+    sm = r.mapping(entry, "simulation", {"scenarios", "controllers", "seeds",
+                                         "reference_controller"},
+                   {"scenarios", "controllers", "seeds"})  # fmt: skip
+    patterns = sm["scenarios"]
+    if isinstance(patterns, str) or not isinstance(patterns, list) or not patterns:
+        r.fail("simulation.scenarios", f"expected a list of files or globs, got {_show(patterns)}")
+    files = tuple(dict.fromkeys(r.files(root, patterns, "simulation.scenarios", glob_ok=True)))
+    stems: dict[str, str] = {}
+    for f in files:  # a run's case is its scenario file's stem
+        stem = Path(f).stem
+        if stem in stems:
+            r.fail("simulation.scenarios", f"{f} and {stems[stem]} share the name {stem!r}")
+        stems[stem] = f
+    controllers = r.names(sm["controllers"], "simulation.controllers", "controller",
+                          _known(names, "controller"))  # fmt: skip
+    reference = sm.get("reference_controller")
+    if reference is not None and reference not in controllers:
+        r.fail("simulation.reference_controller", f"{_show(reference)} is not one of the "
+               f"controllers ({', '.join(controllers)})")  # fmt: skip
+    sim_seeds = r.seeds(sm["seeds"], "simulation.seeds")
+    return SimulationMatrix(files, controllers, sim_seeds, reference)
+
+
+def _functions(r: _Reader, entry, names) -> FunctionMatrix:
+    fm = r.mapping(entry, "functions", {"functions", "algorithms", "seeds", "pop", "iters", "dim"},
+                   {"functions", "algorithms", "seeds"})  # fmt: skip
+    return FunctionMatrix(
+        r.names(fm["functions"], "functions.functions", "function", _known(names, "function")),
+        r.names(fm["algorithms"], "functions.algorithms", "optimizer",
+                _known(names, "optimizer")),  # fmt: skip
+        r.seeds(fm["seeds"], "functions.seeds"),
+        r.integer(fm.get("pop", 50), "functions.pop", 2),
+        r.integer(fm.get("iters", 300), "functions.iters", 1),
+        r.integer(fm.get("dim", 30), "functions.dim", 1),
+    )
 
 
 def _words(args: list[str]) -> str:
@@ -314,8 +508,16 @@ def _words(args: list[str]) -> str:
 
 
 def make_fragment(p: Pipeline) -> str:
-    """The Make variables of a pipeline (paths relative to its root, where Make runs)."""
-    r = p.routes
+    """The Make variables of a pipeline of one route matrix with one seed (paths relative to
+    its root, where Make runs)."""
+    if len(p.routes) != 1:
+        raise UsvError(f"{p.path}: routes: the Make fragment needs exactly one route matrix, "
+                       f"not {len(p.routes)}")  # fmt: skip
+    (r,) = p.routes.values()
+    try:
+        seed = r.seed
+    except UsvError as exc:
+        raise UsvError(f"{p.path}: {exc} (the Make fragment's SEED)") from None
     lines = [
         f"# Generated from {p.path.name} by `python -m usvtool.pipeline make`: do not edit.",
         f"GRIDS := {' '.join(p.charts)}",
@@ -326,9 +528,9 @@ def make_fragment(p: Pipeline) -> str:
         lines.append(f"CHART_INPUTS_{c.name} := {inputs}".rstrip())
         lines.append(f"PREPROCESS_{c.name} := {_words(c.args())}".rstrip())
     lines += [
-        f"ROUTE_GRIDS := {' '.join(r.ends)}",
+        f"ROUTE_GRIDS := {' '.join(r.charts)}",
         f"ALGOS := {' '.join(r.algorithms)}",
-        f"SEED ?= {r.seed}",
+        f"SEED ?= {seed}",
         f"ATTEMPTS ?= {r.attempts}",
         f"PLAN_OPTIONS := {_words(option_args(r.options))}".rstrip(),
     ]

@@ -42,7 +42,7 @@ ROOT = HERE.parent.parent
 CHARTS = ROOT / "charts"
 
 #: The route matrix of pipelines/report.yaml (`make report`'s seed, attempts and ends).
-ROUTES = load().routes
+ROUTES = load().routes["report"]
 #: Its options for an IWSO route (seed 1, 5 attempts) and the ends of env1 and env2 (the same).
 PLAN_OPTIONS = ["--algo", "iwso+s", "--seed", str(ROUTES.seed), "--attempts", str(ROUTES.attempts)]
 PLAN_OPTIONS += ["--no-timing"]

@@ -13,7 +13,7 @@ from usvtool.plan.optimizers import OPTIMIZERS
 from usvtool.plan.planner import PlanOptions, plan_route
 
 # the routes of `make report` (pipelines/report.yaml): the seed and runs of its route matrix
-MATRIX = load().routes
+MATRIX = load().routes["report"]
 SEED, ATTEMPTS = MATRIX.seed, MATRIX.attempts
 # the Mississippi's main channel on chart 11361_4, Pilottown to Head of Passes (lon, lat)
 CHANNEL = MATRIX.ends["head_of_passes"]

@@ -53,12 +53,13 @@ def replay(v, omega, own, targets, times, length=SHIP.length, field=None):
 
 
 def test_the_registry_names_every_controller():
-    assert set(CONTROLLERS) == {"dwa", "gdwa", "ccdwa", "udwa"}
+    assert set(CONTROLLERS) == {"dwa", "gdwa", "ccdwa", "udwa", "udwa+"}
     with pytest.raises(UsvError, match="unknown controller 'apf'.*dwa"):
         make_controller("apf")
     with pytest.raises(UsvError, match=r"dwa: unknown parameter\(s\) \['alpha'\]"):
         make_controller("dwa", alpha=1)
-    for bad in ({"horizon": 0}, {"v_samples": 1}, {"sides": "left"}, {"priority": -1}):
+    for bad in ({"horizon": 0}, {"v_samples": 1}, {"sides": "left"}, {"priority": -1},
+                {"window": "step"}):
         with pytest.raises(UsvError):
             make_controller("udwa", **bad)
 
@@ -226,3 +227,47 @@ def test_a_rollout_through_the_goal_scores_the_full_heading():
     straight = r.omega == 0.0
     assert r.reached[straight].all() and np.abs(r.end[straight] - 6j).min() > 5  # ends beyond
     assert (c.heading(r, math.pi)[straight] == math.pi).all()
+
+
+def test_safe_priority_gives_the_bonus_only_where_nothing_comes_near():
+    """The head-on with the goal to port: the plain objective turns to port, a large starboard
+    bonus to starboard. With ``safe_priority`` the bonus goes only to samples whose clearance
+    reaches ``dist_max``: none here (the target comes within 30 m of every rollout), so the
+    choice is the unbiased one; with a 10 m cap every rollout reaches it, and starboard wins."""
+    targets, own, goal = head_on_with_goal_to_port()
+    enc = Encounter("head-on", 0)
+    plain = controller("udwa", goal=goal, priority=0.0).decide(own, targets, enc)
+    assert plain.omega > 0  # the premise
+    assert controller("udwa", goal=goal, priority=10.0).decide(own, targets, enc).omega < 0
+    safe = controller("udwa", goal=goal, priority=10.0, safe_priority=True)
+    r = safe.rollouts(own, targets)
+    assert (r.clearance < safe.params["dist_max"]).all()
+    assert safe.decide(own, targets, enc).omega == plain.omega
+    capped = controller("udwa", goal=goal, priority=10.0, safe_priority=True, dist_max=10.0)
+    assert (capped.rollouts(own, targets).clearance >= 10.0).all()
+    assert capped.decide(own, targets, enc).omega < 0
+
+
+def test_the_horizon_window_turns_in_its_rollouts_and_commands_one_periods_step():
+    """The UDWA boat at 7 m/s, not turning (5 deg/s² of yaw acceleration, 2 m/s²): one period's
+    window holds 0.5 deg/s either way, the horizon's the whole +-20 deg/s. The rollouts of the
+    horizon window turn (a sample at 20 deg/s ends 160 deg round after 10 s: 4 s of ramp at
+    5 deg/s², 40 deg, then 6 s at 20 deg/s, 120 deg); the command is one period's step toward
+    the chosen sample."""
+    boat = vessel_model.preset("udwa-usv")
+    own = Own(0.0, 0.0, NORTH, 7.0, 0.0)
+    targets = ships((0.0, 60.0, 0.0, -5.0, 15.0))  # head-on, 60 m
+    made = {}
+    for window in ("period", "horizon"):
+        c = make_controller("udwa", window=window)
+        c.reset(World(boat, np.array([0.0, 400.0]), None, None, None, 0.1))
+        made[window] = c, c.rollouts(own, targets)
+    period, horizon = made["period"][1], made["horizon"][1]
+    assert np.degrees(np.abs(period.omega).max()) == pytest.approx(0.5)
+    assert np.degrees(np.abs(horizon.omega).max()) == pytest.approx(20.0)
+    hardest = np.argmax(horizon.omega)
+    assert np.degrees(horizon.psi_end[hardest] - NORTH) % 360 == pytest.approx(160.0)
+    c = made["horizon"][0]
+    d = c.decide(own, targets, Encounter("head-on", 0))
+    assert abs(d.omega) <= math.radians(0.5) + 1e-12 and 6.8 - 1e-12 <= d.v <= 7.0
+    assert d.omega != 0.0  # it turns: somewhere toward a sample of the wide window

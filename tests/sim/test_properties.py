@@ -36,7 +36,8 @@ target = st.tuples(
 
 @settings(max_examples=16, deadline=None, suppress_health_check=[HealthCheck.too_slow],
           derandomize=True)  # fmt: skip
-@given(st.lists(target, min_size=1, max_size=2), st.sampled_from(["dwa", "gdwa", "ccdwa", "udwa"]))
+@given(st.lists(target, min_size=1, max_size=2),
+       st.sampled_from(["dwa", "gdwa", "ccdwa", "udwa", "udwa+"]))
 def test_the_summary_agrees_with_the_trace(targets, controller):
     result = simulate(scenario(targets, controller))
     s, tr = result.summary(), result.trace

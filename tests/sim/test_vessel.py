@@ -12,9 +12,11 @@ from usvtool.sim.vessel import (
     Window,
     admissible,
     preset,
+    ramps,
     rollout,
     samples,
     step,
+    travelled,
     vessel_from,
     window,
 )
@@ -229,3 +231,50 @@ def test_samples_degenerate_window_and_bad_counts():
     assert set(v) == {0.35} and 0.0 in omega
     with pytest.raises(ValueError):
         samples(Window(0, 1, 0, 1), 1, 3)
+
+
+def test_samples_straight_on_is_exactly_zero():
+    """Where the yaw axis crosses zero linspace gives 5.6e-17 rad/s, and a sample there would
+    count as a turn (the side rules go by the sign): it is zero, once, and so is a current yaw
+    rate within round-off of it."""
+    assert np.linspace(-0.3, 0.2, 6)[3] != 0.0  # the premise
+    v, omega = samples(Window(1.0, 2.0, -0.3, 0.2), 2, 6, current=(1.0, -2.8e-17))
+    axis = sorted(set(omega.tolist()))
+    assert axis == pytest.approx([-0.3, -0.2, -0.1, 0.0, 0.1, 0.2]) and len(axis) == 6
+    assert 0.0 in axis and not ((omega != 0) & (np.abs(omega) < 1e-9)).any()
+
+
+def test_ramps_reach_the_sample_at_the_limits_then_hold_it():
+    """From 3 m/s and no turn toward 7 m/s and 10 deg/s on the UDWA boat (2 m/s², 5 deg/s²):
+    both ramps take 2 s. By hand: heading 5 t²/2 deg up to 2 s, then 10 + 10 (t - 2); distance
+    3 t + t² up to 2 s, then 10 + 7 (t - 2). The positions against a fine Euler march of the same
+    ramps (and a second sample slowing to 1 m/s, turning to starboard): the midpoint rule's
+    error at the 0.2 s rollout step is millimetres."""
+    v, omega = [7.0, 1.0], np.radians([10.0, -10.0])
+    t = np.arange(1, 7) * 0.5
+    yaw = UDWA.max_yaw_accel
+    turned = travelled(0.0, omega[0], yaw, yaw, t)
+    np.testing.assert_allclose(np.degrees(turned), [0.625, 2.5, 5.625, 10, 15, 20])
+    run = travelled(3.0, v[0], UDWA.max_decel, UDWA.max_accel, t)
+    np.testing.assert_allclose(run, [1.75, 4, 6.75, 10, 13.5, 17])
+    # slowing from 3 to 1 m/s at 2 m/s² takes 1 s: 3 t - t² up to 1 s, then 2 + (t - 1)
+    run = travelled(3.0, v[1], UDWA.max_decel, UDWA.max_accel, t)
+    np.testing.assert_allclose(run, [1.25, 2, 2.5, 3, 3.5, 4])
+    z, u = ramps(0.0, 0.0, 0.0, 3.0, 0.0, v, omega, UDWA, 0.5, 6)
+    np.testing.assert_allclose(z[0].real[:4], [1.75, 4, 6.75, 10], atol=0.25)  # turning a bit
+    np.testing.assert_allclose(np.abs(u), 1.0)
+    z = ramps(0.0, 0.0, 0.0, 3.0, 0.0, v, omega, UDWA, 0.2, 15)[0]
+    dt = 1e-4
+    for i in range(2):
+        x = y = h = 0.0
+        speed, rate, marks = 3.0, 0.0, []
+        for n in range(1, 30001):
+            speed += min(max(v[i] - speed, -UDWA.max_decel * dt), UDWA.max_accel * dt)
+            turn = float(omega[i]) - rate
+            rate += min(max(turn, -UDWA.max_yaw_accel * dt), UDWA.max_yaw_accel * dt)
+            h += rate * dt
+            x += speed * dt * math.cos(h)
+            y += speed * dt * math.sin(h)
+            if n % 2000 == 0:
+                marks.append(complex(x, y))
+        np.testing.assert_allclose(z[i], marks, atol=0.005)

@@ -1,25 +1,76 @@
-"""``usvtool batch``: run a pipeline's jobs in a local pool, resumable (docs/batch.md)."""
+"""``usvtool batch``: run a pipeline's jobs on a local pool or a Dask cluster, resumable
+(docs/batch.md, docs/cluster.md).
+
+The engine (:mod:`usvtool.batch`) imports no stage; this module gives it the two things it
+needs from them: :func:`run_command`, which its workers call to run one ``usvtool`` command
+line in-process, and :func:`stage_names`, the algorithms, controllers and functions the
+stages know, to check the pipeline against before anything runs.
+"""
 
 from __future__ import annotations
 
+import contextlib
+import io
+from pathlib import Path
+
 import click
 
-from usvtool.cli.options import emit
+from usvtool.cli.options import emit, write_summary
+from usvtool.pipeline import Names
+
+
+def run_command(args: list[str]) -> tuple[int, str, str]:
+    """Run ``usvtool ARGS`` in this process: (exit status, stdout, stderr), as the console
+    script would give them (a one-line ``Error: ...`` on stderr for a failure)."""
+    from usvtool.cli import cli
+
+    stdout, stderr = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
+        try:
+            status = cli.main(args, prog_name="usvtool", standalone_mode=False) or 0
+        except click.ClickException as exc:
+            exc.show()
+            status = exc.exit_code
+        except click.Abort:
+            click.echo("Aborted!", err=True)
+            status = 1
+    return status, stdout.getvalue(), stderr.getvalue()
+
+
+def stage_names() -> Names:
+    """The optimizers, exact planners, controllers and benchmark functions of the stages."""
+    from usvtool.plan.functions import FUNCTIONS
+    from usvtool.plan.optimizers import OPTIMIZERS
+    from usvtool.plan.planner import EXACT
+    from usvtool.sim.controllers import CONTROLLERS
+
+    return Names(tuple(OPTIMIZERS), EXACT, tuple(CONTROLLERS), tuple(FUNCTIONS))
 
 
 @click.command()
 @click.argument("pipeline_path", metavar="PIPELINE.yaml", type=click.Path(dir_okay=False))
 @click.option("-j", "--jobs", "workers", type=click.IntRange(min=1), default=None,
-              help="Jobs run at once (default: the number of cores).")  # fmt: skip
+              help="Local worker processes (default: the number of cores).")  # fmt: skip
+@click.option("--scheduler", metavar="tcp://HOST:PORT",
+              help="Run the jobs on this Dask scheduler's workers instead (usvtool[dask]).")
 @click.option("-o", "--output", "out_dir", type=click.Path(file_okay=False), default="build/batch",
               show_default=True, help="Directory of the results and metrics.csv.")  # fmt: skip
-def batch(pipeline_path, workers, out_dir) -> None:
-    """Run every job of PIPELINE.yaml (grids, routes, runs) locally; rerun to resume."""
+@click.option("--summary", "summary_path", type=click.Path(dir_okay=False), metavar="FILE.json",
+              help="Also write the summary JSON printed on stdout to this file (atomically, "
+              "once the tables are written; failed jobs too).")  # fmt: skip
+def batch(pipeline_path, workers, scheduler, out_dir, summary_path) -> None:
+    """Run every job of PIPELINE.yaml (grids, routes, runs, function runs); rerun to resume."""
+    from usvtool.atomic import check_output_path
     from usvtool.batch import BatchOptions, run_batch
 
-    result = run_batch(pipeline_path, BatchOptions(workers, out_dir),
-                       log=lambda text: click.echo(text, err=True))  # fmt: skip
+    if workers is not None and scheduler is not None:
+        raise click.UsageError("-j: not with --scheduler (the cluster's workers run the jobs)")
+    if summary_path is not None and Path(summary_path).parent.resolve() != Path(out_dir).resolve():
+        check_output_path(summary_path, "--summary")  # (DIR itself is made by the batch)
+    options = BatchOptions(run_command, stage_names(), workers, scheduler, out_dir)
+    result = run_batch(pipeline_path, options)
+    if summary_path is not None:
+        write_summary(summary_path, result.summary())
     emit(result.summary())
     if result.failed:
-        total = result.figures["jobs"]
-        raise click.ClickException(f"{len(result.failed)} of {total} jobs failed")
+        raise click.ClickException(f"{len(result.failed)} of {result.figures['jobs']} jobs failed")

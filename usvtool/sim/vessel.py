@@ -237,6 +237,61 @@ def arcs(x0, y0, psi0, v, omega, dt: float, steps: int, directions: bool = False
     return (z, u[which]) if directions else z
 
 
+def toward(now, target, down, up, t):
+    """The value that starts at ``now`` and moves toward ``target`` at ``down`` (per second,
+    when falling) or ``up`` (when rising) for ``t`` seconds, then holds it. Arrays broadcast.
+
+    >>> toward(2.0, np.array([7.0, 0.0, 2.5]), 1.0, 2.0, 1.0).tolist()
+    [4.0, 1.0, 2.5]
+    """
+    # np.minimum and np.maximum: np.clip's dispatch costs more than the work on small arrays
+    return now + np.minimum(np.maximum(np.asarray(target, float) - now, -down * t), up * t)
+
+
+def travelled(now, target, down, up, t):
+    """The integral over ``[0, t]`` of :func:`toward`: the distance run (or the angle turned) by
+    a speed (a yaw rate) ramping from ``now`` toward ``target``. Arrays broadcast.
+
+    >>> travelled(3.0, np.array([7.0, 7.0]), 2.0, 2.0, np.array([1.0, 3.0])).tolist()  # 2 s ramp
+    [4.0, 17.0]
+    """
+    change = np.asarray(target, float) - now
+    rate = up if up == down else np.where(change > 0, up, down)
+    ramp = np.minimum(t, np.abs(change) / rate)
+    return now * t + change * (t - ramp) + np.copysign(rate / 2 * ramp * ramp, change)
+
+
+def ramps(x0, y0, psi0, v0, omega0, v, omega, vessel: Vessel, dt: float, steps: int):
+    """The rollouts of a trajectory-rollout window: sample ``(v, omega)`` commanded now, the ship
+    accelerating from ``(v0, omega0)`` toward it at her limits (:func:`toward`: ``max_accel`` /
+    ``max_decel``, ``max_yaw_accel``), then holding it (Gerkey and Konolige 2008; ROS
+    base_local_planner with ``dwa: false``).
+
+    Returns the positions ``x + iy`` ``(N, steps)`` at ``t = dt, 2·dt, …`` and each period's unit
+    chord direction ``(N, steps)``, as :func:`arcs` does. Each period's chord comes from the
+    speed and the heading at its middle (the midpoint rule: exact for constant velocities,
+    second order in ``dt`` while they change); the headings and the distance run at any time
+    are exact, :func:`travelled`. The work is done once per distinct speed and yaw rate.
+
+    >>> ship = preset("udwa-usv")  # 2 m/s²: 3 m/s rising to 7 in 2 s, straight on
+    >>> ramps(0, 0, 0, 3.0, 0.0, [7.0], [0.0], ship, 0.5, 5)[0].real.round(6).tolist()
+    [[1.75, 4.0, 6.75, 10.0, 13.5]]
+    """
+    v = np.atleast_1d(np.asarray(v, float))
+    omega = np.atleast_1d(np.asarray(omega, float))
+    v, omega = np.broadcast_arrays(v, omega)
+    speeds, which_v = np.unique(v, return_inverse=True)
+    rates, which_w = np.unique(omega, return_inverse=True)
+    t_mid = dt * (np.arange(steps) + 0.5)
+    chord = dt * toward(v0, speeds[:, None], vessel.max_decel, vessel.max_accel, t_mid)
+    turned = travelled(omega0, rates[:, None], vessel.max_yaw_accel, vessel.max_yaw_accel, t_mid)
+    u = np.exp(1j * (psi0 + turned))[which_w]
+    z = u * chord[which_v]
+    np.cumsum(z, axis=1, out=z)
+    z += float(x0) + 1j * float(y0)
+    return z, u
+
+
 def rollout(x0, y0, psi0, v, omega, dt: float, steps: int):
     """:func:`arcs` as positions ``(N, steps, 2)``, with the headings ``(N, steps)``, wrapped.
 
@@ -318,6 +373,10 @@ def admissible(v, omega, dist, vessel: Vessel) -> np.ndarray:
     return linear & angular
 
 
+#: Relative to the window's width: sample values this close to zero are zero (round-off).
+ZERO_TOLERANCE = 1e-9
+
+
 def samples(win: Window, n_v: int, n_omega: int, current=None) -> tuple[np.ndarray, np.ndarray]:
     """The velocity pairs to evaluate: a regular ``n_v × n_omega`` grid over the window.
 
@@ -340,12 +399,22 @@ def samples(win: Window, n_v: int, n_omega: int, current=None) -> tuple[np.ndarr
 
 
 def _axis(lo: float, hi: float, n: int, extra) -> np.ndarray:
-    """``n`` values from ``lo`` to ``hi`` and the ``extra`` ones inside, sorted, no repeats."""
+    """``n`` values from ``lo`` to ``hi`` and the ``extra`` ones inside, sorted, no repeats.
+
+    Values within round-off of zero (``linspace`` gives -2.8e-17 for a zero between its edges)
+    are zero: a yaw rate's sign is the side it turns to, and straight on must not count as a
+    starboard turn.
+
+    >>> float(np.linspace(-0.3, 0.2, 6)[3]), float(_axis(-0.3, 0.2, 6, [0.0])[3])
+    (5.551115123125783e-17, 0.0)
+    """
     axis = np.linspace(lo, hi, n)
     if lo == hi:
         return axis[:1]
-    inside = [e for e in extra if e is not None and lo <= e <= hi and e not in axis]
-    return np.sort(np.concatenate([axis, np.unique(inside)])) if inside else axis
+    inside = [e for e in extra if e is not None and lo <= e <= hi]
+    axis = np.concatenate([axis, inside])
+    axis[np.abs(axis) <= ZERO_TOLERANCE * (hi - lo)] = 0.0
+    return np.unique(axis)
 
 
 def _out(a: np.ndarray):

@@ -8,8 +8,11 @@ from usvtool.sim.controllers.ccdwa import CCDWA
 from usvtool.sim.controllers.dwa import DWA
 from usvtool.sim.controllers.gdwa import GDWA
 from usvtool.sim.controllers.udwa import UDWA
+from usvtool.sim.controllers.udwa_plus import UDWAPlus
 
-CONTROLLERS: dict[str, type[Controller]] = {cls.name: cls for cls in (DWA, GDWA, CCDWA, UDWA)}
+CONTROLLERS: dict[str, type[Controller]] = {
+    cls.name: cls for cls in (DWA, GDWA, CCDWA, UDWA, UDWAPlus)
+}
 
 
 def make_controller(name: str, **params) -> Controller:

@@ -6,7 +6,10 @@ One control step, all velocity samples at once (no per-sample Python loop):
    accelerations reach in one control period (eq. 19), sampled on a regular grid of
    ``v_samples`` x ``omega_samples`` pairs (:func:`usvtool.sim.vessel.samples`);
 2. every pair is rolled out at constant (v, omega) over ``horizon`` seconds in steps of
-   ``step`` (eq. 16, :func:`usvtool.sim.vessel.rollout`);
+   ``step`` (eq. 16, :func:`usvtool.sim.vessel.arcs`). With ``window: horizon`` (the variant
+   ``udwa+``) the window is what the accelerations reach within the horizon, each rollout
+   ramps toward its pair at the limits (:func:`usvtool.sim.vessel.ramps`), and the command is
+   the ramp's first period;
 3. the rollouts are checked against the grid's clearance field (:mod:`usvtool.clearance`: a
    contact where the clearance falls to the own ship's radius, half her length) and against
    every target's predicted positions (constant velocity; a contact where the centres come
@@ -22,7 +25,8 @@ One control step, all velocity samples at once (no per-sample Python loop):
    paper's 7 L x 3 L ellipse: "the predicted trajectory is discarded" within the safe
    distance) and, as the give-way ship of a crossing, less those that cross ahead of the target
    (Rule 15, which both papers name); a side preference (UDWA, gdwa) multiplies the preferred
-   side's scores by ``1 + priority``. The best candidate is taken.
+   side's scores by ``1 + priority`` (with ``safe_priority``, only where the sample's
+   clearance reaches ``dist_max``). The best candidate is taken.
 
 No controller picks a sample with a contact while a contact-free one exists: when every sample
 the side rule keeps meets a contact, the removed side's free samples are the candidates after
@@ -49,6 +53,12 @@ from usvtool.errors import UsvError
 from usvtool.sim import colregs
 from usvtool.sim import sides as side_rules
 from usvtool.sim import vessel as vessel_model
+
+#: The dynamic windows: ``period``, what one control period's accelerations reach, every sample
+#: held from now on (IWSO-DWA eq. 19 with the control period, Fox et al. 1997); ``horizon``,
+#: what they reach within the horizon, each sample approached at the limits and then held
+#: (trajectory rollout, Gerkey and Konolige 2008: :func:`usvtool.sim.vessel.ramps`).
+WINDOWS = ("period", "horizon")
 
 #: Seconds between the rollout points at which the ship domain is checked (a target moves a
 #: few metres in that time, the domain is 7 ship lengths long).
@@ -135,8 +145,10 @@ class Controller(ABC):
     ``horizon`` (s), ``step`` (s, the rollout's time step), ``v_samples`` and
     ``omega_samples`` (the window's grid), ``dist_max`` (m, the clearance term's cap),
     ``weather`` (use the attainable speed of UDWA eq. 5 in the velocity term), ``sides`` (a
-    table of :mod:`usvtool.sim.sides`, or ``none``) and ``priority`` (the preferred side's score
-    bonus, for the controllers that prefer rather than remove).
+    table of :mod:`usvtool.sim.sides`, or ``none``), ``priority`` (the preferred side's score
+    bonus, for the controllers that prefer rather than remove), ``safe_priority`` (the bonus
+    only for samples whose clearance reaches ``dist_max``), ``domain`` (keep the targets out
+    of the own ship's domain when some sample can) and ``window`` (:data:`WINDOWS`).
     """
 
     name: str = ""
@@ -150,6 +162,8 @@ class Controller(ABC):
         "sides": "none",
         "priority": 0.0,
         "domain": True,
+        "window": "period",
+        "safe_priority": False,
     }
     defaults: dict = {}
     removes_side = False  # CCDWA removes the other side; the others prefer
@@ -171,6 +185,9 @@ class Controller(ABC):
         if p["sides"] != "none" and p["sides"] not in side_rules.TABLES:
             known = ", ".join(["none", *side_rules.TABLES])
             raise UsvError(f"{self.name}: unknown sides {p['sides']!r} (known: {known})")
+        if p["window"] not in WINDOWS:
+            raise UsvError(f"{self.name}: window must be one of {', '.join(WINDOWS)}, "
+                           f"not {p['window']!r}")  # fmt: skip
         if not p["priority"] >= 0:
             raise UsvError(f"{self.name}: priority must be >= 0, not {p['priority']}")
         self.times = p["step"] * np.arange(1, int(round(p["horizon"] / p["step"])) + 1)
@@ -210,13 +227,28 @@ class Controller(ABC):
             return self._fallback(own, r, removed)
         score = self.score(own, r, candidates)
         if side != side_rules.EITHER and self.params["priority"] > 0:
-            score = np.where(np.sign(r.omega) == side, score * (1 + self.params["priority"]), score)
+            bonus = np.sign(r.omega) == side
+            if self.params["safe_priority"]:  # only where no target or shore comes near
+                bonus &= r.clearance >= self.params["dist_max"]
+            score = np.where(bonus, score * (1 + self.params["priority"]), score)
         score = np.where(candidates, score, -np.inf)
         best = int(np.argmax(score))
-        decision = Decision(float(r.v[best]), float(r.omega[best]), events)
+        decision = self._command(own, r, best, events)
         if side != side_rules.EITHER and np.sign(r.omega[best]) == -side and not events:
             decision.events.append(self._departure(encounter, side, r, score, free))
         return decision
+
+    def _command(self, own: Own, r: Rollouts, best: int, events: list[dict]) -> Decision:
+        """The velocity pair for the next period from sample ``best``: the sample itself (a
+        ``period`` window holds only what one period reaches), or, with a ``horizon`` window,
+        the first period of the ramp toward it."""
+        v, omega = float(r.v[best]), float(r.omega[best])
+        if self.params["window"] == "horizon":
+            vessel, dt = self.world.vessel, self.world.period
+            v = float(vessel_model.toward(own.v, v, vessel.max_decel, vessel.max_accel, dt))
+            omega = float(vessel_model.toward(own.omega, omega, vessel.max_yaw_accel,
+                                              vessel.max_yaw_accel, dt))  # fmt: skip
+        return Decision(v, omega, events)
 
     def _crosses_ahead(self, own: Own, r: Rollouts, targets: Targets, j: int) -> np.ndarray:
         """(N,) bool: the rollout crosses target ``j``'s course line ahead of her (the side of
@@ -237,13 +269,19 @@ class Controller(ABC):
         """Sample the window, roll every sample out and find its contacts."""
         world, p = self.world, self.params
         vessel = world.vessel
-        window = vessel_model.window(vessel, own.v, own.omega, world.period)
+        ramped = p["window"] == "horizon"
+        span = self.times[-1] if ramped else world.period
+        window = vessel_model.window(vessel, own.v, own.omega, span)
         v, omega = vessel_model.samples(
             window, int(p["v_samples"]), int(p["omega_samples"]), current=(own.v, own.omega)
         )
-        z, u = vessel_model.arcs(
-            own.x, own.y, own.psi, v, omega, p["step"], len(self.times), directions=True
-        )
+        if ramped:
+            z, u = vessel_model.ramps(own.x, own.y, own.psi, own.v, own.omega, v, omega, vessel,
+                                      p["step"], len(self.times))  # fmt: skip
+        else:
+            z, u = vessel_model.arcs(
+                own.x, own.y, own.psi, v, omega, p["step"], len(self.times), directions=True
+            )
         radius = vessel.length / 2
         n, t = v.size, self.times.size
         # (T, N) from here on: reductions over the horizon run along contiguous rows
@@ -283,13 +321,20 @@ class Controller(ABC):
         columns = np.arange(n)
         contact = np.where(first < t, self.times[at], np.inf)
         static_first = (first < t) & static[at, columns]
-        psi_end = vessel_model.wrap(own.psi + omega * self.times[-1])
         to_goal = np.square(x - world.goal[0])
         to_goal += np.square(y - world.goal[1])
         closest = to_goal.argmin(axis=0)
         reached = to_goal[closest, columns] <= world.goal_tolerance**2
         near = x[closest, columns] + 1j * y[closest, columns]
-        psi_near = own.psi + omega * self.times[closest]
+        if ramped:  # the heading turned while the yaw rate ramps toward the sample's
+            yaw = vessel.max_yaw_accel
+            psi_end = own.psi + vessel_model.travelled(own.omega, omega, yaw, yaw, self.times[-1])
+            psi_end = vessel_model.wrap(psi_end)
+            psi_near = own.psi + vessel_model.travelled(own.omega, omega, yaw, yaw,
+                                                        self.times[closest])  # fmt: skip
+        else:
+            psi_end = vessel_model.wrap(own.psi + omega * self.times[-1])
+            psi_near = own.psi + omega * self.times[closest]
         return Rollouts(v, omega, z[:, -1], psi_end, contact, static_first, clearance, intrudes,
                         x, y, reached, near, psi_near)  # fmt: skip
 
@@ -348,7 +393,13 @@ class Controller(ABC):
     # -- when no sample is free ------------------------------------------------------------
 
     def _fallback(self, own: Own, r: Rollouts, removed: np.ndarray) -> Decision:
-        admissible = vessel_model.admissible(r.v, r.omega, r.v * r.contact, self.world.vessel)
+        vessel = self.world.vessel
+        if self.params["window"] == "horizon":  # the distance run on the speed's ramp
+            run = vessel_model.travelled(own.v, r.v, vessel.max_decel, vessel.max_accel,
+                                         r.contact)  # fmt: skip
+        else:
+            run = r.v * r.contact
+        admissible = vessel_model.admissible(r.v, r.omega, run, vessel)
         # np.lexsort sorts by the last key first: admissible, contact time, starboard, slow
         order = np.lexsort((r.v, r.omega, -r.contact, ~admissible))
         best = int(order[0])
@@ -363,7 +414,7 @@ class Controller(ABC):
             "admissible": int(np.count_nonzero(admissible)),
             "contact_s": round(float(r.contact[best]), 3),
         }
-        return Decision(float(r.v[best]), float(r.omega[best]), [event])
+        return self._command(own, r, best, [event])
 
     def _departure(self, encounter, side, r, score, free) -> dict:
         """A Rule 2 departure: the step turned away from the side the rule prefers."""

@@ -1,0 +1,108 @@
+"""Encounter controllers on seeded random scenes: collisions, arrivals, closest distances.
+
+Each scene: the own ship from (0, 0) heading north toward a goal straight ahead, among one to
+three targets on straight courses, placed and aimed at random (uniform, from one generator
+seeded by the scene's number, so scene ``i`` is the same for every controller and every run).
+Two families, scaled to the vessel (``--family``):
+
+- ``small`` (the random geometries of tests/sim/test_properties.py): the ``iwso-dwa-usv``
+  (2.5 m) at 4 m/s, goal (0, 160), targets of 2.5 m at x in [-60, 60], y in [20, 150] m,
+  0.5-4 m/s, 45 s;
+- ``large`` (the UDWA paper's boat and the scale of its emergency encounters): the ``udwa-usv``
+  (15 m) at 7 m/s, goal (0, 450), targets of 15 m at x in [-120, 120], y in [80, 400] m,
+  1-6 m/s, 90 s.
+
+For each controller the script prints the collisions, the arrivals, the median and 5th
+percentile of the closest centre distance over the scenes, and the median arrival time. Not a
+test: figures for docs/controllers.md.
+
+Usage: python benchmarks/bench_random_encounters.py [--scenes 60] [--family small]
+       [--controllers dwa,gdwa,ccdwa,udwa] [--param NAME=VALUE ...] [-j 1]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from concurrent.futures import ProcessPoolExecutor
+
+import numpy as np
+
+from usvtool.sim.run import Options, simulate
+from usvtool.sim.scenario import parse
+
+FAMILIES = {
+    "small": {"vessel": "iwso-dwa-usv", "speed": 4.0, "goal": 160.0, "length": 2.5,
+              "x": (-60.0, 60.0), "y": (20.0, 150.0), "v": (0.5, 4.0), "duration": 45.0},
+    "large": {"vessel": "udwa-usv", "speed": 7.0, "goal": 450.0, "length": 15.0,
+              "x": (-120.0, 120.0), "y": (80.0, 400.0), "v": (1.0, 6.0), "duration": 90.0},
+}  # fmt: skip
+
+
+def scene(family: str, seed: int, controller: str) -> dict:
+    """Scene ``seed`` of ``family`` as a scenario mapping (usvtool.sim.scenario.parse)."""
+    f = FAMILIES[family]
+    rng = np.random.default_rng(seed)
+    targets = []
+    for i in range(int(rng.integers(1, 4))):
+        targets.append({
+            "name": f"t{i}",
+            "start": [float(rng.uniform(*f["x"])), float(rng.uniform(*f["y"]))],
+            "heading": float(rng.uniform(0, 360)),
+            "speed": float(rng.uniform(*f["v"])),
+            "length": f["length"],
+        })  # fmt: skip
+    return {
+        "name": f"random-{family}-{seed}",
+        "sim": {"dt": 0.1, "duration": f["duration"], "goal_tolerance": 5},
+        "own": {"start": [0, 0], "goal": [0, f["goal"]], "heading": 0, "speed": f["speed"],
+                "vessel": f["vessel"]},
+        "targets": targets,
+        "controller": {"name": controller},
+    }  # fmt: skip
+
+
+def one(job: tuple) -> tuple:
+    family, seed, controller, params = job
+    s = simulate(parse(scene(family, seed, controller), f"scene {seed}"),
+                 Options(params=params)).summary()  # fmt: skip
+    return controller, s["collision"] is not None, s["arrived"], s["min_distance_m"], s["time_s"]
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--scenes", type=int, default=60)
+    ap.add_argument("--first", type=int, default=0, help="the first scene's seed")
+    ap.add_argument("--family", choices=sorted(FAMILIES), default="small")
+    ap.add_argument("--controllers", default="dwa,gdwa,ccdwa,udwa")
+    ap.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
+                    help="a controller parameter for every controller (JSON value or text)")
+    ap.add_argument("-j", "--jobs", type=int, default=1)
+    args = ap.parse_args()
+    params = {}
+    for item in args.param:
+        name, _, text = item.partition("=")
+        try:
+            params[name] = json.loads(text)
+        except json.JSONDecodeError:
+            params[name] = text
+    controllers = args.controllers.split(",")
+    seeds = range(args.first, args.first + args.scenes)
+    jobs = [(args.family, s, c, params) for c in controllers for s in seeds]
+    with ProcessPoolExecutor(args.jobs) as pool:
+        results = list(pool.map(one, jobs, chunksize=4))
+    print(f"{args.scenes} {args.family} scenes (seeds {seeds.start}-{seeds.stop - 1}), "
+          f"params {params or 'defaults'}")  # fmt: skip
+    print(f"{'controller':12} {'collisions':>10} {'arrived':>8} {'median m':>9} {'p5 m':>7} "
+          f"{'median s':>9}")  # fmt: skip
+    for c in controllers:
+        rows = [r for r in results if r[0] == c]
+        closest = np.array([r[3] for r in rows if r[3] is not None])
+        times = [r[4] for r in rows if r[2]]
+        print(f"{c:12} {sum(r[1] for r in rows):10d} {sum(r[2] for r in rows):8d} "
+              f"{np.median(closest):9.1f} {np.percentile(closest, 5):7.1f} "
+              f"{np.median(times) if times else float('nan'):9.1f}")  # fmt: skip
+
+
+if __name__ == "__main__":
+    main()

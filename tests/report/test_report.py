@@ -1,0 +1,204 @@
+"""``usvtool report`` (docs/report.md) on a real small results set: tests/report/pipeline.yaml run
+by ``usvtool batch``, then the report, read back as HTML, PDF and in headless Chromium."""
+
+from __future__ import annotations
+
+import base64
+import json
+import re
+import shutil
+import subprocess
+import sys
+from html.parser import HTMLParser
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from usvtool.report import build, render
+from usvtool.report.papers import TABLES
+
+ROOT = Path(__file__).resolve().parents[2]
+PIPELINE = ROOT / "tests" / "report" / "pipeline.yaml"
+
+
+def usvtool(*args, cwd=ROOT):
+    cmd = [sys.executable, "-m", "usvtool.cli", *map(str, args)]
+    return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True)
+
+
+@pytest.fixture(scope="module")
+def batch(tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("batch")
+    r = usvtool("batch", PIPELINE, "-j", 2, "-o", out)
+    assert r.returncode == 0, r.stderr
+    return out / "metrics.csv"
+
+
+@pytest.fixture(scope="module")
+def report(batch, tmp_path_factory) -> tuple[Path, dict]:
+    out = tmp_path_factory.mktemp("report") / "report"
+    r = usvtool("report", batch, "-o", out)
+    assert r.returncode == 0, r.stderr
+    return out, json.loads(r.stdout)
+
+
+class Page(HTMLParser):
+    """Every element's attributes, the ids, and the tables' texts by id."""
+
+    def __init__(self, text: str):
+        super().__init__()
+        self.attrs: list[tuple[str, str, str]] = []  # tag, attribute, value
+        self.ids: list[str] = []
+        self.images: list[str] = []
+        self.feed(text)
+
+    def handle_starttag(self, tag, attrs):
+        for name, value in attrs:
+            self.attrs.append((tag, name, value or ""))
+            if name == "id":
+                self.ids.append(value)
+        if tag == "img":
+            self.images.append(dict(attrs)["src"])
+
+
+def _table_html(page: str, table_id: str) -> str:
+    start = page.index(f'id="{table_id}"')
+    return page[start:page.index("</table>", start)]
+
+
+def test_the_page_references_nothing_outside_itself(report):
+    out, _ = report
+    page = Page((out / "index.html").read_text(encoding="utf-8"))
+    for tag, name, value in page.attrs:
+        if name in ("src", "href", "srcset", "action", "data", "poster"):
+            assert value.startswith(("data:", "#")), (tag, name, value[:80])
+    assert not any(tag in ("link", "script", "iframe", "object") for tag, _, _ in page.attrs)
+    assert "url(" not in (out / "index.html").read_text(encoding="utf-8").split("</style>")[0]
+
+
+def test_every_table_the_report_promises_is_there_with_the_papers_numbers(report):
+    out, summary = report
+    text = (out / "index.html").read_text(encoding="utf-8")
+    ids = Page(text).ids
+    for t in ("claims-table", "colregs-compliance", "functions-table", "charts-table",
+              "methods-software", "routes-env1-table", "routes-grid20-table",
+              "encounter-emergency-head-on-table", "encounter-emergency-head-on-snapshots",
+              "encounter-emergency-head-on-distance", "encounter-wind-southeast-strong-wind",
+              "routes-env1-map", "routes-env1-convergence", "routes-env1-boxes"):  # fmt: skip
+        assert t in ids, t
+    for paper_table in ("iwso-dwa-table-1", "iwso-dwa-table-2", "issa-table-3", "udwa-table-1"):
+        html = _table_html(text, f"paper-{paper_table}")
+        printed = {p for r in TABLES[paper_table].rows for p in r.printed if p}
+        missing = [p for p in printed if f">{p}<" not in html]
+        assert not missing, (paper_table, missing[:5])
+    assert set(summary["sections"]) == {"claims", "planning", "functions", "encounters",
+                                        "preprocessing", "methods"}  # fmt: skip
+
+
+def test_each_figure_is_embedded_written_and_its_data_beside_it(report):
+    out, summary = report
+    text = (out / "index.html").read_text(encoding="utf-8")
+    page = Page(text)
+    assert len(page.images) == summary["figures"] >= 8
+    pngs = sorted((out / "figures").glob("*.png"))
+    assert len(pngs) == summary["figures"]
+    embedded = {base64.b64decode(src.split(",", 1)[1]) for src in page.images}
+    assert embedded == {p.read_bytes() for p in pngs}
+    for p in pngs:
+        data = (out / "data" / f"{p.stem}.csv").read_text(encoding="utf-8")
+        link = re.search(rf'href="data:text/csv;base64,([^"]+)" download="{p.stem}.csv"', text)
+        assert link and base64.b64decode(link.group(1)).decode("utf-8") == data
+        assert data.count("\n") >= 2  # a header and data
+
+
+def test_the_pdf_has_a_page_per_section_at_least_and_a_first_page_that_is_not_blank(report):
+    pdfium = pytest.importorskip("pypdfium2")
+    out, summary = report
+    pdf = pdfium.PdfDocument(str(out / "report.pdf"))
+    assert len(pdf) == summary["pdf_pages"]
+    # the title and contents, then each top-level section starts a page (style.css)
+    assert len(pdf) >= 1 + len(summary["sections"])
+    starts = [i for i in range(len(pdf))
+              for s in ("The papers' claims on our maps", "Global path planning", "Methods")
+              if pdf[i].get_textpage().get_text_range().startswith(s)]  # fmt: skip
+    assert len(starts) == 3 and starts == sorted(starts)
+    image = np.asarray(pdf[0].render(scale=1).to_pil().convert("L"))
+    assert (image < 128).mean() > 0.005 and len(np.unique(image)) > 10
+
+
+def test_without_weasyprint_the_same_html_and_pngs_are_written_and_a_line_says_what_to_install(
+        batch, report, tmp_path, monkeypatch):  # fmt: skip
+    """In-process, with WeasyPrint "missing": the page and figures are those of the fixture's
+    run (same results, same bytes), and no PDF."""
+    def missing(page):
+        raise build.PdfUnavailable("report.pdf not written (OSError: cannot load library "
+                                   "'pango'): " + render.PDF_HINT)  # fmt: skip
+
+    monkeypatch.setattr(build, "pdf", missing)
+    from click.testing import CliRunner
+
+    from usvtool.cli import cli
+
+    r = CliRunner().invoke(cli, ["report", str(batch), "-o", str(tmp_path / "r")])
+    assert r.exit_code == 0, r.output
+    assert (tmp_path / "r" / "index.html").is_file()
+    assert not (tmp_path / "r" / "report.pdf").exists()
+    warning = [line for line in r.stderr.splitlines() if line.startswith("Warning:")]
+    assert len(warning) == 1 and "apt-get install libpango" in warning[0]
+    assert json.loads(r.stdout)["pdf"] is None
+    out, _ = report
+    assert (tmp_path / "r" / "index.html").read_bytes() == (out / "index.html").read_bytes()
+    for p in (out / "figures").glob("*.png"):
+        assert (tmp_path / "r" / "figures" / p.name).read_bytes() == p.read_bytes(), p.name
+
+
+@pytest.mark.skipif(shutil.which("chromium") is None,
+                    reason="Chromium is not installed (the Makefile installs Debian's chromium "
+                           "as root; elsewhere: apt-get install chromium)")  # fmt: skip
+def test_headless_chromium_shows_every_figure(report, tmp_path):
+    out, summary = report
+    page = (out / "index.html").read_text(encoding="utf-8")
+    probe = ("<script>window.addEventListener('load', () => {document.body.dataset.sizes = "
+             "[...document.images].map(i => i.complete ? i.naturalWidth + 'x' + "
+             "i.naturalHeight : '0x0').join(' ')})</script></body>")  # fmt: skip
+    (tmp_path / "probe.html").write_text(page.replace("</body>", probe), encoding="utf-8")
+    cmd = ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+           "--disable-background-networking", "--disable-component-update", "--disable-sync",
+           "--host-resolver-rules=MAP * ~NOTFOUND", f"--user-data-dir={tmp_path / 'profile'}",
+           "--dump-dom", (tmp_path / "probe.html").as_uri()]  # fmt: skip
+    dom = subprocess.run(cmd, capture_output=True, text=True, timeout=120).stdout
+    sizes = re.search(r'data-sizes="([^"]*)"', dom)
+    assert sizes, dom[:300]
+    shown = sizes.group(1).split()
+    assert len(shown) == summary["figures"]
+    for size, png in zip(shown, Page(page).images, strict=True):
+        import cv2
+
+        h, w = cv2.imdecode(np.frombuffer(base64.b64decode(png.split(",", 1)[1]), np.uint8),
+                            cv2.IMREAD_UNCHANGED).shape[:2]  # fmt: skip
+        assert size == f"{w}x{h}"
+
+
+@pytest.mark.parametrize(
+    "args, status, message",
+    [
+        (["missing.csv"], 1, "missing.csv: no such file"),
+        (["bad.csv"], 1, "not a results table"),
+        ([], 2, "Missing argument"),
+    ],
+)
+def test_bad_input_one_line_and_nothing_written(tmp_path, args, status, message):
+    (tmp_path / "bad.csv").write_text("a,b\n1,2\n")
+    r = usvtool("report", *args, "-o", tmp_path / "out", cwd=tmp_path)
+    assert r.returncode == status and message in r.stderr, r.stderr
+    errors = [line for line in r.stderr.splitlines() if line.startswith("Error:")]
+    assert len(errors) == 1 and message in errors[0] and "Traceback" not in r.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_an_output_that_is_a_file_is_refused(batch, tmp_path):
+    (tmp_path / "out").write_text("keep")
+    r = usvtool("report", batch, "-o", tmp_path / "out")
+    assert r.returncode in (1, 2) and "out" in r.stderr
+    assert (tmp_path / "out").read_text() == "keep"

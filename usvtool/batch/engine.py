@@ -1,0 +1,225 @@
+"""``run_batch``: every job of a pipeline on an executor, resumable, then the results tables.
+
+The order: read and check the pipeline (names checked against the stages' :class:`Names`),
+expand it into jobs and refuse a clash, connect the executor (a local pool, or a Dask
+scheduler), lock ``DIR`` (one batch at a time), remove the temporaries of a killed batch and
+the directories of failed jobs (they run again), skip the jobs done, run the others as they
+become ready (a route once its grid is done; a route whose grid failed fails too), keeping the
+executor's capacity twice over in flight, then measure and write the tables.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import heapq
+import os
+import queue
+import shutil
+import sys
+import time
+from collections import defaultdict
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from usvtool.batch import table
+from usvtool.batch.jobs import PRIORITY, Job, expand
+from usvtool.batch.progress import Bar, Lines
+from usvtool.batch.worker import TMP_PREFIX, Command, Outcome, execute, record_failure
+from usvtool.errors import UsvError
+from usvtool.pipeline import Names, load
+
+
+@dataclass(frozen=True)
+class BatchOptions:
+    """``command`` runs one ``usvtool`` command line in a worker and ``names`` are the stages'
+    names (``usvtool batch`` gives both: :mod:`usvtool.cli.batch`); ``workers``: local worker
+    processes (None: the number of cores); ``scheduler``: a Dask scheduler's address instead;
+    ``out``: the results' directory; ``progress``: a progress bar (None: when stderr is a
+    terminal) rather than plain lines."""
+
+    command: Command
+    names: Names
+    workers: int | None = None
+    scheduler: str | None = None
+    out: str = "build/batch"
+    progress: bool | None = None
+
+
+@dataclass
+class BatchResult:
+    """What a batch did: its summary figures and the failed jobs."""
+
+    figures: dict
+    failed: list[Job] = field(default_factory=list)
+
+    def summary(self) -> dict:
+        return dict(self.figures)
+
+
+def _executor(options: BatchOptions):
+    if options.scheduler is not None:
+        from usvtool.batch.cluster import DaskCluster
+
+        return DaskCluster(options.scheduler)
+    from usvtool.batch.local import LocalPool
+
+    return LocalPool(options.workers or os.cpu_count() or 1)
+
+
+@contextmanager
+def _locked(out: Path):
+    """Hold ``out/.lock`` for the batch: a second batch in the same directory is refused."""
+    out.mkdir(parents=True, exist_ok=True)
+    with open(out / ".lock", "w") as lock:
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            raise UsvError(f"-o {out}: another batch is running in it") from None
+        yield
+
+
+def _remove_temporaries(out: Path) -> None:
+    for stale in out.glob(f"*/{TMP_PREFIX}*"):
+        shutil.rmtree(stale, ignore_errors=True)
+    for stale in out.glob(f"{TMP_PREFIX}*"):
+        shutil.rmtree(stale, ignore_errors=True)
+
+
+def _state(job: Job, out: Path) -> bool | None:
+    """True when the job's result is present, False when it failed before, None when absent."""
+    d = out / job.kind / job.key
+    if not d.is_dir():
+        return None
+    return not (d / "error.txt").is_file()
+
+
+class _Run:
+    """The jobs to run, their dependencies, and what became of them."""
+
+    def __init__(self, todo: list[Job], done_grids: set[str], progress: Lines):
+        self.progress = progress
+        self.ready: list[tuple[int, int, Job]] = []
+        self.waiting: dict[str, list[Job]] = defaultdict(list)
+        self.failed: list[Job] = []
+        self.errors: dict[str, str] = {}
+        self.stage_time: dict[str, float] = defaultdict(float)
+        for i, job in enumerate(todo):
+            if job.needs is None or job.needs in done_grids:
+                heapq.heappush(self.ready, (PRIORITY[job.kind], i, job))
+            else:
+                self.waiting[job.needs].append(job)
+        self.count = len(todo)
+
+    def finish(self, job: Job, error: str | None, wall: float = 0.0) -> None:
+        self.stage_time[job.kind] += wall
+        if error is not None:
+            self.failed.append(job)
+            self.errors[job.key] = error
+        self.progress.advance(job.label, error)
+        for route in self.waiting.pop(job.key, []) if job.kind == "grids" else []:
+            if error is None:
+                self.count += 1
+                heapq.heappush(self.ready, (PRIORITY[route.kind], self.count, route))
+            else:
+                self.finish(route, f"its grid ({job.label}, {job.key}) failed")
+
+
+def _run_jobs(executor, run: _Run, out: Path, command: Command) -> None:
+    """Submit ready jobs (capacity x 2 in flight) until every job has finished."""
+    finished: queue.Queue = queue.Queue()
+    in_flight: dict = {}
+    window = 2 * executor.capacity
+    try:
+        while run.ready or in_flight:
+            while run.ready and len(in_flight) < window:
+                job = heapq.heappop(run.ready)[2]
+                future = executor.submit(f"{job.kind}-{job.key}", execute, job, str(out), command)
+                in_flight[future] = job
+                future.add_done_callback(finished.put)
+            try:
+                future = finished.get(timeout=0.5)
+            except queue.Empty:
+                run.progress.tick()
+                continue
+            job = in_flight.pop(future)
+            try:
+                outcome: Outcome = future.result()
+            except Exception as exc:  # the task itself failed: its worker died, ...
+                error = executor.failure(exc)
+                record_failure(job, str(out), error)
+                run.finish(job, error)
+            else:
+                run.finish(job, outcome.error, outcome.wall_time_s)
+    except BaseException:  # Ctrl-C, SIGTERM: stop the workers, keep what is complete
+        executor.close(pending=list(in_flight))
+        raise
+
+
+def _measure(executor, pipeline, out: Path, jobs: list[Job], command: Command) -> str:
+    """``usvtool metrics`` of the routes and runs done, run by a worker (:func:`table.measure`)."""
+    sim = pipeline.simulation
+    reference = sim.reference_controller if sim is not None else None
+    future = executor.submit("table", table.measure, str(out), jobs, command, reference)
+    try:
+        return future.result()
+    except UsvError:
+        raise
+    except Exception as exc:
+        raise UsvError(f"usvtool metrics: {executor.failure(exc)}") from None
+
+
+def run_batch(pipeline_path, options: BatchOptions) -> BatchResult:
+    """Run every job of the pipeline not done yet in ``options.out``, then write
+    ``metrics.csv``, ``timings.csv`` (and ``metrics.parquet``) there. Raises
+    :class:`UsvError` for a bad pipeline, an executor that cannot start, or a table that
+    cannot be made; failed jobs are in the result."""
+    started = time.monotonic()
+    pipeline = load(pipeline_path, options.names)
+    jobs = expand(pipeline, options.names)
+    out = Path(options.out).resolve()
+    executor = _executor(options)
+    try:
+        with _locked(out):
+            _remove_temporaries(out)
+            for job in jobs:  # a failed job runs again; a finished one is skipped
+                if _state(job, out) is False:
+                    shutil.rmtree(out / job.kind / job.key)
+            skipped = [j for j in jobs if _state(j, out)]
+            todo = [j for j in jobs if not _state(j, out)]
+            bar = options.progress if options.progress is not None else sys.stderr.isatty()
+            progress = (Bar if bar else Lines)(len(jobs), len(skipped), executor.name)
+            run = _Run(todo, {j.key for j in skipped if j.kind == "grids"}, progress)
+            try:
+                _run_jobs(executor, run, out, options.command)
+            finally:
+                progress.close()
+            table_started = time.monotonic()
+            done = [j for j in jobs if _state(j, out)]
+            measured = [j for j in done if j.kind in table.METHOD_COLUMN]
+            wide = None
+            if measured:
+                wide = _measure(executor, pipeline, out, measured, options.command)
+            metrics, timings = table.rows(done, wide, out)
+            parquet = table.write(out / "metrics.csv", metrics, timings)
+            run.stage_time["table"] = time.monotonic() - table_started
+            _remove_temporaries(out)
+    finally:
+        executor.close()
+    failed = run.failed
+    figures = {
+        "output": str(out),
+        "metrics": str(out / "metrics.csv"),
+        "timings": str(out / "timings.csv"),
+        "parquet": None if parquet is None else str(parquet),
+        "executor": executor.name,
+        "jobs": len(jobs),
+        "done": len(todo) - len(failed),
+        "skipped": len(skipped),
+        "failed": len(failed),
+        "failures": [{"kind": j.kind, "key": j.key, "case": j.case, "method": j.method,
+                      "seed": j.seed, "error": run.errors[j.key]} for j in failed],  # fmt: skip
+        "wall_time_s": round(time.monotonic() - started, 3),
+        "stage_time_s": {k: round(v, 3) for k, v in sorted(run.stage_time.items())},
+    }
+    return BatchResult(figures, failed)

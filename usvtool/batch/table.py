@@ -1,0 +1,125 @@
+"""The batch's results tables: ``metrics.csv`` and ``timings.csv`` (the :mod:`usvtool.results`
+contract), and ``metrics.parquet`` when pyarrow is installed.
+
+Routes and runs are measured by one ``usvtool metrics`` command over all of them
+(:func:`measure`, run by a worker like a job), so that its cross-job figures hold: a route's
+``length_ratio`` against the any-angle route of the same grid and ends, a run's optimisation
+rates against the reference controller's run of the same scenario and seed. It sees them
+through a hidden directory of symbolic links, one subdirectory per grid and ends (the
+directory is what ``usvtool metrics`` takes as a route's chart), removed afterwards. A function
+run's ``final_cost`` is the ``best`` of its ``usvtool functions --runs 1`` summary.
+
+Each job's metrics become rows (key, kind, case, method, seed, metric, value) in the command's
+column order, without the columns that name the job (chart, algorithm, run, scenario,
+controller, seed, reference_controller) and without timings; its wall time and, for routes,
+``planning_time_s`` are the rows of ``timings.csv``.
+"""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+import io
+import json
+import shutil
+from pathlib import Path
+
+from usvtool.batch.jobs import Job
+from usvtool.batch.worker import Command, fresh_directory, in_directory, one_line
+from usvtool.errors import UsvError
+from usvtool.results import COLUMNS, FILES, KINDS, TIMING_METRICS, Row, timings_path, write_results
+
+#: Columns of ``usvtool metrics`` that say which job a row is, not what it measured.
+IDENTITY = {"chart", "algorithm", "run", "scenario", "controller", "seed", "reference_controller"}
+#: The ``usvtool metrics`` column of each kind's method.
+METHOD_COLUMN = {"routes": "algorithm", "runs": "controller"}
+
+
+def _view_name(job: Job) -> str:
+    """A job's file in the view: routes grouped by grid and ends, runs together."""
+    if job.kind == "runs":
+        return f"runs/{job.key}.csv"
+    ends = json.dumps([job.needs, job.info["frame"], job.info["start"], job.info["goal"]])
+    return f"{hashlib.sha256(ends.encode()).hexdigest()[:12]}/{job.key}.geojson"
+
+
+def measure(out: str, jobs: list[Job], command: Command, reference_controller: str | None) -> str:
+    """``usvtool metrics`` of the routes and runs ``jobs`` (done, in ``out``): its CSV text,
+    one row per job in the order of :func:`view_order`."""
+    view = fresh_directory(Path(out), "view")
+    try:
+        for job in jobs:
+            name = view / _view_name(job)
+            name.parent.mkdir(exist_ok=True)
+            target = Path("..", "..", job.kind, job.key, FILES[job.kind])
+            name.symlink_to(target)
+            if job.kind == "runs":
+                name.with_suffix(".events.json").symlink_to(target.with_name("trace.events.json"))
+        args = ["metrics", *view_order(jobs), "-o", "metrics.csv"]
+        if reference_controller is not None:
+            args += ["--reference-controller", reference_controller]
+        status, _, stderr, _ = in_directory(view, command, args)
+        if status != 0:
+            raise UsvError(f"usvtool metrics: {one_line(stderr)}")
+        return (view / "metrics.csv").read_text(encoding="utf-8")
+    finally:
+        shutil.rmtree(view, ignore_errors=True)
+
+
+def view_order(jobs: list[Job]) -> list[str]:
+    """The view's files in the order of ``usvtool metrics``' rows (sorted by path)."""
+    return sorted(_view_name(j) for j in jobs)
+
+
+def rows(jobs: list[Job], wide_csv: str | None, out: Path) -> tuple[list[Row], list[Row]]:
+    """The metrics and timings rows of every done job of :data:`KINDS` in ``jobs``."""
+    measured = [j for j in jobs if j.kind in METHOD_COLUMN]
+    by_name = {_view_name(j): j for j in measured}
+    metrics: list[Row] = []
+    timings: list[Row] = []
+    table = list(csv.DictReader(io.StringIO(wide_csv))) if wide_csv else []
+    if len(table) != len(measured):
+        raise UsvError(f"usvtool metrics: {len(table)} rows for {len(measured)} routes and runs")
+    for name, values in zip(view_order(measured), table, strict=True):
+        job = by_name[name]
+        if values[METHOD_COLUMN[job.kind]] != job.method:
+            raise UsvError(f"usvtool metrics: the row of {name} is not {job.label}'s")
+        for metric, value in values.items():
+            if value and metric not in IDENTITY:
+                (timings if metric in TIMING_METRICS else metrics).append(_row(job, metric, value))
+    for job in jobs:
+        if job.kind == "functions":
+            summary = json.loads((out / job.kind / job.key / "summary.json").read_text())
+            metrics.append(_row(job, "final_cost", repr(float(summary["results"][0]["best"]))))
+        if job.kind in KINDS:
+            record = json.loads((out / job.kind / job.key / "job.json").read_text())
+            timings.append(_row(job, "wall_time_s", str(record["wall_time_s"])))
+    return metrics, timings
+
+
+def _row(job: Job, metric: str, value: str) -> Row:
+    return Row(job.key, job.kind, job.case, job.method, job.seed, metric, value)
+
+
+def write(path: Path, metrics: list[Row], timings: list[Row]) -> Path | None:
+    """Write ``metrics.csv`` at ``path``, ``timings.csv`` beside it, and ``metrics.parquet``
+    when pyarrow is importable (its path, or None), renamed into place together
+    (``metrics.csv`` last)."""
+    from usvtool.atomic import staged
+
+    try:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+    except ImportError:
+        pa = None
+    parquet = path.with_suffix(".parquet") if pa is not None else None
+    with staged(path, timings_path(path), parquet) as (metrics_tmp, timings_tmp, parquet_tmp):
+        write_results(metrics_tmp, metrics)
+        write_results(timings_tmp, timings)
+        if parquet_tmp is not None:
+            ordered = sorted(metrics, key=lambda r: r.key)  # the CSV's order
+            columns = {c: [getattr(r, c) for r in ordered] for c in COLUMNS}
+            schema = pa.schema([(c, pa.int64() if c == "seed" else pa.string())
+                                for c in COLUMNS])  # fmt: skip
+            pq.write_table(pa.table(columns, schema=schema), parquet_tmp)
+    return parquet

@@ -1,0 +1,119 @@
+"""What a worker process does with a job: run its command in a fresh directory, and rename the
+directory into place once complete.
+
+The command is a function given by the caller (``usvtool batch`` gives one that runs the CLI
+in-process: :func:`usvtool.cli.batch.run_command`), taking the ``usvtool`` arguments and
+returning (exit status, stdout, stderr); the engine itself imports no stage. A job works in a
+hidden ``DIR/<kind>/.tmp-<key>-<random>/`` as its current directory, so that every path it
+writes is relative to it; the directory is renamed onto ``DIR/<kind>/<key>/`` when complete, so
+a result appears whole or not at all. It holds the command's outputs, its stdout as
+``summary.json`` and ``job.json``; a failed job holds ``error.txt`` (its one-line error) and
+``job.json`` only. Jobs of one process run one at a time (the current directory is the
+process's).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import secrets
+import shutil
+import signal
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from usvtool.batch.jobs import Job
+
+#: ``command(args) -> (exit status, stdout, stderr)``: runs one ``usvtool`` command line.
+Command = Callable[[list[str]], tuple[int, str, str]]
+#: The exit status of a command stopped by SIGINT or SIGTERM (128 + the signal).
+INTERRUPTED = {128 + signal.SIGINT, 128 + signal.SIGTERM}
+TMP_PREFIX = ".tmp-"
+_CWD = threading.Lock()
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What became of a job: its one-line error (None when it succeeded) and its wall time."""
+
+    error: str | None
+    wall_time_s: float
+
+
+def one_line(text: str) -> str:
+    """The last non-empty line of a command's stderr (its error line)."""
+    lines = [line.strip() for line in text.splitlines() if line.strip()]
+    return lines[-1] if lines else "failed without a message"
+
+
+def in_directory(directory: Path, command: Command, args: list[str]) -> tuple[int, str, str, float]:
+    """Run ``command(args)`` with ``directory`` as the current directory: (status, stdout,
+    stderr, wall time in seconds)."""
+    with _CWD:
+        previous = os.getcwd()
+        os.chdir(directory)
+        try:
+            started = time.perf_counter()
+            status, stdout, stderr = command(args)
+            return status, stdout, stderr, time.perf_counter() - started
+        finally:
+            os.chdir(previous)
+
+
+def fresh_directory(parent: Path, name: str) -> Path:
+    """A new hidden directory ``parent/.tmp-<name>-<random>`` (mode 0777 less the umask)."""
+    parent.mkdir(parents=True, exist_ok=True)
+    while True:
+        path = parent / f"{TMP_PREFIX}{name}-{secrets.token_hex(4)}"
+        try:
+            path.mkdir()
+            return path
+        except FileExistsError:
+            continue
+
+
+def execute(job: Job, out: str, command: Command) -> Outcome:
+    """Run ``job`` into ``out/<kind>/<key>/``. An interrupted command (SIGINT, SIGTERM) leaves
+    no directory, so the job runs again on the next batch."""
+    kind_dir = Path(out) / job.kind
+    tmp = fresh_directory(kind_dir, job.key)
+    try:
+        status, stdout, stderr, wall = in_directory(tmp, command, list(job.args))
+        wall = round(wall, 3)
+        if status in INTERRUPTED:
+            return Outcome(one_line(stderr), wall)
+        error = None if status == 0 else one_line(stderr)
+        if error is None:
+            (tmp / "summary.json").write_text(stdout, encoding="utf-8")
+            _finish(job, tmp, kind_dir, wall, None)
+        else:
+            record_failure(job, out, error, wall)
+        return Outcome(error, wall)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def record_failure(job: Job, out: str, error: str, wall: float = 0.0) -> None:
+    """Leave ``out/<kind>/<key>/`` with the job's ``error.txt`` and ``job.json`` only (a failed
+    job runs again on the next batch)."""
+    kind_dir = Path(out) / job.kind
+    tmp = fresh_directory(kind_dir, job.key)
+    try:
+        (tmp / "error.txt").write_text(error + "\n", encoding="utf-8")
+        _finish(job, tmp, kind_dir, wall, error)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _finish(job: Job, tmp: Path, kind_dir: Path, wall: float, error: str | None) -> None:
+    """Write ``job.json`` into ``tmp`` and rename it onto ``kind_dir/<key>``."""
+    record = {**job.record(), "wall_time_s": wall, **({"error": error} if error else {})}
+    (tmp / "job.json").write_text(json.dumps(record, indent=1) + "\n", encoding="utf-8")
+    try:
+        os.rename(tmp, kind_dir / job.key)  # the result appears complete, or not at all
+    except OSError:
+        if not (kind_dir / job.key).is_dir():  # else another batch has just done it
+            raise
