@@ -395,3 +395,26 @@ def test_the_command_line_in_a_subprocess(tables, tmp_path):
     p = subprocess.run(quiet, capture_output=True, text=True, cwd=tmp_path)
     assert (p.returncode, p.stderr) == (0, "")  # -q: no Markdown on stderr
     assert json.loads(p.stdout)["status"] == 0
+
+
+def test_the_committed_ci_baseline_flags_an_injected_regression(tmp_path):
+    """``make regression``'s own baseline: a copy with IWSO's env1 routes 10 % longer regresses
+    (and only those rows' group), and the baseline against itself passes."""
+    from dataclasses import replace
+
+    from usvtool.results import read_results
+
+    baseline = ROOT / "baselines" / "ci.csv"
+    rows = read_results(baseline)
+    worse = [replace(r, value=f"{float(r.value) * 1.1:.2f}")
+             if (r.kind, r.case, r.method, r.metric) == ("routes", "env1", "iwso", "length_m")
+             else r for r in rows]  # fmt: skip
+    assert worse != rows
+    write_results(tmp_path / "current.csv", worse)
+    result = compare(CompareOptions(str(baseline), str(tmp_path / "current.csv")))
+    regressed = [c for c in result.comparisons if c.status == "regressed"]
+    assert result.status == 1
+    assert [(c.kind, c.case, c.method, c.metric) for c in regressed] == [
+        ("routes", "env1", "iwso", "length_m")]
+    same = compare(CompareOptions(str(baseline), str(baseline)))
+    assert same.status == 0
