@@ -90,3 +90,16 @@ def test_the_optimisation_rate_is_computed_from_our_medians_when_runs_lack_it(tm
     table = published.table(results, UDWA_TABLE_1)
     row = next(r for r in table.rows if [c.text for c in r[:2]] == ["udwa", "emergency-head-on"])
     assert [c.text for c in row[2:]] == ["-", "59.48", "78.50", "78.50", "43.25", "43.25"]
+
+
+def test_a_variant_run_in_the_claims_cases_is_judged_beside_the_papers_method(tmp_path):
+    rows = ROUTES + [("e1", "routes", "env1", "iwso+g", 1, "length_m", "690"),
+                     ("e2", "routes", "env2", "iwso+g", 1, "length_m", "480"),
+                     ("f1", "routes", "grid20", "wso+s", 1, "length_m", "30")]  # fmt: skip
+    results = _results(tmp_path, rows)
+    assert claims.variants(results, _claim()) == ["iwso+g"]
+    judged = {v.claim.id: v.verdict for v in claims.verdicts(results)}
+    shorter = [k for k in judged if k.startswith("iwso-shorter")]
+    assert shorter == ["iwso-shorter", "iwso-shorter (iwso+g)"]
+    assert judged["iwso-shorter (iwso+g)"] == claims.HOLDS  # 690 < 735, 480 < 500
+    assert judged["iwso-shorter"] == claims.FAILS  # the env2 tie
