@@ -11,7 +11,8 @@ from affine import Affine
 from click.testing import CliRunner
 
 from usvtool.cli import cli
-from usvtool.grid import Grid, write_grid
+from usvtool.collision import is_collision_free
+from usvtool.grid import Grid, read_grid, write_grid
 from usvtool.route import read_path_geojson
 
 FIGURES = {
@@ -97,8 +98,9 @@ def test_no_timing_gives_byte_identical_files(local_grid, tmp_path):
 @pytest.mark.parametrize("algo", ["astar", "anyangle", "astar+s", "gwo+s"])
 def test_every_kind_of_algorithm(local_grid, tmp_path, algo):
     out = tmp_path / "path.geojson"
+    # 8 x 10 is a tiny budget: its route may collide (exit 3 without --allow-collision)
     result = run(local_grid, "--start", 3, 3, "--goal", 59, 39, "--algo", algo, "--pop", 8,
-                 "--iters", 10, "-o", out)  # fmt: skip
+                 "--iters", 10, "--allow-collision", "-o", out)  # fmt: skip
     assert result.exit_code == 0, result.output
     summary = json.loads(result.stdout)
     assert summary["algorithm"] == algo
@@ -111,8 +113,10 @@ def test_every_kind_of_algorithm(local_grid, tmp_path, algo):
 
 def test_columns_encoding(local_grid, tmp_path):
     out = tmp_path / "path.geojson"
+    # 10 x 10 is a tiny budget: its route may collide (exit 3 without --allow-collision)
     result = run(local_grid, "--start", 1, 1, "--goal", 59, 39, "--encoding", "columns",
-                 "--algo", "issa", "--pop", 10, "--iters", 10, "-o", out)  # fmt: skip
+                 "--algo", "issa", "--pop", 10, "--iters", 10, "--allow-collision",
+                 "-o", out)  # fmt: skip
     assert result.exit_code == 0, result.output
     summary = json.loads(result.stdout)
     assert summary["parameters"]["encoding"] == "columns"
@@ -159,6 +163,13 @@ BAD = [  # arguments, exit status, words of the message (exit 1: the grid's name
     (["--start-lonlat", -71, 42, "--goal", 59, 39], 1, "--start-lonlat: "),
     (["--start", 3, 3, "--goal", 59, 39, "--param", "nope"], 2, "NAME=VALUE"),
     (["--start", 3, 3, "--goal", 59, 39, "--param", "bogus=1"], 1, "iwso: unknown parameter"),
+    # start equal to goal, or within one cell (2 m) of it: the same point; the same cell
+    # [2, 4] x [2, 4] with the points hypot(1.9, 1.9) = 2.69 m apart; neighbouring cells 0.6 m
+    # apart
+    (["--start", 3, 3, "--goal", 3, 3], 1, ": start and goal are within one cell of each "
+     "other (0.00 m apart, cells of 2 m)"),
+    (["--start", 2.05, 2.05, "--goal", 3.95, 3.95], 1, "within one cell of each other (2.69 m"),
+    (["--start", 3.9, 3, "--goal", 4.5, 3], 1, "within one cell of each other (0.60 m apart"),
 ]
 
 
@@ -182,17 +193,108 @@ def test_missing_output_directory_and_missing_grid(local_grid, tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
-def test_a_colliding_best_route_is_written_flagged_and_warned(tmp_path):
-    """One iteration of a tiny population cannot get round a wall: the route is still written,
-    flagged, and a warning goes to stderr."""
+def test_ends_one_cell_apart_are_accepted(local_grid, tmp_path):
+    """(3, 3) and (5, 3) lie in neighbouring 2 m cells exactly one cell side apart."""
+    result = run(local_grid, "--start", 3, 3, "--goal", 5, 3, "--algo", "anyangle",
+                 "-o", tmp_path / "p.geojson")  # fmt: skip
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.stdout)["length_m"] == pytest.approx(2.0)
+
+
+def test_an_outside_point_keeps_its_metres(utm_grid, tmp_path):
+    """Half a metre west of a grid whose west edge is x = 330000: the message must not round the
+    point onto the edge (nor to tenths of a kilometre)."""
+    result = run(utm_grid, "--start", 329999.5, 4689500.5, "--goal", 330950, 4689950,
+                 "-o", tmp_path / "p.geojson")  # fmt: skip
+    assert result.exit_code == 1
+    assert result.stderr.count("\n") == 1
+    assert ("start (329999.5, 4689500.5) is outside the grid (x 330000..331000, "
+            "y 4689000..4690000)") in result.stderr  # fmt: skip
+    assert "lonlat" not in result.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("name", ["start", "goal"])
+def test_lonlat_given_as_map_metres_gets_the_hint(utm_grid, tmp_path, name):
+    """Lon/lat near Boston given to --start or --goal of a UTM grid: the message gives the
+    values to 1e-6 degree and names the option to use instead."""
+    ends = {"start": ["330050", "4689050"], "goal": ["330950", "4689950"]}
+    ends[name] = ["-71.0051234", "42.3456789"]
+    args = [w for end, xy in ends.items() for w in (f"--{end}", *xy)]
+    result = run(utm_grid, *args, "-o", tmp_path / "p.geojson")
+    assert result.exit_code == 1
+    assert result.stderr.count("\n") == 1 and str(utm_grid) in result.stderr
+    assert (f"--{name} -71.005123 42.345679 lies far outside the grid (x 330000..331000, "
+            "y 4689000..4690000 map metres)") in result.stderr  # fmt: skip
+    assert result.stderr.rstrip().endswith(f"use --{name}-lonlat -71.005123 42.345679")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_no_lonlat_hint_without_a_crs(local_grid, tmp_path):
+    """A grid in local metres takes no lon/lat: a point outside it is just outside."""
+    result = run(local_grid, "--start", -71.0051234, 42.3456789, "--goal", 59, 39,
+                 "-o", tmp_path / "p.geojson")  # fmt: skip
+    assert result.exit_code == 1 and "is outside the grid" in result.stderr
+    assert "lonlat" not in result.stderr
+
+
+@pytest.fixture(scope="module")
+def wall(tmp_path_factory):
+    """10 x 10 cells of 1 m, a wall down column 5 with a one-cell gap at the top row: a route
+    from the bottom left to the bottom right must climb to the gap."""
     cells = np.zeros((10, 10), np.uint8)
-    cells[1:10, 5] = 1  # a wall with a gap at the top row only
-    grid = tmp_path / "wall.tif"
-    write_grid(grid, Grid(cells, Affine(1, 0, 0, 0, -1, 10)))
-    out = tmp_path / "r.geojson"
-    result = run(grid, "--start", 1.5, 1.5, "--goal", 8.5, 1.5, "--algo", "pso", "--pop", 2,
-                 "--iters", 1, "--waypoints", 1, "--seed", 0, "-o", out)  # fmt: skip
-    assert result.exit_code == 0
-    assert json.loads(result.stdout)["collision_free"] is False
-    assert "touches obstacle" in result.stderr and out.exists()
-    assert "in 1 run(s)" in result.stderr and "--attempts" in result.stderr
+    cells[1:10, 5] = 1
+    path = tmp_path_factory.mktemp("grids") / "wall.tif"
+    write_grid(path, Grid(cells, Affine(1, 0, 0, 0, -1, 10)))
+    return path
+
+
+# one waypoint, two agents and one iteration of PSO cannot find the gap
+WEAK = ["--start", 1.5, 1.5, "--goal", 8.5, 1.5, "--algo", "pso", "--pop", 2, "--iters", 1,
+        "--waypoints", 1, "--seed", 0, "--no-timing"]  # fmt: skip
+
+
+def test_a_colliding_best_route_is_written_flagged_and_exits_3(wall, tmp_path, reference):
+    out, summary_path = tmp_path / "r.geojson", tmp_path / "r.json"
+    result = run(wall, *WEAK, "-o", out, "--summary", summary_path)
+    assert result.exit_code == 3, result.output
+    # the route is written, and so are the summary file and stdout, before the exit
+    points, props = read_path_geojson(out)
+    summary = json.loads(result.stdout)
+    assert json.loads(summary_path.read_text()) == summary
+    assert props["collision_free"] is False and summary["collision_free"] is False
+    # the independent check (shapely, closed cell squares) agrees: the route touches the wall
+    grid = read_grid(wall)
+    col, row = grid.to_cell_coords(*points.T)
+    assert not reference(grid.blocked).route_free(np.column_stack([col, row]))
+    assert not is_collision_free(grid, points)
+    # one line on stderr: what happened, what to try, how to accept it; no traceback
+    assert result.stderr.count("\n") == 1 and "Traceback" not in result.output
+    line = result.stderr
+    assert line.startswith(f"Error: {wall}: the best route pso found in 1 run(s) touches")
+    assert f"written to {out} with collision_free false" in line
+    assert "--attempts" in line and "--allow-collision" in line
+
+
+def test_allow_collision_exits_0_with_the_same_files(wall, tmp_path):
+    files = {}
+    for name, extra in (("strict", []), ("allowed", ["--allow-collision"])):
+        out, summary_path = tmp_path / f"{name}.geojson", tmp_path / f"{name}.json"
+        result = run(wall, *WEAK, *extra, "-o", out, "--summary", summary_path)
+        files[name] = out.read_bytes(), json.loads(summary_path.read_text())
+        if extra:
+            assert result.exit_code == 0, result.output
+            # still said, as a warning
+            assert result.stderr.count("\n") == 1 and "usvtool: " in result.stderr
+            assert "touches obstacle or margin cells" in result.stderr
+    assert files["strict"][0] == files["allowed"][0]
+    for summary in (s for _, s in files.values()):
+        summary.pop("output")
+    assert files["strict"][1] == files["allowed"][1]
+
+
+def test_help_documents_the_exit_status():
+    text = CliRunner().invoke(cli, ["plan", "--help"]).output
+    assert "Exit status:" in text and "--allow-collision" in text
+    lines = [line.strip() for line in text.splitlines()]
+    assert any(line.startswith("3  the best route found collides") for line in lines)

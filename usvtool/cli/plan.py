@@ -22,6 +22,12 @@ from usvtool.plan.shorten import SUFFIX
 log = logging.getLogger(__name__)
 
 
+class RouteCollides(click.ClickException):
+    """The best route collides: it is written all the same, and the command exits with 3."""
+
+    exit_code = 3
+
+
 def _algo(ctx, param, value: str) -> str:
     names = algorithm_names()
     if value.removesuffix(SUFFIX) not in names:
@@ -89,6 +95,12 @@ def _algo(ctx, param, value: str) -> str:
     show_default=True,
     help="Record planning_time_s (--no-timing writes null: byte-identical outputs per seed).",
 )
+@click.option(
+    "--allow-collision",
+    is_flag=True,
+    help="Exit 0 even when the best route collides (it is written either way, flagged "
+    "collision_free false): for studies of the faithful algorithms' failures.",
+)
 @output_option("Path GeoJSON to write.")
 @summary_option
 def plan(
@@ -107,10 +119,20 @@ def plan(
     turn_weight: float,
     attempts: int,
     timing: bool,
+    allow_collision: bool,
     output: str,
     summary_path: str | None,
 ) -> None:
-    """Plan a route from --start to --goal on GRID.tif and write it to -o as GeoJSON."""
+    """Plan a route from --start to --goal on GRID.tif and write it to -o as GeoJSON.
+
+    \b
+    Exit status:
+      0  the route is written and collision-free (with --allow-collision: colliding or not)
+      1  bad input: one line on stderr, nothing written
+      2  a usage error (an unknown option or algorithm, a missing --goal, ...)
+      3  the best route found collides: it is written all the same (collision_free false,
+         with the --summary), and one line on stderr says so
+    """
     from usvtool.atomic import check_outputs, staged
     from usvtool.errors import UsvError
     from usvtool.grid import read_grid
@@ -130,19 +152,21 @@ def plan(
         params=params, turn_weight=turn_weight, attempts=attempts, timing=timing,
     )
     result = plan_route(grid, start, goal, options)
-    if not result.route.collision_free:
-        log.warning(
-            "%s: the best route %s found in %d run(s) touches obstacle or margin cells (written "
-            "with collision_free false); try more --attempts, --waypoints or --iters, or another "
-            "algorithm",
-            grid_path, algo, attempts,
-        )
     summary = {"output": output, "grid": grid_path, **result.summary()}
     with staged(output, summary_path) as (path_tmp, summary_tmp):  # the route renamed last
         write_path_geojson(path_tmp, result.route, grid)
         if summary_tmp:
             write_summary(summary_tmp, summary)
     emit(summary)
+    if not result.route.collision_free:
+        message = (
+            f"{grid_path}: the best route {algo} found in {attempts} run(s) touches obstacle or "
+            f"margin cells (written to {output} with collision_free false); try more --attempts, "
+            "--waypoints or --iters, or another algorithm"
+        )
+        if not allow_collision:
+            raise RouteCollides(f"{message}, or --allow-collision to accept it (exit 0)")
+        log.warning(message)
 
 
 def _point(grid, grid_path: str, name: str, xy, lonlat) -> tuple[float, float]:
@@ -152,9 +176,37 @@ def _point(grid, grid_path: str, name: str, xy, lonlat) -> tuple[float, float]:
     if (xy is None) == (lonlat is None):
         raise click.UsageError(f"give exactly one of --{name} X Y and --{name}-lonlat LON LAT")
     if xy is not None:
-        return float(xy[0]), float(xy[1])
+        x, y = float(xy[0]), float(xy[1])
+        if _reads_as_lonlat(grid, x, y):
+            left, bottom, right, top = (_fixed(v, 2) for v in grid.bounds)
+            lonlat_text = f"{_fixed(x, 6)} {_fixed(y, 6)}"
+            raise UsvError(
+                f"{grid_path}: --{name} {lonlat_text} lies far outside the grid (x {left}..{right},"
+                f" y {bottom}..{top} map metres) and reads as lon/lat: use --{name}-lonlat "
+                f"{lonlat_text}"
+            )
+        return x, y
     if grid.crs is None:
         raise UsvError(f"--{name}-lonlat: {grid_path} has no CRS; give --{name} X Y in metres")
     from usvtool.geodesy import lonlat_to_map
 
     return lonlat_to_map(grid.crs, *lonlat)
+
+
+def _reads_as_lonlat(grid, x: float, y: float) -> bool:
+    """Whether map coordinates ``x, y`` look like WGS84 lon/lat given in their place: the grid
+    is projected, they fit lon/lat ranges and lie farther outside the grid than its own size."""
+    if grid.crs is None or getattr(grid.crs, "is_geographic", False):
+        return False
+    if not (-180.0 <= x <= 180.0 and -90.0 <= y <= 90.0):
+        return False
+    left, bottom, right, top = grid.bounds
+    gap = max(left - x, x - right, bottom - y, y - top)
+    return gap > max(right - left, top - bottom)
+
+
+def _fixed(value: float, digits: int) -> str:
+    """A coordinate for messages: ``digits`` decimals (6 for degrees, about 0.1 m; 2 for
+    metres), no exponent, no trailing zeros."""
+    text = f"{value:.{digits}f}".rstrip("0").rstrip(".")
+    return "0" if text == "-0" else text

@@ -20,6 +20,7 @@ and ``attempt`` (the optimizer run that gave the route, :func:`_optimize`).
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 
@@ -87,7 +88,8 @@ def plan_route(grid: Grid, start, goal, options: PlanOptions | None = None) -> P
     is collision-free; the exact planners run once.
 
     Raises :class:`UsvError` for an unknown algorithm, a start or goal outside the grid or
-    touching an obstacle or margin cell, or no navigable connection between them.
+    touching an obstacle or margin cell, a start and goal within one cell of each other, or no
+    navigable connection between them.
     """
     opts = options or PlanOptions()
     algo, encoding, waypoints, attempts = opts.algo, opts.encoding, opts.waypoints, opts.attempts
@@ -194,12 +196,29 @@ def _optimize(
 def check_ends(grid: Grid, start, goal) -> tuple[tuple[float, float], tuple[float, float]]:
     """Cell coordinates of ``start`` and ``goal`` (map metres), or :class:`UsvError`.
 
-    Each must lie in the grid and touch no blocked cell, and a navigable route must join them.
+    Each must lie in the grid and touch no blocked cell, they must be at least one cell apart,
+    and a navigable route must join them.
     """
     start_c = check_point(grid, start, "start")
     goal_c = check_point(grid, goal, "goal")
+    _check_apart(grid, start_c, goal_c)
     _check_connected(grid, start_c, goal_c)
     return start_c, goal_c
+
+
+def _check_apart(grid: Grid, start, goal) -> None:
+    """Refuse a start and goal within one cell of each other: in the same cell, or less than one
+    cell side apart. There is no route to plan, and the figures of one would be meaningless (a
+    length of 0 with turns, a mot up to pi)."""
+    (c0, r0), (c1, r1) = start, goal
+    gap = math.hypot(c1 - c0, r1 - r0)
+    same_cell = (math.floor(c0), math.floor(r0)) == (math.floor(c1), math.floor(r1))
+    if same_cell or gap < 1.0:
+        size = grid.cell_size
+        raise UsvError(
+            f"start and goal are within one cell of each other ({gap * size:.2f} m apart, "
+            f"cells of {size:g} m): give a goal at least one cell from the start"
+        )
 
 
 def _check_connected(grid: Grid, start, goal) -> None:
