@@ -160,3 +160,24 @@ def test_a_point_is_in_the_grid_and_touches_no_blocked_cell():
             check_point(g, point, "start")
         assert str(info.value) == message
     assert check_point(g, (1010 - 1e-6, 2030)) == pytest.approx((1.0 - 1e-7, 1.0))  # 1e-7 cell off
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_the_filter_clearance_is_a_lower_bound_on_the_distance_to_blocked_squares(seed):
+    """R of a cell is at most the distance between the cell's square and the nearest blocked
+    square (brute force over every blocked cell), and at least 1/√2 of the Euclidean bound
+    EDT - √2 the filter used before."""
+    from scipy.ndimage import distance_transform_edt
+
+    rng = np.random.default_rng(seed)
+    blocked = rng.random((25, 31)) < 0.03
+    clear = SegmentChecker(blocked)._clear.reshape(26, 32)[:25, :31]
+    rows, cols = np.nonzero(blocked)
+    r, c = np.mgrid[0:25, 0:31]
+    gap_x = np.maximum(np.abs(c[..., None] - cols) - 1, 0)
+    gap_y = np.maximum(np.abs(r[..., None] - rows) - 1, 0)
+    exact = np.hypot(gap_x, gap_y).min(axis=-1)
+    assert np.all(clear[~blocked] <= exact[~blocked] + 1e-12)
+    assert np.all(clear[blocked] == -1)
+    euclid = np.maximum(distance_transform_edt(~blocked) - math.sqrt(2), 0)
+    assert np.all(clear[~blocked] >= euclid[~blocked] / math.sqrt(2) - 1e-12)

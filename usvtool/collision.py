@@ -17,9 +17,18 @@ Definition (what "collides" means everywhere in usvtool)
 The check (:meth:`SegmentChecker.collides`) is exact under that definition and fast:
 
 1. Clearance filter. ``R(p)``, looked up in the cell holding ``p``, is a lower bound on the
-   distance from ``p`` to every blocked square: for ``p`` in cell ``c`` and a blocked square of
-   centre ``b``, ``dist(p, B) ≥ |p - b| - √2/2 ≥ |c - b| - √2``, so ``R = EDT(c) - √2`` (clipped at
-   0) with ``EDT`` the Euclidean distance transform of the cell centres. Each segment is sampled at
+   distance from ``p`` to every blocked square: for ``p`` in cell ``c`` and a blocked square ``B``
+   of cell ``b`` (index offsets ``dx, dy``), the two squares are ``max(|dx|, |dy|) - 1`` apart
+   along one axis and ``(|dx| - 1)⁺, (|dy| - 1)⁺`` along both, so ``dist(p, B) ≥ max(C - 1,
+   (L - 2) / √2)`` with ``C`` and ``L`` the chessboard and city-block distances from ``c`` to the
+   nearest blocked cell (each minimised on its own: the maximum of two lower bounds). Both are
+   exact integer distance transforms (OpenCV's 3 x 3 chamfer with unit weights), 20 times faster
+   than the exact Euclidean transform on 12 M cells. For one blocked cell the bound is ``|c - b|
+   - √2`` or more along the axes and diagonals and within 5 % of it between them; with several
+   (nearest in the two metrics not the same cell) it can fall to 1/√2 of that, so on grids of up
+   to 2 M cells, where scipy's exact Euclidean transform takes under 0.3 s, ``R`` is the larger
+   of this bound and ``EDT(c) - √2`` (``dist(p, B) ≥ |p - b| - √2/2 ≥ |c - b| - √2``). Each
+   segment is sampled at
    ``n`` points ``p_k`` spaced ``s`` apart. If a sample lies in a blocked cell, the segment
    collides. An interval ``[p_k, p_{k+1}]`` with ``R_k + R_{k+1} > s + 1e-6`` is free: any point
    ``q`` on it has ``|q - p_k| + |q - p_{k+1}| = s``, so ``|q - p_k| < R_k - 5e-7`` or
@@ -51,6 +60,8 @@ overlap in a seam ``2 pad`` wide, which is counted twice.
 
 from __future__ import annotations
 
+from functools import cached_property
+
 import numpy as np
 
 from usvtool.errors import UsvError
@@ -59,6 +70,7 @@ from usvtool.grid import MARGIN, OBSTACLE, Grid
 EPS = 1e-9
 _MARGIN = 1e-6  # extra clearance the filter demands, >> √2·EPS
 _SQRT2 = float(np.sqrt(2.0))
+_EDT_CELLS = 2_000_000  # up to this size the filter also uses the exact Euclidean transform
 
 
 class SegmentChecker:
@@ -79,7 +91,7 @@ class SegmentChecker:
     def __init__(self, blocked: np.ndarray, samples: int | None = None, pad: float = 0.0):
         if not (pad == 0.0 or EPS < pad < 0.5):
             raise ValueError("pad must be 0 or in (1e-9, 0.5)")
-        self.pad = d = float(pad)
+        self.pad = float(pad)
         blocked = np.asarray(blocked, bool)
         self.height, self.width = h, w = blocked.shape
         # samples along each segment: about one per 20 cells of the grid's size, 4 to 24
@@ -88,28 +100,29 @@ class SegmentChecker:
         t = np.linspace(0.0, 1.0, samples)
         self._basis = np.vstack([1.0 - t, t])
         self._ones = np.ones(samples)
-        if blocked.any():
-            from scipy.ndimage import distance_transform_edt
+        self._blocked = blocked.copy() if pad else None  # for _grown
+        self._clear = _clearance(blocked)
+        # Column counts padded so that rows -1 … h + 1 and columns -1 … w (outside the grid,
+        # never blocked) need no bounds checks; entry [r + 1, c + 1] is the number of blocked
+        # cells of column c in rows < r.
+        prefix = np.zeros((h + 3, w + 2), np.int32)
+        np.cumsum(blocked, axis=0, dtype=np.int32, out=prefix[2 : h + 2, 1:-1])
+        prefix[h + 2] = prefix[h + 1]
+        self._prefix = prefix.ravel()
 
-            clear = np.maximum(distance_transform_edt(~blocked) - _SQRT2, 0.0)
-        else:
-            clear = np.full(blocked.shape, np.inf)
-        # one extra row and column (copies of the last ones) hold the points on the far edges
-        clear = np.where(blocked, -1.0, clear)
-        self._clear = np.pad(clear, ((0, 1), (0, 1)), mode="edge").ravel()
-        # Column tables padded so that rows -1 … h + 1 and columns -1 … w (outside the grid,
-        # never blocked) need no bounds checks; entry [r + 1, c + 1] is about row r, column c:
-        # _prefix: blocked cells of column c in rows < r;
-        # _below: length of column c's squares grown by pad (vertically) below y = r;
-        # _band: in row r, whether [r, r + pad), [r + pad, r + 1 - pad], (r + 1 - pad, r + 1]
-        #        are in them.
-        cells = np.pad(blocked, ((2, 3), (1, 1))).astype(float)  # rows -2 … h + 2
-        self._prefix = np.cumsum(np.vstack([np.zeros((1, w + 2)), cells[1:-2]]), axis=0).ravel()
+    @cached_property
+    def _grown(self) -> tuple[np.ndarray, np.ndarray]:
+        """The tables of the squares grown by ``pad`` (only :meth:`guide` and :meth:`inside`
+        with ``pad`` > 0 read them), laid out as ``_prefix``: ``below``, the length of column
+        c's grown squares below y = r; ``band``, in row r, whether [r, r + pad), [r + pad, r + 1
+        - pad], (r + 1 - pad, r + 1] are in them."""
+        d, w = self.pad, self.width
+        cells = np.pad(self._blocked, ((2, 3), (1, 1)))  # rows -2 … h + 2
         mid = cells[1:-1]
-        band = np.stack([np.maximum(cells[:-2], mid), mid, np.maximum(mid, cells[2:])])
+        band = np.stack([cells[:-2] | mid, mid, mid | cells[2:]])
         per_row = d * band[0] + (1.0 - 2.0 * d) * band[1] + d * band[2]
-        self._below = np.cumsum(np.vstack([np.zeros((1, w + 2)), per_row[:-1]]), axis=0).ravel()
-        self._band = band.reshape(3, -1)
+        below = np.cumsum(np.vstack([np.zeros((1, w + 2)), per_row[:-1]]), axis=0).ravel()
+        return below, band.reshape(3, -1)
 
     def collides(self, a, b) -> np.ndarray:
         """Whether each segment ``a[i] → b[i]`` (arrays ``(k, 2)``) touches a blocked cell."""
@@ -199,7 +212,7 @@ class SegmentChecker:
 
         ``inside`` (None when ``pad`` is None; else ``pad`` is 0 or the checker's): in the strip
         ``[c - pad, c + 1 + pad]`` the piece spans ``y_lo … y_hi`` and is ``w √(1 + k²)`` long
-        (``w`` its width); with ``G(y)`` the grown length of the column below ``y`` (``_below``
+        (``w`` its width); with ``G(y)`` the grown length of the column below ``y`` (``below``
         at ``⌊y⌋`` plus the part of row ``⌊y⌋``'s bands below ``y``; with ``pad`` 0 the running
         count plus ``blocked(⌊y⌋) (y - ⌊y⌋)``) its share inside is ``(G(y_hi) - G(y_lo)) / (y_hi
         - y_lo)``, or the band holding ``y_lo`` when the piece is level.
@@ -249,8 +262,9 @@ class SegmentChecker:
         f = ys - row  # position in the row, [0, 1)
         at = (row * stride + np.concatenate([base, base])).astype(np.intp)
         if d:
-            lower, middle, upper = self._band.take(at, axis=1)
-            grown = self._below.take(at) + (
+            below, bands = self._grown
+            lower, middle, upper = bands.take(at, axis=1)
+            grown = below.take(at) + (
                 lower * np.minimum(f, d)
                 + middle * np.minimum(np.maximum(f - d, 0.0), 1.0 - 2.0 * d)
                 + upper * np.maximum(f - (1.0 - d), 0.0)
@@ -258,7 +272,7 @@ class SegmentChecker:
         else:  # the squares themselves: the running counts
             grown = self._prefix.take(at)
             middle = self._prefix.take(at + stride) - grown
-            grown += middle * f
+            grown = grown + middle * f
         # share × piece = (G(y_hi) - G(y_lo)) · (length per unit of y: √(1 + k²) / |k|, 1 if
         # north-south); a level piece instead takes its width √(1 + k²) times its band
         n = lo.size
@@ -279,6 +293,32 @@ class SegmentChecker:
         if not dx.all():  # a north-south piece counts in the strips whose interior holds it
             within *= (dx > 0) | ((cx < d) & (cx > -1.0 - d))
         return touches, np.bincount(strip.take(take), within, touches.size)
+
+
+def _clearance(blocked: np.ndarray) -> np.ndarray:
+    """The filter's table ``R`` (module docstring), -1 on blocked cells, float64 ``(h + 1) x (w +
+    1)`` raveled: one extra row and column (copies of the last ones) hold the points on the far
+    edges."""
+    h, w = blocked.shape
+    out = np.empty((h + 1, w + 1))
+    if blocked.any():
+        import cv2
+
+        free = np.ascontiguousarray(~blocked).view(np.uint8)
+        chess = cv2.distanceTransform(free, cv2.DIST_C, 3).astype(float)  # integers, exact
+        city = cv2.distanceTransform(free, cv2.DIST_L1, 3).astype(float)
+        clear = np.maximum(chess - 1.0, (city - 2.0) / _SQRT2)
+        if blocked.size <= _EDT_CELLS:  # cheap here: the Euclidean bound too, the larger wins
+            from scipy.ndimage import distance_transform_edt
+
+            np.maximum(clear, distance_transform_edt(~blocked) - _SQRT2, out=clear)
+        np.maximum(clear, 0.0, out=out[:h, :w])
+        out[:h, :w][blocked] = -1.0
+    else:
+        out[:h, :w] = np.inf
+    out[h, :w] = out[h - 1, :w]
+    out[:, w] = out[:, w - 1]
+    return out.ravel()
 
 
 def is_collision_free(grid: Grid, points, checker: SegmentChecker | None = None) -> bool:
