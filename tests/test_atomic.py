@@ -22,6 +22,18 @@ def umask() -> int:
     return mask
 
 
+@pytest.fixture(autouse=True)
+def default_handlers():
+    """Python's own SIGINT and SIGTERM handlers during each test, whatever the test run
+    inherited (a run started in the background of a non-interactive shell ignores SIGINT)."""
+    saved = {s: signal.getsignal(s) for s in atomic.SIGNALS}
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    yield
+    for s, handler in saved.items():
+        signal.signal(s, handler)
+
+
 @pytest.fixture
 def handlers():
     """The SIGINT and SIGTERM handlers before the test; the test must leave them so."""
