@@ -432,7 +432,11 @@ def _known(names: Names | None, kind: str):
         return None
     if kind == "route":
         known = sorted({*names.optimizers, *names.exact})
-        return (lambda a: a.removesuffix("+s") in known, ", ".join(known) + "; +s for shortening")
+
+        def accepted(a: str) -> bool:  # +s for every algorithm, +g for the optimizers
+            return a.removesuffix("+s") in known or a.removesuffix("+g") in names.optimizers
+
+        return (accepted, ", ".join(known) + "; +s for shortening, +g (optimizers) route-guided")
     pool = {"optimizer": names.optimizers, "controller": names.controllers,
             "function": names.functions}[kind]  # fmt: skip
     return (lambda a: a in pool, ", ".join(pool))

@@ -15,9 +15,9 @@ from usvtool.cli.options import (
     summary_option,
     write_summary,
 )
-from usvtool.plan.planner import algorithm_names
+from usvtool.plan.guided import AUTO
+from usvtool.plan.planner import VARIANTS, algorithm_names, split_algorithm
 from usvtool.plan.problem import ENCODINGS
-from usvtool.plan.shorten import SUFFIX
 
 log = logging.getLogger(__name__)
 
@@ -30,11 +30,25 @@ class RouteCollides(click.ClickException):
 
 def _algo(ctx, param, value: str) -> str:
     names = algorithm_names()
-    if value.removesuffix(SUFFIX) not in names:
+    if split_algorithm(value)[0] not in names:
         raise click.BadParameter(
-            f"{value!r} is not one of {', '.join(names)} (each also with the suffix {SUFFIX})"
+            f"{value!r} is not one of {', '.join(names)} (each also with the suffix "
+            f"{' or '.join(VARIANTS)})"
         )
     return value
+
+
+def _waypoints(ctx, param, value: str | None) -> int | str | None:
+    """An integer >= 1, ``auto`` (+g: K from the exact route), or None (the default)."""
+    if value is None or value == AUTO:
+        return value
+    try:
+        k = int(value)
+    except ValueError:
+        k = 0
+    if k < 1:
+        raise click.BadParameter(f"{value!r} is neither an integer >= 1 nor {AUTO!r}")
+    return k
 
 
 @click.command()
@@ -52,7 +66,8 @@ def _algo(ctx, param, value: str) -> str:
     default="iwso",
     show_default=True,
     callback=_algo,
-    help=f"One of {', '.join(algorithm_names())}; add {SUFFIX} for route shortening.",
+    help=f"One of {', '.join(algorithm_names())}; add +s for route shortening, +g (optimizers) "
+    "for the route-guided variant.",
 )
 @click.option("--pop", type=click.IntRange(min=2), default=50, show_default=True, help="Agents.")
 @click.option(
@@ -61,10 +76,10 @@ def _algo(ctx, param, value: str) -> str:
 @seed_option
 @click.option(
     "--waypoints",
-    type=click.IntRange(min=1),
-    default=3,
-    show_default=True,
-    help="Free waypoints (waypoints encoding).",
+    callback=_waypoints,
+    metavar="K|auto",
+    help="Free waypoints (waypoints encoding; default 3), or for +g 'auto' (its default): "
+    "one per bend of the exact route that matters.",
 )
 @click.option(
     "--encoding",
@@ -113,7 +128,7 @@ def plan(
     pop: int,
     iters: int,
     seed: int,
-    waypoints: int,
+    waypoints: int | str | None,
     encoding: str,
     params: dict,
     turn_weight: float,

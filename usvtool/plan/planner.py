@@ -3,7 +3,10 @@
 Algorithms: every optimizer of :data:`usvtool.plan.optimizers.OPTIMIZERS` (minimising the
 :class:`~usvtool.plan.problem.PathProblem` cost), ``astar`` (8-connected) and ``anyangle`` (the
 exact any-angle shortest route, :mod:`usvtool.plan.exact`). A ``+s`` suffix (``iwso+s``,
-``astar+s``) adds route shortening (:mod:`usvtool.plan.shorten`) to the planner's result.
+``astar+s``) adds route shortening (:mod:`usvtool.plan.shorten`) to the planner's result; a
+``+g`` suffix (``iwso+g``, optimizers only) runs the optimizer on the route-guided problem of
+:mod:`usvtool.plan.guided` (waypoints about the stations of the exact any-angle route, K from
+the route with ``waypoints="auto"``, the default there).
 
 What to plan is a :class:`PlanOptions`; the answer a :class:`PlanResult`, holding the
 :class:`usvtool.route.Route` (write it with :func:`usvtool.route.write_path_geojson`) and the
@@ -30,30 +33,44 @@ from usvtool import metrics
 from usvtool.collision import check_point, is_collision_free
 from usvtool.errors import UsvError
 from usvtool.grid import Grid
-from usvtool.plan import exact
+from usvtool.plan import exact, guided
 from usvtool.plan.problem import ENCODINGS, PathProblem
 from usvtool.plan.shorten import SUFFIX, shorten
 from usvtool.route import Route, route_length
 
 EXACT = ("astar", "anyangle")
+VARIANTS = (SUFFIX, guided.SUFFIX)  # +s (shortening), +g (route-guided)
+DEFAULT_WAYPOINTS = 3  # free waypoints of the faithful encoding when none are given
 
 
 def algorithm_names() -> list[str]:
-    """Every accepted ``algo`` name, without the ``+s`` variants."""
+    """Every accepted ``algo`` name, without the ``+s`` and ``+g`` variants."""
     from usvtool.plan.optimizers import OPTIMIZERS
 
     return [*OPTIMIZERS, *EXACT]
+
+
+def split_algorithm(algo: str) -> tuple[str, str]:
+    """``(base, variant)`` of an ``algo`` name: ``("iwso", "+g")``, ``("astar", "")``.
+
+    >>> split_algorithm("iwso+g"), split_algorithm("anyangle+s"), split_algorithm("gwo")
+    (('iwso', '+g'), ('anyangle', '+s'), ('gwo', ''))
+    """
+    for suffix in VARIANTS:
+        if algo.endswith(suffix):
+            return algo[: -len(suffix)], suffix
+    return algo, ""
 
 
 @dataclass
 class PlanOptions:
     """Everything :func:`plan_route` can be told (the ``usvtool plan`` options)."""
 
-    algo: str = "iwso"  # an algorithm_names() entry, optionally with the suffix +s
+    algo: str = "iwso"  # an algorithm_names() entry, optionally with the suffix +s or +g
     pop: int = 50  # agents (optimizers)
     iters: int = 300  # iterations (optimizers)
     seed: int | None = 0
-    waypoints: int = 3  # free waypoints (waypoints encoding)
+    waypoints: int | str | None = None  # free waypoints: None = 3 (+g: "auto", from the route)
     encoding: str = "waypoints"  # or "columns" (ISSA)
     params: dict = field(default_factory=dict)  # optimizer parameters
     turn_weight: float = 1.0  # weight of the ISSA turning energy in the cost
@@ -94,20 +111,31 @@ def plan_route(grid: Grid, start, goal, options: PlanOptions | None = None) -> P
     opts = options or PlanOptions()
     algo, encoding, waypoints, attempts = opts.algo, opts.encoding, opts.waypoints, opts.attempts
     seed, turn_weight = opts.seed, opts.turn_weight
-    base, shortened = (algo[: -len(SUFFIX)], True) if algo.endswith(SUFFIX) else (algo, False)
+    base, variant = split_algorithm(algo)
+    shortened, guide = variant == SUFFIX, variant == guided.SUFFIX
     if base not in algorithm_names():
         known = ", ".join(algorithm_names())
-        raise UsvError(f"unknown algorithm {algo!r} (known: {known}, each also with {SUFFIX})")
+        raise UsvError(f"unknown algorithm {algo!r} (known: {known}, each also with "
+                       f"{' or '.join(VARIANTS)})")  # fmt: skip
+    if guide and base in EXACT:
+        raise UsvError(f"{algo!r}: {guided.SUFFIX} is a variant of the optimizers, not of {base}")
     if encoding not in ENCODINGS:
         raise UsvError(f"unknown encoding {encoding!r} (known: {', '.join(ENCODINGS)})")
-    if encoding == "waypoints" and waypoints < 1:
-        raise UsvError(f"waypoints must be >= 1, not {waypoints}")
+    if guide and encoding != "waypoints":
+        raise UsvError(f"{algo!r}: {guided.SUFFIX} has its own encoding, not {encoding!r}")
+    if waypoints is None:
+        waypoints = guided.AUTO if guide else DEFAULT_WAYPOINTS
+    if waypoints == guided.AUTO and not guide:
+        raise UsvError(f"waypoints {guided.AUTO!r} is for the {guided.SUFFIX} variants")
+    if waypoints != guided.AUTO and (not isinstance(waypoints, int) or waypoints < 1):
+        raise UsvError(f"waypoints must be an integer >= 1 or {guided.AUTO!r}, not {waypoints!r}")
     if attempts < 1:
         raise UsvError(f"attempts must be >= 1, not {attempts}")
     start_c, goal_c = check_ends(grid, start, goal)
     problem = PathProblem(
-        grid, tuple(start), tuple(goal), encoding, waypoints, turn_weight=turn_weight
-    )
+        grid, tuple(start), tuple(goal), encoding,
+        1 if guide else waypoints, turn_weight=turn_weight,
+    )  # fmt: skip
     checker = problem.checker
     convergence: list[float] = []
     attempt = None
@@ -118,6 +146,17 @@ def plan_route(grid: Grid, start, goal, options: PlanOptions | None = None) -> P
     elif base == "anyangle":
         cells = exact.any_angle(checker, grid.blocked, start_c, goal_c)
         parameters = {"delta_cells": exact.DELTA}
+    elif guide:
+        route = exact.any_angle(checker, grid.blocked, start_c, goal_c)
+        searched = guided.GuidedProblem(problem, guided.stations(checker, route, waypoints))
+        if searched.waypoints:
+            cells, convergence, parameters, attempt = _optimize(
+                searched, base, opts.pop, opts.iters, seed, opts.params or {}, attempts
+            )
+        else:  # a straight route: nothing to search
+            cells, parameters = route, {}
+        parameters = {**parameters, "encoding": "guided", "turn_weight": turn_weight,
+                      "waypoints": searched.waypoints, "guide_vertices": len(route)}  # fmt: skip
     else:
         cells, convergence, parameters, attempt = _optimize(
             problem, base, opts.pop, opts.iters, seed, opts.params or {}, attempts
@@ -152,8 +191,8 @@ def plan_route(grid: Grid, start, goal, options: PlanOptions | None = None) -> P
 
 
 def _optimize(
-    problem: PathProblem, base: str, pop: int, iters: int, seed: int | None, params: dict,
-    attempts: int,
+    problem: PathProblem | guided.GuidedProblem, base: str, pop: int, iters: int,
+    seed: int | None, params: dict, attempts: int,
 ) -> tuple[np.ndarray, list[float], dict, int]:
     """Minimise ``problem`` with optimizer ``base``: up to ``attempts`` independent runs, stopping
     at the first whose best route is collision-free (else keeping the lowest-cost route).
