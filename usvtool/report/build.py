@@ -9,6 +9,7 @@ earlier report that this one no longer has are then removed from ``figures/`` an
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -25,11 +26,13 @@ TITLE = "usvtool: path planning and collision avoidance, compared with the paper
 @dataclass(frozen=True)
 class ReportOptions:
     """``tables``: results tables (``usvtool batch``'s ``metrics.csv``); ``out``: the report's
-    directory; ``pdf``: also write ``report.pdf``."""
+    directory; ``pdf``: also write ``report.pdf``; ``workers``: processes building the
+    sections (None: the cores, at most 4)."""
 
     tables: tuple[str, ...]
     out: str = "build/report"
     pdf: bool = True
+    workers: int | None = None
 
 
 @dataclass
@@ -57,11 +60,25 @@ class ReportResult:
         }
 
 
-def sections(results) -> list[Section]:
-    """The report's sections, in reading order (a section without data is left out)."""
-    built = [claims.section(results), planning.section(results), functions.section(results),
-             encounters.section(results), preprocessing.section(results),
-             methods.section(results)]  # fmt: skip
+#: The section builders, in reading order.
+BUILDERS = (claims.section, planning.section, functions.section, encounters.section,
+            preprocessing.section, methods.section)  # fmt: skip
+
+
+def sections(results, workers: int = 1) -> list[Section]:
+    """The report's sections, in reading order (a section without data is left out). With
+    ``workers`` > 1 the sections are built in that many forked processes (their figures are
+    most of the report's time); each figure's bytes do not depend on where it is drawn."""
+    import multiprocessing
+
+    if workers > 1 and "fork" in multiprocessing.get_all_start_methods():
+        from concurrent.futures import ProcessPoolExecutor
+
+        context = multiprocessing.get_context("fork")
+        with ProcessPoolExecutor(workers, mp_context=context) as pool:
+            built = [f.result() for f in [pool.submit(b, results) for b in BUILDERS]]
+    else:
+        built = [b(results) for b in BUILDERS]
     return [s for s in built if s is not None]
 
 
@@ -72,7 +89,7 @@ def make_report(options: ReportOptions) -> ReportResult:
     if not out.parent.is_dir():
         raise UsvError(f"-o {out}: directory {out.parent} does not exist")
     results = load(options.tables)
-    parts = sections(results)
+    parts = sections(results, options.workers or min(os.cpu_count() or 1, 4))
     subtitle = (f"{len(results.jobs)} jobs from {len(results.tables)} results table(s): "
                 "every optimizer on every chart, every controller in every encounter, beside "
                 "the published figures of the three papers.")  # fmt: skip

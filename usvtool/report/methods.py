@@ -38,6 +38,8 @@ def git_commit() -> str:
         return "unknown"
     if head.returncode != 0:
         return "unknown"
+    if dirty.returncode != 0:  # the tree's state unknown (e.g. the index locked meanwhile)
+        return head.stdout.strip() + " (uncommitted changes unknown)"
     return head.stdout.strip() + (" +changes" if dirty.stdout.strip() else "")
 
 
