@@ -42,8 +42,11 @@ def test_defaults_cover_all_algorithms_and_functions():
     result = run("--runs", "1", "--pop", "3", "--iters", "1", "--dim", "2")
     assert result.exit_code == 0, result.output
     summary = json.loads(result.stdout)
-    assert len(summary["algorithms"]) == 10 and summary["functions"][-1] == "F10"
-    assert len(summary["results"]) == 100
+    from usvtool.plan.optimizers import OPTIMIZERS
+
+    assert summary["algorithms"] == list(OPTIMIZERS) and summary["functions"][-1] == "F10"
+    assert len(OPTIMIZERS) == 11  # the papers' ten and ssa-redraw
+    assert len(summary["results"]) == 10 * len(OPTIMIZERS)
     assert summary["seed"] == 0
 
 

@@ -6,12 +6,14 @@ import math
 
 import numpy as np
 import pytest
+from scipy import stats
 
 from usvtool.errors import UsvError
 from usvtool.plan.optimizers import OPTIMIZERS, make_optimizer
 from usvtool.plan.optimizers.issa import fitness_spread
 from usvtool.plan.optimizers.pso import PSO
 from usvtool.plan.optimizers.ssa import SSA
+from usvtool.plan.optimizers.ssa_redraw import SSARedraw
 from usvtool.plan.optimizers.wso import WSO, constants, schedule
 
 NAMES = list(OPTIMIZERS)
@@ -141,6 +143,44 @@ def test_budgets():
     assert mrfo.evaluations == n + 2 * n * iters
 
 
+def test_ssa_redraw_differs_from_ssa_only_in_the_bounds_rule():
+    # same seed, same objective: the evaluated batches agree until SSA first clips a coordinate
+    # onto the box; in that batch the variant keeps every coordinate SSA kept and redraws the
+    # clipped ones strictly inside the box
+    lower, upper = np.full(3, -1.0), np.full(3, 1.0)
+
+    def cost(X):
+        return np.sum((X - 0.3) ** 2, axis=1)
+
+    ssa, redraw = Recorder(cost), Recorder(cost)
+    SSA(10, 20, seed=7).minimize(ssa, lower, upper)
+    SSARedraw(10, 20, seed=7).minimize(redraw, lower, upper)
+    on_bound = [(P == lower) | (P == upper) for P in ssa.points]
+    first = next(k for k, b in enumerate(on_bound) if b.any())
+    assert first > 0  # the uniform start is strictly inside
+    for k in range(first):
+        np.testing.assert_array_equal(redraw.points[k], ssa.points[k])
+    clipped, kept = on_bound[first], ~on_bound[first]
+    np.testing.assert_array_equal(redraw.points[first][kept], ssa.points[first][kept])
+    moved = redraw.points[first][clipped]
+    assert np.all((moved > -1.0) & (moved < 1.0))
+
+
+def test_ssa_redraw_draws_out_of_box_coordinates_uniformly():
+    opt = SSARedraw(pop=2, iters=1, seed=0)
+    opt.minimize(sphere, [-2.0, 0.0], [2.0, 10.0])  # sets the box and the generator
+    n = 4000
+    X = np.tile([[-5.0, 3.0], [1.0, np.inf], [2.0, 0.0]], (n, 1))
+    Y = opt.clip(X)
+    # in-box coordinates, bounds included, are kept
+    assert np.all(Y[0::3, 1] == 3.0) and np.all(Y[1::3, 0] == 1.0)
+    np.testing.assert_array_equal(Y[2::3], X[2::3])
+    # x = -5 (below -2) and y = inf (above 10) are redrawn from U(-2, 2) and U(0, 10)
+    assert stats.kstest(Y[0::3, 0], stats.uniform(-2.0, 4.0).cdf).pvalue > 1e-3
+    assert stats.kstest(Y[1::3, 1], stats.uniform(0.0, 10.0).cdf).pvalue > 1e-3
+    assert np.unique(Y[0::3, 0]).size == n  # one draw per coordinate
+
+
 def test_wso_constants_and_schedules():
     p = WSO.defaults
     assert p == {
@@ -176,7 +216,9 @@ def test_pso_presets():
 
 
 def test_registry_and_unknown_names():
-    assert NAMES == ["wso", "iwso", "ssa", "issa", "pso", "pso-issa", "gwo", "woa", "mrfo", "boa"]
+    assert NAMES == [
+        "wso", "iwso", "ssa", "ssa-redraw", "issa", "pso", "pso-issa", "gwo", "woa", "mrfo", "boa",
+    ]  # fmt: skip
     assert all(OPTIMIZERS[n].name == n for n in NAMES)
     with pytest.raises(UsvError, match=r"unknown algorithm 'abc' \(known: wso, iwso, .*boa\)"):
         make_optimizer("abc")

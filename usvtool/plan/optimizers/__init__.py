@@ -11,11 +11,12 @@ from usvtool.plan.optimizers.iwso import IWSO
 from usvtool.plan.optimizers.mrfo import MRFO
 from usvtool.plan.optimizers.pso import PSO, PSOISSA
 from usvtool.plan.optimizers.ssa import SSA
+from usvtool.plan.optimizers.ssa_redraw import SSARedraw
 from usvtool.plan.optimizers.woa import WOA
 from usvtool.plan.optimizers.wso import WSO
 
 OPTIMIZERS: dict[str, type[Optimizer]] = {
-    cls.name: cls for cls in (WSO, IWSO, SSA, ISSA, PSO, PSOISSA, GWO, WOA, MRFO, BOA)
+    cls.name: cls for cls in (WSO, IWSO, SSA, SSARedraw, ISSA, PSO, PSOISSA, GWO, WOA, MRFO, BOA)
 }
 
 

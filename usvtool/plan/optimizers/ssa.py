@@ -8,19 +8,23 @@ best position):
 
 * producers, the best 20 % (eq. 1): with one warning value ``R2 ~ U(0, 1)`` per iteration,
   ``x exp(-i / (alpha iter_max))`` (``alpha ~ U(0, 1]`` per producer) if ``R2 < ST``, else
-  ``x + Q L`` (``Q ~ N(0, 1)``, ``L`` a row of ones). Xue & Shen use 20 %; the ISSA paper's
-  Table 1 lists 0.3 discoverers, 0.2 followers and 0.15 scouts, which do not add up as a
-  partition, so we keep the original 20 %;
+  ``x + Q L`` (``Q ~ N(0, 1)``, ``L`` a row of ones). The ISSA paper prints this branch as
+  ``X · R × λ``, a product; we keep Xue & Shen's sum, which the ISSA paper does not claim
+  to change and in which the row of ones has a role (it spreads the scalar step over the
+  coordinates; in a product it would do nothing). Xue & Shen use 20 % producers; the ISSA
+  paper's Table 1 lists 0.3 discoverers, 0.2 followers and 0.15 scouts, which do not add up
+  as a partition, so we keep the original 20 %;
 * followers, the rest (eq. 2): rank ``i > n/2`` flies off, ``Q exp((x_worst - x) / i^2)``;
   the others join the best position ``x_P`` after the producer phase,
   ``x_P + |x - x_P| A+ L`` with ``A`` a row of random +-1 and ``A+ = A^T (A A^T)^-1 = A^T / d``,
   i.e. the same scalar step added to every coordinate;
 * scouts, 15 % drawn at random (eq. 3, 10-20 % in the paper): ``x_best + beta |x - x_best|``
-  (``beta ~ N(0, 1)`` per coordinate) if ``f > f_g``, else
+  (``beta ~ N(0, 1)`` per coordinate, as Xue & Shen's code draws it) if ``f > f_g``, else
   ``x + K |x - x_worst| / ((f - f_w) + zeta)`` with ``K ~ U(-1, 1)``.
 
 ``x_worst``/``f_w`` are taken at the start of the iteration, ``x_best``/``f_g`` are the best so
-far. Positions are clipped to the box before evaluation. The producer move
+far. Positions are clipped to the box before evaluation (neither paper gives a rule; Xue &
+Shen's code clips; :mod:`.ssa_redraw` is the variant that redraws instead). The producer move
 ``x exp(-i / (alpha iter_max))`` and the fly-off ``Q exp(...)`` pull towards the coordinate
 origin, which is why SSA excels on benchmarks whose optimum is there.
 """
