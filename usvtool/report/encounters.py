@@ -3,8 +3,8 @@ domains, the own ship's states against time, the distance to the nearest ship fo
 controller, and a table of the run metrics; then COLREGs compliance per encounter.
 
 A run job's files are ``trace.csv`` and ``trace.events.json`` in its directory; the events'
-``run`` object gives the ship lengths (``lengths``, when the simulation recorded them), and
-the scenario file named by the job's ``job.json`` its map and weather field.
+``run`` object gives the own ship's length, and the scenario file named by the job's
+``job.json`` the targets' lengths, the map and the weather field.
 """
 
 from __future__ import annotations
@@ -76,12 +76,16 @@ def scenario_file(job: Job, *keys: str) -> Path | None:
     return path if path.is_file() else None
 
 
-def lengths(trace: Trace, events: dict) -> dict[str, float]:
-    """Every ship's length: the events' ``run.lengths``, else the own ship's for all."""
-    run = events.get("run", {})
-    known = run.get("lengths") or {}
-    own = float(run.get("own_length", 1.0))
-    return {s: float(known.get(s, own)) for s in trace.ships}
+def lengths(job: Job, trace: Trace, events: dict) -> dict[str, float]:
+    """Every ship's length: the own ship's from the events' ``run.own_length``, each target's
+    from its entry in the scenario file (``targets[].length``, required there; matched by
+    ``name``); a ship found in neither takes the own ship's."""
+    own = float(events.get("run", {}).get("own_length", 1.0))
+    scenario = job.config.get("scenario")
+    data = _scenario(scenario) if scenario and Path(scenario).is_file() else {}
+    known = {str(t.get("name")): float(t["length"]) for t in data.get("targets") or []
+             if isinstance(t, dict) and isinstance(t.get("length"), int | float)}  # fmt: skip
+    return {s: own if s == "own" else known.get(s, own) for s in trace.ships}
 
 
 def primary(scenario: str, controllers: list[str]) -> str:
@@ -102,7 +106,8 @@ def scenario_section(results: Results, scenario: str) -> Section:
         trace, events = files
         grid = read_grid(grid_path) if grid_path else None
         times = figures.snapshot_times(trace, events)
-        plot = figures.encounter_snapshots(trace, times, lengths(trace, events), grid=grid,
+        sizes = lengths(runs[main], trace, events)
+        plot = figures.encounter_snapshots(trace, times, sizes, grid=grid,
                                            title=f"{scenario}: {main}",
                                            goal=events.get("run", {}).get("goal"))  # fmt: skip
         section.blocks.append(Figure(
