@@ -7,7 +7,8 @@ blocked cell under the collision definition of :mod:`usvtool.collision`.
     Over cell centres, moves to the 8 neighbours (cost 1 or √2), with the octile heuristic. A
     diagonal move passes through the shared corner of four cells, so it is allowed only when the
     two side cells are free too (no corner cutting). The route is start → the centres of the cell
-    path → goal, with collinear centres dropped: the shortest route of that kind.
+    path → goal, with collinear centres dropped: the shortest route of that kind. The search is
+    compiled (:mod:`usvtool.plan.gridsearch`).
 
 Any-angle shortest route (:func:`any_angle`)
     The shortest polyline touching no blocked cell bends only at convex corners of the blocked
@@ -33,8 +34,6 @@ import numpy as np
 from usvtool.collision import SegmentChecker
 
 DELTA = 1e-5
-_SQRT2 = math.sqrt(2.0)
-_MOVES = [(dr, dc) for dr in (-1, 0, 1) for dc in (-1, 0, 1) if dr or dc]
 
 
 def astar(blocked: np.ndarray, start, goal) -> np.ndarray | None:
@@ -55,126 +54,18 @@ def astar(blocked: np.ndarray, start, goal) -> np.ndarray | None:
 
 
 def _cell_path(free: np.ndarray, source, target) -> np.ndarray | None:
-    """A shortest 8-connected path of cells ``(row, col)`` from ``source`` to ``target``, or None.
+    """A shortest 8-connected path of cells ``(row, col)`` from ``source`` to ``target``, or None
+    (compiled A*: :func:`usvtool.plan.gridsearch.cell_path`)."""
+    from usvtool.plan import gridsearch
 
-    A* as Dijkstra on reduced costs (compiled: :func:`scipy.sparse.csgraph.dijkstra`): with the
-    octile distance ``h`` to the target, a consistent heuristic, the move ``u → v`` of cost ``w``
-    costs ``w - h(u) + h(v) ≥ 0``, and ``limit = U - h(source)`` settles exactly the cells with
-    ``g + h ≤ U``. Every cell of a path of length ``≤ U`` lies in the octile ellipse
-    ``oct(source, v) + oct(v, target) ≤ U``, so the graph is built on the free cells of that
-    ellipse only. ``U`` starts 0.1 % (at least 4 cells) above the octile distance, its slack
-    growing 4-fold until the target is reached (an ellipse holding every cell proves there is
-    no path).
-    """
-    source, target = np.asarray(source), np.asarray(target)
-    direct = _octile(*np.abs(source - target))
-    slack = max(0.001 * direct, 4.0)
-    whole = 2.0 * _octile(*free.shape)  # no octile sum exceeds it
-    while True:
-        bound = direct + slack
-        found = _bounded_search(free, source, target, bound)
-        if found is not None or bound > whole:
-            return found
-        slack *= 4.0
-
-
-def _bounded_search(free: np.ndarray, source, target, bound: float) -> np.ndarray | None:
-    """:func:`_cell_path` restricted to paths of length ``≤ bound``."""
-    from scipy.sparse import csr_matrix
-    from scipy.sparse.csgraph import dijkstra
-
-    h, w = free.shape
-    lo, hi = _ellipse_rows(source, target, bound, h, w)
-    rows = np.arange(h)
-    inside = hi >= lo
-    r0, r1 = rows[inside][[0, -1]]
-    c0, c1 = max(int(lo[inside].min()), 0), min(int(hi[inside].max()), w - 1)
-    box = np.zeros((r1 - r0 + 3, c1 - c0 + 3), bool)  # the ellipse's box and a frame
-    box[1:-1, 1:-1] = free[r0 : r1 + 1, c0 : c1 + 1]
-    stride = box.shape[1]
-    cols = np.arange(c0 - 1, c1 + 2)
-    span = slice(r0, r1 + 1)
-    box[1:-1, 1:-1] &= (cols[1:-1] >= lo[span, None]) & (cols[1:-1] <= hi[span, None])
-    flat = np.zeros(box.size, bool)  # free cells of the box (for the side cells)
-    flat.reshape(box.shape)[1:-1, 1:-1] = free[r0 : r1 + 1, c0 : c1 + 1]
-    cells = np.flatnonzero(box)
-    origin = np.array([r0 - 1, c0 - 1])
-    n = cells.size
-    ids = np.full(box.size, -1, np.int32)
-    ids[cells] = np.arange(n, dtype=np.int32)
-    s = ids[(source[0] - origin[0]) * stride + source[1] - origin[1]]
-    t = ids[(target[0] - origin[0]) * stride + target[1] - origin[1]]
-    if s < 0 or t < 0:
-        return None
-    # moves: 8 slots a node; a move that is not allowed is a loop to the node itself, which
-    # Dijkstra ignores (a node is settled when it scans its moves)
-    r, c = np.divmod(cells, stride)
-    dr_t, dc_t = r + (origin[0] - target[0]), c + (origin[1] - target[1])
-    potential = _octile(np.abs(dr_t), np.abs(dc_t))
-    targets = np.empty((n, 8), np.int32)
-    weights = np.empty((n, 8))
-    itself = np.arange(n, dtype=np.int32)
-    for k, (dr, dc) in enumerate(_MOVES):
-        nb = ids[cells + (dr * stride + dc)]
-        ok = nb >= 0
-        if dr and dc:
-            ok &= flat[cells + dr * stride] & flat[cells + dc]
-        targets[:, k] = np.where(ok, nb, itself)
-        step = _SQRT2 if dr and dc else 1.0
-        reduced = step + _octile(np.abs(dr_t + dr), np.abs(dc_t + dc)) - potential
-        weights[:, k] = np.where(ok, np.maximum(reduced, 0.0), 0.0)
-    graph = csr_matrix(
-        (weights.ravel(), targets.ravel(), np.arange(0, 8 * n + 1, 8, dtype=np.int32)), (n, n)
+    padded = np.pad(free, 1)
+    w = padded.shape[1]
+    path = gridsearch.cell_path(
+        padded.ravel(), w, (source[0] + 1) * w + source[1] + 1, (target[0] + 1) * w + target[1] + 1
     )
-    dist, pred = dijkstra(
-        graph, indices=s, return_predecessors=True, limit=bound - potential[s] + 1e-9
-    )
-    if not np.isfinite(dist[t]):
+    if path.size == 0:
         return None
-    path = [t]
-    while path[-1] != s:
-        path.append(int(pred[path[-1]]))
-    return np.column_stack([r, c])[path[::-1]] + origin
-
-
-def _ellipse_rows(source, target, bound: float, h: int, w: int):
-    """Per row, the first and last column of the cells whose centres' octile distances to
-    ``source`` and ``target`` (``(row, col)``) add up to at most ``bound`` (hi < lo: none).
-
-    Along a row that sum is convex in the column, smallest between the two ends' columns:
-    ternary search for the minimum, then bisection for the two crossings, over all rows at once.
-    """
-    rows = np.arange(h, dtype=float)[:, None]
-
-    def total(col):
-        return _octile(np.abs(rows - source[0]), np.abs(col - source[1])) + _octile(
-            np.abs(rows - target[0]), np.abs(col - target[1])
-        )
-
-    a = np.full((h, 1), float(min(source[1], target[1])))
-    b = np.full((h, 1), float(max(source[1], target[1])))
-    for _ in range(int(np.log(max(b[0, 0] - a[0, 0], 1.0)) / np.log(1.5)) + 2):
-        m1, m2 = a + (b - a) / 3, b - (b - a) / 3
-        left = total(m1) <= total(m2)
-        a, b = np.where(left, a, m1), np.where(left, m2, b)
-    m = np.clip((a + b) / 2, 0, w - 1)
-    best = np.where(total(np.floor(m)) <= total(np.ceil(m)), np.floor(m), np.ceil(m))
-    ends = []
-    for edge in (0.0, w - 1.0):
-        inner, outer = best.copy(), np.full((h, 1), edge)
-        for _ in range(int(np.log2(w)) + 2):
-            mid = np.round((inner + outer) / 2)
-            ok = total(mid) <= bound + 1e-9
-            inner, outer = np.where(ok, mid, inner), np.where(ok, outer, mid)
-        ends.append(np.where(total(outer) <= bound + 1e-9, outer, inner))
-    lo, hi = ends
-    empty = total(best) > bound + 1e-9
-    return np.where(empty, 1, lo).ravel().astype(int), np.where(empty, 0, hi).ravel().astype(int)
-
-
-def _octile(dx, dy):
-    """The 8-connected distance with moves of 1 and √2 (the A* heuristic)."""
-    return np.maximum(dx, dy) + (_SQRT2 - 1.0) * np.minimum(dx, dy)
+    return np.column_stack(np.divmod(path, w)) - 1
 
 
 def convex_corners(blocked: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
