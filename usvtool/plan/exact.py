@@ -16,17 +16,33 @@ Any-angle shortest route (:func:`any_angle`)
     the grid count as blocked here, so no vertex lies on the grid's edge). A route may not touch
     the corner itself, so each vertex is moved ``DELTA`` = 1e-5 cell diagonally away from its
     blocked cell; the result is within ``2·DELTA`` per bend of the infimum, which is the optimum
-    the optimizers are scored against. The search is A* over these vertices with the Euclidean
-    heuristic, building the visibility graph lazily: when a vertex is expanded, one vectorised
-    exact line-of-sight call tests the edges to every vertex it would improve. Only edges that
-    are taut at both ends are considered (the line through a corner must not cut into its
-    blocked cell: a shortest route wraps around the corners it touches), which halves the
-    candidates at each end without losing the optimum.
+    the optimizers are scored against. The search (compiled, :mod:`usvtool.plan.gridsearch`) is
+    A* over these vertices, building the visibility graph lazily: expanding a vertex tests the
+    edges to every vertex it would improve, first by three sample points (a blocked one proves a
+    collision), then exactly. Only edges that are taut at both ends are considered (the line
+    through a corner must not cut into its blocked cell: a shortest route wraps around the
+    corners it touches), which halves the candidates at each end without losing the optimum.
+
+    Heuristic: ``h(v) = max(|v - goal|, (D(v) - SLACK) / RATIO)``, with ``D`` the distance to the
+    goal's cell corners in the graph of grid points (moves along a cell edge with a free cell
+    beside it, cost 1, or across a free cell's diagonal, √2). It never overestimates: a free
+    segment ``P → Q`` between grid points crosses, in each column, the cell its digital line
+    (Bresenham's) steps through, so that line is a path of the point graph, of octile length
+    ``≤ |PQ| / cos(π/8)``; ``RATIO`` = 1.0824 is that factor, ``SLACK`` = 2 cells covers the
+    goal's offset from its cell's corners and the vertices' ``DELTA`` (tested against a
+    brute-force visibility graph). ``D`` comes from one A* over the point graph from the goal's
+    cell to the start's, stopped when it arrives at distance ``U``: exact where it settled a
+    point, ``≥ U - oct(v, start)`` elsewhere. Unlike the Euclidean distance it sees round
+    peninsulas (on US4MD81M's winding route it halves the expanded vertices). The search may
+    also drop every vertex with ``|v - start| + h(v) ≥ B`` and every edge with ``g + |uv| + h ≥
+    B`` for a bound ``B``: ``U + 2·SLACK`` first (the point graph's distance is above the
+    any-angle one except through pinches, two blocked cells touching at a corner), then
+    ``RATIO·(U + 2·SLACK)``, then none; a bound below the optimum only returns no route, so the
+    result is the optimum whichever bound gives it.
 """
 
 from __future__ import annotations
 
-import heapq
 import math
 
 import numpy as np
@@ -34,6 +50,8 @@ import numpy as np
 from usvtool.collision import SegmentChecker
 
 DELTA = 1e-5
+RATIO = 1.0824  # ≥ 1/cos(π/8): the octile length over the Euclidean, at most
+SLACK = 2.0  # cells: the goal's cell corners, and the vertices' DELTA offsets
 
 
 def astar(blocked: np.ndarray, start, goal) -> np.ndarray | None:
@@ -99,62 +117,55 @@ def any_angle(checker: SegmentChecker, blocked: np.ndarray, start, goal) -> np.n
     >>> r.round(4).tolist(), round(float(np.hypot(*np.diff(r, axis=0).T).sum()), 4)  # 3√2 + 1
     ([[0.5, 0.5], [2.0, 2.0], [3.0, 2.0], [4.5, 0.5]], 5.2427)
     """
+    from usvtool.plan import gridsearch
+
     blocked = np.asarray(blocked, bool)
     corners, signs = convex_corners(blocked)
     ends = np.array([start, goal], float)
     at = np.vstack([ends, corners])  # tautness is judged at the corners themselves
     pos = np.vstack([ends, corners - DELTA * signs])
     kind = np.concatenate([[0, 0], signs[:, 0] * signs[:, 1]])
-    n = len(pos)
-    g = np.full(n, np.inf)
-    g[0] = 0.0
-    parent = np.full(n, -1)
-    closed = np.zeros(n, bool)
-    h = np.hypot(*(pos - pos[1]).T)
-    heap = [(h[0], 0)]
-    while heap:
-        _, u = heapq.heappop(heap)
-        if closed[u]:
-            continue
-        closed[u] = True
-        if u == 1:
+    free = np.pad(~blocked, 1).ravel()
+    h, ends_apart = _heuristic(free, blocked.shape, corners, pos, ends)
+    lower = np.hypot(*(pos - ends[0]).T) + h  # no route through v is shorter
+    for bound in (ends_apart + 2 * SLACK, RATIO * (ends_apart + 2 * SLACK), np.inf):
+        keep = np.flatnonzero(lower < bound)  # the ends first: their lower bound is |goal - start|
+        if keep.size < 2 or keep[1] != 1:
+            path = keep[:0]
+        else:
+            path = keep[gridsearch.visibility_path(
+                pos[keep], at[keep], kind[keep], h[keep], free, checker._prefix,
+                checker.width + 2, bound,
+            )]  # fmt: skip
+        if path.size or not np.isfinite(ends_apart):
             break
-        d = at - at[u]
-        cross = d[:, 0] * d[:, 1]
-        g_new = g[u] + np.hypot(*(pos - pos[u]).T)
-        cand = (g_new < g) & (g_new + h < g[1]) & (kind * cross <= 0) & (kind[u] * cross <= 0)
-        cand[closed] = False
-        idx = np.flatnonzero(cand)
-        if idx.size == 0:
-            continue
-        idx = idx[~_sampled_hit(blocked, pos[u], pos[idx])]  # cheap certain misses first
-        if idx.size == 0:
-            continue
-        idx = idx[~checker.collides(np.broadcast_to(pos[u], (idx.size, 2)), pos[idx])]
-        g[idx] = g_new[idx]
-        parent[idx] = u
-        for v in idx.tolist():
-            heapq.heappush(heap, (g[v] + h[v], v))
-    if not closed[1]:
-        return None
-    path = [1]
-    while path[-1] != 0:
-        path.append(int(parent[path[-1]]))
-    return pos[path[::-1]]
+    return pos[path] if path.size else None
 
 
-def _sampled_hit(blocked: np.ndarray, a, b) -> np.ndarray:
-    """Whether the segments ``a → b[i]`` have one of the points at 1/4, 1/2 or 3/4 of their
-    length in a blocked cell: then they touch its closed square and collide (a certificate;
-    False decides nothing)."""
-    h, w = blocked.shape
-    hit = np.zeros(len(b), bool)
-    for t in (0.5, 0.25, 0.75):
-        p = a + t * (b - a)
-        col = np.minimum(p[:, 0].astype(np.intp), w - 1)
-        row = np.minimum(p[:, 1].astype(np.intp), h - 1)
-        hit |= blocked[row, col]
-    return hit
+def _heuristic(free: np.ndarray, shape, corners: np.ndarray, pos: np.ndarray, ends):
+    """``(h, D)``: admissible estimates ``h`` of the any-angle distance from each vertex to the
+    goal (module docstring) on the padded grid ``free`` (``shape`` unpadded): ``max(|v - goal|,
+    (D(v) - SLACK) / RATIO)`` with ``D`` the grid-point
+    graph distance from the goal's cell, bounded below where the search did not settle it
+    (:func:`usvtool.plan.gridsearch.point_bounds`); and ``D`` between the ends' cells."""
+    from usvtool.plan import gridsearch
+
+    w = shape[1] + 2
+
+    def cell_corners(point) -> np.ndarray:
+        r, c = _cell_of(point, shape)
+        return np.array([(r + dy + 1) * w + c + dx + 1 for dy in (0, 1) for dx in (0, 1)])
+
+    start, goal = ends
+    corners4 = cell_corners(start)
+    xy = np.column_stack([corners4 % w - 1, corners4 // w - 1])
+    target = corners4[np.argmin(np.hypot(*(xy - start).T))]  # the start cell's nearest corner
+    queries = np.concatenate([(corners[:, 1] + 1) * w + corners[:, 0] + 1, [target]])
+    bound = gridsearch.point_bounds(free, w, cell_corners(goal), target, queries)
+    h = np.hypot(*(pos - goal).T)
+    h[2:] = np.maximum(h[2:], (bound[:-1] - SLACK) / RATIO)
+    h[1] = 0.0
+    return h, float(bound[-1])
 
 
 def _cell_of(point, shape) -> tuple[int, int]:

@@ -21,6 +21,9 @@ cell's eight neighbours are at fixed index offsets and need no bounds test.
     optimum, as with a heap, at O(1) per queue operation (a binary heap of a few 10⁵ entries is
     about 3 times slower here). Memory: a float64 ``g``, an int32 parent and a uint8 state per
     cell, allocated untouched (``np.empty``, ``np.zeros``), so only the explored rows cost pages.
+Any-angle route (:func:`point_bounds`, :func:`visibility_path`, :func:`touches`)
+    The heuristic's grid-point search, the lazy visibility-graph A* and its exact line of sight,
+    for :func:`usvtool.plan.exact.any_angle` (whose docstring gives the method).
 """
 
 from __future__ import annotations
@@ -126,6 +129,20 @@ def cell_path(free: np.ndarray, width: int, source: int, target: int) -> np.ndar
 
 
 @njit(cache=True, nogil=True, inline="always")
+def _sampled_hit(free: np.ndarray, stride: int, x0: float, y0: float, x1: float, y1: float) -> bool:
+    """Whether the point at 1/2, 1/4 or 3/4 of the segment lies in a blocked cell: then the
+    segment touches that cell's closed square (a certificate; False decides nothing). Points on
+    the grid's far edges count in the last cells."""
+    last_col, last_row = stride - 3, free.size // stride - 3
+    for t in (0.5, 0.25, 0.75):
+        col = min(int(x0 + t * (x1 - x0)), last_col)
+        row = min(int(y0 + t * (y1 - y0)), last_row)
+        if not free[(row + 1) * stride + col + 1]:
+            return True
+    return False
+
+
+@njit(cache=True, nogil=True, inline="always")
 def _octile(dx, dy) -> float:
     return max(dx, dy) + _K * min(dx, dy)
 
@@ -135,3 +152,232 @@ def _grow(a: np.ndarray, size: int) -> np.ndarray:
     out = np.empty(size, a.dtype)
     out[: a.size] = a
     return out
+
+
+@njit(cache=True, nogil=True)
+def point_bounds(
+    free: np.ndarray, width: int, sources: np.ndarray, target: int, queries: np.ndarray
+) -> np.ndarray:
+    """Lower bounds on the grid-point graph distance ``D`` from ``sources`` to ``queries``.
+
+    Points ``(x, y)`` of the grid are the flat indices ``(y + 1)·width + x + 1`` of the padded,
+    raveled cell grid ``free`` (``width`` its columns): point ``P`` is the north-west corner of
+    padded cell ``P``. Moves: along a cell edge (1) when a cell beside it is free, across a free
+    cell's diagonal (√2). A* from ``sources`` (distance 0) to ``target`` with the octile
+    heuristic, queue as :func:`cell_path`, stopped when the lowest bucket's edge ``E`` reaches
+    the target's distance. Then a point with ``D + oct(·, target) < E`` has its exact ``D`` (it
+    was settled), and every other has ``D ≥ E - oct(·, target)`` (else its ``f`` would be below
+    ``E``): the bound returned is the first where it applies, else the second (``inf`` for every
+    point when the target is unreachable).
+    """
+    n = free.size
+    w = width
+    g = np.empty(n)
+    state = np.zeros(n, np.uint8)
+    offsets = np.array([1, -1, -w, w, -w + 1, -w - 1, w + 1, w - 1], np.int64)
+    tx, ty = target % w, target // w
+    buckets = 1 << 14
+    head = np.full(buckets, -1, np.int64)
+    cap = 1 << 16
+    node = np.empty(cap, np.int64)
+    cost = np.empty(cap)
+    below = np.empty(cap, np.int64)
+    f0 = np.inf
+    for p in sources:
+        f0 = min(f0, _octile(abs(p % w - tx), abs(p // w - ty)))
+    entries = 0
+    for p in sources:
+        g[p] = 0.0
+        state[p] = 1
+        k = int((_octile(abs(p % w - tx), abs(p // w - ty)) - f0) / WIDTH)
+        node[entries], cost[entries], below[entries] = p, 0.0, head[k]
+        head[k] = entries
+        entries += 1
+    stop = np.inf
+    b = 0
+    while True:
+        while b < buckets and head[b] < 0:
+            b += 1
+        if b == buckets or f0 + b * WIDTH >= stop:
+            break
+        e = head[b]
+        head[b] = below[e]
+        u = node[e]
+        gu = cost[e]
+        if gu > g[u] or state[u] == 2:
+            continue
+        state[u] = 2
+        if u == target:
+            stop = gu
+            continue
+        nw, ne, sw, se = free[u - w - 1], free[u - w], free[u - 1], free[u]
+        for m in range(8):
+            if m == 0:
+                ok, step = ne or se, 1.0
+            elif m == 1:
+                ok, step = nw or sw, 1.0
+            elif m == 2:
+                ok, step = nw or ne, 1.0
+            elif m == 3:
+                ok, step = sw or se, 1.0
+            elif m == 4:
+                ok, step = ne, SQRT2
+            elif m == 5:
+                ok, step = nw, SQRT2
+            elif m == 6:
+                ok, step = se, SQRT2
+            else:
+                ok, step = sw, SQRT2
+            if not ok:
+                continue
+            v = u + offsets[m]
+            gv = gu + step
+            if state[v] != 0 and gv >= g[v]:
+                continue
+            g[v] = gv
+            state[v] = 1
+            k = max(int((gv + _octile(abs(v % w - tx), abs(v // w - ty)) - f0) / WIDTH), b)
+            if k >= buckets:
+                grown = np.full(max(2 * buckets, k + 1), -1, np.int64)
+                grown[:buckets] = head
+                head, buckets = grown, grown.size
+            if entries == cap:
+                cap *= 2
+                node, cost, below = _grow(node, cap), _grow(cost, cap), _grow(below, cap)
+            node[entries], cost[entries], below[entries] = v, gv, head[k]
+            head[k] = entries
+            entries += 1
+    edge = min(stop, f0 + b * WIDTH) if stop < np.inf else np.inf  # unreached: D = inf
+    out = np.empty(queries.size)
+    for i in range(queries.size):
+        q = queries[i]
+        rest = _octile(abs(q % w - tx), abs(q // w - ty))
+        if state[q] != 0 and g[q] + rest < edge:
+            out[i] = g[q]
+        else:
+            out[i] = edge - rest
+    return out
+
+
+@njit(cache=True, nogil=True)
+def touches(prefix: np.ndarray, stride: int, x0: float, y0: float, x1: float, y1: float) -> bool:
+    """Whether the segment touches a blocked square grown by 1e-9 (:mod:`usvtool.collision`'s
+    definition): its exact column-strip traversal (``SegmentChecker._traverse``) for one
+    segment, stopping at the first touched column; ``prefix`` and ``stride`` are the checker's
+    column counts and their row length."""
+    eps = 1e-9
+    if x1 < x0:
+        x0, y0, x1, y1 = x1, y1, x0, y0
+    dx = x1 - x0
+    slope = (y1 - y0) / dx if dx > 0 else 0.0
+    for c in range(int(math.ceil(x0 - (1 + eps))), int(math.floor(x1 + eps)) + 1):
+        cx = c - x0
+        ya = y0 + slope * min(max(cx - eps, 0.0), dx)
+        yb = y1 - slope * min(max(dx - (1 + eps) - cx, 0.0), dx)
+        lo, hi = min(ya, yb), max(ya, yb)
+        r0 = int(math.ceil(lo - (1 + eps)))
+        r1 = int(math.floor(hi + eps))
+        base = c + 1 + stride
+        if prefix[(r1 + 1) * stride + base] > prefix[r0 * stride + base]:
+            return True
+    return False
+
+
+@njit(cache=True, nogil=True)
+def visibility_path(
+    pos: np.ndarray, at: np.ndarray, kind: np.ndarray, h: np.ndarray, free: np.ndarray,
+    prefix: np.ndarray, stride: int, bound: float,
+) -> np.ndarray:
+    """A* from vertex 0 to vertex 1 over the visibility graph of ``pos`` (any-angle route, see
+    :func:`usvtool.plan.exact.any_angle`), built lazily: expanding ``u`` tries the edge to every
+    vertex ``v`` it would improve, taut at both ends (``kind·(Δx·Δy) ≤ 0`` at the corners ``at``)
+    and not pruned by ``g + |uv| + h(v) ≥`` the goal's ``g`` or ``bound``, then tests its line
+    of sight: first whether the points at 1/2, 1/4 or 3/4 of it lie in a blocked cell (of the
+    padded grid ``free``, :func:`cell_path`'s layout; a certain collision, decided in O(1)),
+    then exactly (:func:`touches`). ``h`` must be admissible; a vertex is reopened when its ``g``
+    improves, so it need not be consistent. Returns the vertex indices 0 … 1 of the shortest
+    route if it is shorter than ``bound``, else an empty array."""
+    n = pos.shape[0]
+    px, py, cx, cy = pos[:, 0].copy(), pos[:, 1].copy(), at[:, 0].copy(), at[:, 1].copy()
+    g = np.full(n, np.inf)
+    parent = np.full(n, -1, np.int64)
+    g[0] = 0.0
+    cap = 1 << 10
+    hf = np.empty(cap)
+    hv = np.empty(cap, np.int64)
+    hf[0], hv[0] = h[0], 0
+    size = 1
+    while size > 0:
+        fu, u = hf[0], hv[0]
+        size -= 1
+        if size > 0:
+            lf, lv = hf[size], hv[size]
+            i = 0
+            while True:
+                c = 2 * i + 1
+                if c >= size:
+                    break
+                if c + 1 < size and hf[c + 1] < hf[c]:
+                    c += 1
+                if hf[c] < lf:
+                    hf[i], hv[i] = hf[c], hv[c]
+                    i = c
+                else:
+                    break
+            hf[i], hv[i] = lf, lv
+        if fu > g[u] + h[u]:
+            continue  # stale
+        if u == 1:
+            break
+        ux, uy, ax, ay, ku = px[u], py[u], cx[u], cy[u], kind[u]
+        gu = g[u]
+        room = min(g[1], bound) - gu  # an edge u → v needs |uv| + h(v) < room
+        for v in range(n):
+            reach = room - h[v]
+            if reach <= 0.0:
+                continue
+            dx, dy = px[v] - ux, py[v] - uy
+            d2 = dx * dx + dy * dy
+            if d2 >= reach * reach:
+                continue
+            cross = (cx[v] - ax) * (cy[v] - ay)
+            if kind[v] * cross > 0 or ku * cross > 0:
+                continue
+            gv = gu + math.sqrt(d2)
+            if gv >= g[v]:
+                continue
+            vx, vy = px[v], py[v]
+            if _sampled_hit(free, stride, ux, uy, vx, vy):
+                continue
+            if touches(prefix, stride, ux, uy, vx, vy):
+                continue
+            g[v] = gv
+            parent[v] = u
+            if v == 1:
+                room = min(gv, bound) - gu
+            if size == cap:
+                cap *= 2
+                hf, hv = _grow(hf, cap), _grow(hv, cap)
+            fv = gv + h[v]
+            i = size
+            size += 1
+            while i > 0:
+                q = (i - 1) >> 1
+                if fv < hf[q]:
+                    hf[i], hv[i] = hf[q], hv[q]
+                    i = q
+                else:
+                    break
+            hf[i], hv[i] = fv, v
+    if g[1] == np.inf:
+        return np.empty(0, np.int64)
+    count, v = 1, 1
+    while v != 0:
+        v = parent[v]
+        count += 1
+    path = np.empty(count, np.int64)
+    v = 1
+    for i in range(count - 1, -1, -1):
+        path[i] = v
+        v = parent[v]
+    return path
