@@ -297,3 +297,30 @@ def test_progress_lines_and_bar(capsys, monkeypatch):
     bar.advance("y", None)
     bar.close()
     assert "batch: 2 jobs: 2 done, 0 skipped, 0 failed in " in capsys.readouterr().err
+
+
+def test_a_run_key_covers_the_files_its_scenario_names(tmp_path):
+    """Changing a target's track file (or any file a scenario names) gives the run a new key,
+    so a resumed batch reruns it; changing a file it does not name keeps the key."""
+    track = "t,x,y\n0,100,90\n10,100,60\n"
+    scenario = (SCENARIO.read_text().replace("{name: t1, start: [100, 90], heading: 180, ",
+                                             "{name: t1, track: t1.csv, "))  # fmt: skip
+    assert "track: t1.csv" in scenario
+    path = _pipeline(tmp_path, {"tracked": scenario})
+    (tmp_path / "s" / "t1.csv").write_text(track)
+    (tmp_path / "s" / "other.csv").write_text(track)
+    names = stage_names()
+
+    def run_keys() -> set[str]:
+        return {j.key for j in expand(load(path, names), names) if j.kind == "runs"}
+
+    before = run_keys()
+    assert len(before) == 2  # dwa, gdwa
+    (tmp_path / "s" / "other.csv").write_text(track + "20,100,30\n")
+    assert run_keys() == before
+    (tmp_path / "s" / "t1.csv").write_text(track + "20,100,30\n")
+    after = run_keys()
+    assert len(after) == 2 and not after & before
+    # and the run itself reads the track: the batch runs it
+    r = batch(path, "-j", 1, "-o", tmp_path / "out")
+    assert r.returncode == 0, r.stderr

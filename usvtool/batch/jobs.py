@@ -4,8 +4,9 @@ A job is one ``usvtool`` command (``preprocess`` a chart, ``plan`` a route, ``si
 scenario, one run of ``functions``) run in its own directory ``DIR/<kind>/<key>/``. Its
 arguments name its outputs relative to that directory (``route.geojson``), its grid as
 ``../../grids/<key>/grid.tif`` and its input files by absolute path. Its key is a short hash of
-its whole configuration: the input file's content (and a chart's extra inputs), the options,
-the algorithm or controller, the seed, and the code of the stage that runs it (the stage's
+its whole configuration: the input file's content (and a chart's extra inputs, and the files a
+scenario names: its map, route, target tracks and wind field), the options, the algorithm or
+controller, the seed, and the code of the stage that runs it (the stage's
 package, its command module, the CLI basics and the contract modules), so that a change of any
 of them gives new keys and the jobs run again.
 """
@@ -17,6 +18,8 @@ import json
 from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
+
+import yaml
 
 from usvtool.errors import UsvError
 from usvtool.pipeline import Names, Pipeline
@@ -56,6 +59,35 @@ class Job:
 
 def _file_hash(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def scenario_hashes(path: Path) -> dict[str, str]:
+    """The hashes of a scenario file and of every file it names: each string value of its
+    YAML, at any depth, that is the path of a file relative to the scenario's folder (the
+    scenario schema's map grid, route, target tracks and wind field, read without the
+    simulation stage). A file that is not valid YAML names none (the run then fails on it).
+
+    >>> import tempfile
+    >>> d = Path(tempfile.mkdtemp())
+    >>> _ = (d / "w.tif").write_bytes(b"wind"), (d / "s.yaml").write_text("weather: {field: w.tif}")
+    >>> sorted(scenario_hashes(d / "s.yaml"))
+    ['s.yaml', 'w.tif']
+    """
+    hashes = {path.name: _file_hash(path)}
+    try:
+        data = yaml.safe_load(path.read_text(encoding="utf-8"))
+    except (yaml.YAMLError, UnicodeDecodeError):
+        return hashes
+    stack = [data]
+    while stack:
+        value = stack.pop()
+        if isinstance(value, dict):
+            stack.extend(value.values())
+        elif isinstance(value, list):
+            stack.extend(value)
+        elif isinstance(value, str) and value and (path.parent / value).is_file():
+            hashes[value] = _file_hash(path.parent / value)
+    return hashes
 
 
 @cache
@@ -111,7 +143,7 @@ def expand(pipeline: Pipeline, names: Names) -> list[Job]:
         jobs.setdefault(key, Job("routes", key, r.chart, r.algorithm, r.seed, args, grid, info))
     for scenario, controller, seed in pipeline.simulation_jobs():
         path = root / scenario
-        key = _key({"kind": "runs", "scenario": _file_hash(path), "controller": controller,
+        key = _key({"kind": "runs", "scenario": scenario_hashes(path), "controller": controller,
                     "seed": seed})  # fmt: skip
         args = ("simulate", str(path), "--controller", controller, "--seed", str(seed),
                 "-o", "trace.csv", "--events", "trace.events.json")  # fmt: skip
