@@ -324,3 +324,27 @@ def test_a_run_key_covers_the_files_its_scenario_names(tmp_path):
     # and the run itself reads the track: the batch runs it
     r = batch(path, "-j", 1, "-o", tmp_path / "out")
     assert r.returncode == 0, r.stderr
+
+
+def test_a_job_over_the_timeout_is_stopped_and_fails_alone(tmp_path):
+    """--timeout 4: the run of a scenario whose goal is 20 km away (30 000 steps) is stopped
+    and fails with the reason; the other run completes, and no temporary is left."""
+    good = SCENARIO.read_text()
+    far = good.replace("goal: [100, 190]", "goal: [100, 20000]").replace("duration: 6",
+                                                                           "duration: 3000")
+    (tmp_path / "s").mkdir()
+    (tmp_path / "s" / "good.yaml").write_text(good)
+    (tmp_path / "s" / "far.yaml").write_text(far)
+    path = tmp_path / "p.yaml"
+    path.write_text("root: .\nsimulation: {scenarios: [s/*.yaml], controllers: [dwa], "
+                    "seeds: [1]}\n")  # fmt: skip
+    out = tmp_path / "out"
+    r = batch(path, "-j", 2, "--timeout", 4, "-o", out)
+    assert r.returncode == 1 and "1 of 2 jobs failed" in r.stderr, r.stderr
+    summary = json.loads(r.stdout)
+    assert [(f["case"], f["error"]) for f in summary["failures"]] == [
+        ("far", "it ran longer than --timeout 4 s and was stopped")]
+    assert summary["done"] == 1 and (out / "runs").is_dir()
+    assert not list(out.glob("*/.tmp-*"))
+    refused = batch(path, "--timeout", 4, "--scheduler", "tcp://127.0.0.1:1", "-o", out)
+    assert refused.returncode == 2 and "--timeout: not with --scheduler" in refused.stderr

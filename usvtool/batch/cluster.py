@@ -51,8 +51,10 @@ class DaskCluster:
         self.name = f"dask {address}, {threads} worker thread{'s' * (threads != 1)}"
         self._closed = False
 
-    def submit(self, label: str, function, *args):
-        """Run ``function(*args)`` as a task keyed by ``label`` and a random suffix."""
+    def submit(self, label: str, function, *args, limited: bool = False):
+        """Run ``function(*args)`` as a task keyed by ``label`` and a random suffix (no time
+        limit: a Dask task cannot be stopped once it runs, so ``usvtool batch`` refuses
+        ``--timeout`` with ``--scheduler``)."""
         key = f"usvtool-{label}-{secrets.token_hex(4)}"
         return self._client.submit(function, *args, key=key, pure=False, retries=0)
 

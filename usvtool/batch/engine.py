@@ -36,7 +36,8 @@ class BatchOptions:
     names (``usvtool batch`` gives both: :mod:`usvtool.cli.batch`); ``workers``: local worker
     processes (None: the number of cores); ``scheduler``: a Dask scheduler's address instead;
     ``out``: the results' directory; ``progress``: a progress bar (None: when stderr is a
-    terminal) rather than plain lines."""
+    terminal) rather than plain lines; ``timeout``: the seconds a job may run on the local pool
+    (None: no limit), after which it is stopped and fails."""
 
     command: Command
     names: Names
@@ -44,6 +45,7 @@ class BatchOptions:
     scheduler: str | None = None
     out: str = "build/batch"
     progress: bool | None = None
+    timeout: float | None = None
 
 
 @dataclass
@@ -61,10 +63,13 @@ def _executor(options: BatchOptions):
     if options.scheduler is not None:
         from usvtool.batch.cluster import DaskCluster
 
+        if options.timeout is not None:
+            raise UsvError("--timeout: not with --scheduler (a running Dask task cannot be "
+                           "stopped)")  # fmt: skip
         return DaskCluster(options.scheduler)
     from usvtool.batch.local import LocalPool
 
-    return LocalPool(options.workers or os.cpu_count() or 1)
+    return LocalPool(options.workers or os.cpu_count() or 1, options.timeout)
 
 
 @contextmanager
@@ -134,7 +139,8 @@ def _run_jobs(executor, run: _Run, out: Path, command: Command) -> None:
         while run.ready or in_flight:
             while run.ready and len(in_flight) < window:
                 job = heapq.heappop(run.ready)[2]
-                future = executor.submit(f"{job.kind}-{job.key}", execute, job, str(out), command)
+                future = executor.submit(f"{job.kind}-{job.key}", execute, job, str(out), command,
+                                         limited=True)  # fmt: skip
                 in_flight[future] = job
                 future.add_done_callback(finished.put)
             try:

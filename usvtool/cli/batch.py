@@ -55,19 +55,26 @@ def stage_names() -> Names:
               help="Run the jobs on this Dask scheduler's workers instead (usvtool[dask]).")
 @click.option("-o", "--output", "out_dir", type=click.Path(file_okay=False), default="build/batch",
               show_default=True, help="Directory of the results and metrics.csv.")  # fmt: skip
+@click.option("--timeout", type=click.FloatRange(min=0, min_open=True), metavar="SECONDS",
+              help="Stop a job that runs longer than this and count it failed (it runs again "
+              "on the next batch); local workers only.")  # fmt: skip
 @click.option("--summary", "summary_path", type=click.Path(dir_okay=False), metavar="FILE.json",
               help="Also write the summary JSON printed on stdout to this file (atomically, "
               "once the tables are written; failed jobs too).")  # fmt: skip
-def batch(pipeline_path, workers, scheduler, out_dir, summary_path) -> None:
+def batch(pipeline_path, workers, scheduler, out_dir, timeout, summary_path) -> None:
     """Run every job of PIPELINE.yaml (grids, routes, runs, function runs); rerun to resume."""
     from usvtool.atomic import check_output_path
     from usvtool.batch import BatchOptions, run_batch
 
     if workers is not None and scheduler is not None:
         raise click.UsageError("-j: not with --scheduler (the cluster's workers run the jobs)")
+    if timeout is not None and scheduler is not None:
+        raise click.UsageError("--timeout: not with --scheduler (a running Dask task cannot be "
+                               "stopped)")  # fmt: skip
     if summary_path is not None and Path(summary_path).parent.resolve() != Path(out_dir).resolve():
         check_output_path(summary_path, "--summary")  # (DIR itself is made by the batch)
-    options = BatchOptions(run_command, stage_names(), workers, scheduler, out_dir)
+    options = BatchOptions(run_command, stage_names(), workers, scheduler, out_dir,
+                           timeout=timeout)  # fmt: skip
     result = run_batch(pipeline_path, options)
     if summary_path is not None:
         write_summary(summary_path, result.summary())
