@@ -52,22 +52,16 @@ def cell_path(free: np.ndarray, width: int, source: int, target: int) -> np.ndar
     tc = target - tr * w
     sr = source // w
     f0 = _octile(abs(source - sr * w - tc), abs(sr - tr))
-    buckets = 1 << 14
-    head = np.full(buckets, -1, np.int64)
-    cap = 1 << 16
-    node = np.empty(cap, np.int64)
-    cost = np.empty(cap)
-    below = np.empty(cap, np.int64)  # the next entry down the same bucket's stack
+    head, node, cost, below = _queue()
     g[source] = 0.0
     state[source] = 1
-    node[0], cost[0], below[0], head[0] = source, 0.0, -1, 0
-    entries = 1
+    head, node, cost, below, entries = _push(head, node, cost, below, 0, 0, source, 0.0)
     b = 0
     best = np.inf
     while True:
-        while b < buckets and head[b] < 0:
+        while b < head.size and head[b] < 0:
             b += 1
-        if b == buckets or f0 + b * WIDTH >= best:
+        if b == head.size or f0 + b * WIDTH >= best:
             break
         e = head[b]
         head[b] = below[e]
@@ -104,16 +98,7 @@ def cell_path(free: np.ndarray, width: int, source: int, target: int) -> np.ndar
             state[v] = 1
             vr = v // w
             k = max(int((gv + _octile(abs(v - vr * w - tc), abs(vr - tr)) - f0) / WIDTH), b)
-            if k >= buckets:
-                grown = np.full(max(2 * buckets, k + 1), -1, np.int64)
-                grown[:buckets] = head
-                head, buckets = grown, grown.size
-            if entries == cap:
-                cap *= 2
-                node, cost, below = _grow(node, cap), _grow(cost, cap), _grow(below, cap)
-            node[entries], cost[entries], below[entries] = v, gv, head[k]
-            head[k] = entries
-            entries += 1
+            head, node, cost, below, entries = _push(head, node, cost, below, entries, k, v, gv)
     if best == np.inf:
         return np.empty(0, np.int64)
     count, v = 1, target
@@ -148,6 +133,30 @@ def _octile(dx, dy) -> float:
 
 
 @njit(cache=True, nogil=True)
+def _queue():
+    """An empty bucket queue: ``head[b]`` the top entry of bucket ``b`` (-1: empty), and per
+    entry its ``node``, ``cost`` (g) and the entry ``below`` it in its bucket's stack."""
+    return (np.full(1 << 14, -1, np.int64), np.empty(1 << 16, np.int64), np.empty(1 << 16),
+            np.empty(1 << 16, np.int64))  # fmt: skip
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _push(head, node, cost, below, entries: int, k: int, v: int, gv: float):
+    """Push ``(v, gv)`` onto bucket ``k`` (growing the arrays as needed): the queue's arrays and
+    its new entry count."""
+    if k >= head.size:
+        grown = np.full(max(2 * head.size, k + 1), -1, np.int64)
+        grown[: head.size] = head
+        head = grown
+    if entries == node.size:
+        size = 2 * entries
+        node, cost, below = _grow(node, size), _grow(cost, size), _grow(below, size)
+    node[entries], cost[entries], below[entries] = v, gv, head[k]
+    head[k] = entries
+    return head, node, cost, below, entries + 1
+
+
+@njit(cache=True, nogil=True)
 def _grow(a: np.ndarray, size: int) -> np.ndarray:
     out = np.empty(size, a.dtype)
     out[: a.size] = a
@@ -176,12 +185,7 @@ def point_bounds(
     state = np.zeros(n, np.uint8)
     offsets = np.array([1, -1, -w, w, -w + 1, -w - 1, w + 1, w - 1], np.int64)
     tx, ty = target % w, target // w
-    buckets = 1 << 14
-    head = np.full(buckets, -1, np.int64)
-    cap = 1 << 16
-    node = np.empty(cap, np.int64)
-    cost = np.empty(cap)
-    below = np.empty(cap, np.int64)
+    head, node, cost, below = _queue()
     f0 = np.inf
     for p in sources:
         f0 = min(f0, _octile(abs(p % w - tx), abs(p // w - ty)))
@@ -190,15 +194,13 @@ def point_bounds(
         g[p] = 0.0
         state[p] = 1
         k = int((_octile(abs(p % w - tx), abs(p // w - ty)) - f0) / WIDTH)
-        node[entries], cost[entries], below[entries] = p, 0.0, head[k]
-        head[k] = entries
-        entries += 1
+        head, node, cost, below, entries = _push(head, node, cost, below, entries, k, p, 0.0)
     stop = np.inf
     b = 0
     while True:
-        while b < buckets and head[b] < 0:
+        while b < head.size and head[b] < 0:
             b += 1
-        if b == buckets or f0 + b * WIDTH >= stop:
+        if b == head.size or f0 + b * WIDTH >= stop:
             break
         e = head[b]
         head[b] = below[e]
@@ -237,16 +239,7 @@ def point_bounds(
             g[v] = gv
             state[v] = 1
             k = max(int((gv + _octile(abs(v % w - tx), abs(v // w - ty)) - f0) / WIDTH), b)
-            if k >= buckets:
-                grown = np.full(max(2 * buckets, k + 1), -1, np.int64)
-                grown[:buckets] = head
-                head, buckets = grown, grown.size
-            if entries == cap:
-                cap *= 2
-                node, cost, below = _grow(node, cap), _grow(cost, cap), _grow(below, cap)
-            node[entries], cost[entries], below[entries] = v, gv, head[k]
-            head[k] = entries
-            entries += 1
+            head, node, cost, below, entries = _push(head, node, cost, below, entries, k, v, gv)
     edge = min(stop, f0 + b * WIDTH) if stop < np.inf else np.inf  # unreached: D = inf
     out = np.empty(queries.size)
     for i in range(queries.size):
