@@ -305,15 +305,21 @@ def _clearance(blocked: np.ndarray) -> np.ndarray:
         import cv2
 
         free = np.ascontiguousarray(~blocked).view(np.uint8)
-        chess = cv2.distanceTransform(free, cv2.DIST_C, 3).astype(float)  # integers, exact
-        city = cv2.distanceTransform(free, cv2.DIST_L1, 3).astype(float)
-        clear = np.maximum(chess - 1.0, (city - 2.0) / _SQRT2)
+        # float32 integers, exact; the bound in float64, in place in ``out`` (on 12.5 M cells
+        # each whole-grid temporary costs about 0.1 s of first-touch page faults)
+        clear = out[:h, :w]
+        np.subtract(cv2.distanceTransform(free, cv2.DIST_L1, 3), 2.0, out=clear, dtype=float)
+        clear /= _SQRT2
+        chess = cv2.distanceTransform(free, cv2.DIST_C, 3)
+        chess -= 1.0
+        np.maximum(clear, chess, out=clear)
+        del chess
         if blocked.size <= _EDT_CELLS:  # cheap here: the Euclidean bound too, the larger wins
             from scipy.ndimage import distance_transform_edt
 
             np.maximum(clear, distance_transform_edt(~blocked) - _SQRT2, out=clear)
-        np.maximum(clear, 0.0, out=out[:h, :w])
-        out[:h, :w][blocked] = -1.0
+        np.maximum(clear, 0.0, out=clear)
+        clear[blocked] = -1.0
     else:
         out[:h, :w] = np.inf
     out[h, :w] = out[h - 1, :w]
