@@ -11,14 +11,18 @@ collision-free rate, the median length / any-angle optimum, turns and mot over t
 collision-free runs (``nan`` when there is none) and the median planning time of all runs.
 The ``+g`` rows say ``ok`` when every seed is collision-free, the median length is within 5 %
 of the optimum and the median turns and mot are below the exact route's. Jobs run in ``-j``
-worker processes; the rows are written to ``OUT/complex.csv`` (atomically) and printed.
+worker processes; every run is written to ``OUT/runs.csv`` and the table so far to
+``OUT/complex.csv`` (both atomically) each time a map and algorithm's seeds are all done, so a
+long run can be read while it goes on; the table is printed at the end.
 
-Not through ``usvtool batch``: its pipeline reader knows the ``+s`` suffix only
-(usvtool/pipeline.py), so it refuses ``+g`` names.
+In-process rather than through ``usvtool batch`` (whose pipelines also accept ``+g``): the
+generated maps are made and checked here, and one process keeps each map's grid.
 
 Usage: python benchmarks/bench_complex.py [--seeds 25] [--maps walls,channel] [--charts env1]
        [--algos iwso,ssa] [--variants ,+s,+g] [--map-seed 0] [-j 2] [-o build/complex]
-The full run (6 maps + 8 charts x 30 algorithms x 25 seeds) takes hours on 2 cores.
+With ``-j 1`` on a shared machine the 11 ``+g`` variants over the 6 maps and env1, env2, grid20
+and grid50 at 25 seeds (2750 runs) took 27 minutes (``--variants +g``), the faithful and ``+s``
+ones there (5500 runs) about 30 (``--variants ,+s``); the NOAA charts (``--charts``) add more.
 """
 
 from __future__ import annotations
@@ -42,6 +46,7 @@ _spec.loader.exec_module(make_complex)
 BUNDLED = ("env1", "env2", "grid20", "grid50", "us5ma12m", "head_of_passes", "rudee_inlet",
            "south_san_diego")  # fmt: skip
 COLUMNS = ("map", "algorithm", "runs", "free", "len_opt", "turns", "mot", "time_s", "ok")
+RUN_COLUMNS = ("map", "algorithm", "seed", "collision_free", "length_m", "turns", "mot", "time_s")
 
 
 def load_map(name: str, out: Path, map_seed: int):
@@ -99,8 +104,28 @@ def table(results: list[tuple]) -> list[dict]:
     return rows
 
 
-def main() -> None:
+def _csv(rows, columns) -> str:
+    text = io.StringIO()
+    writer = csv.DictWriter(text, columns, lineterminator="\n")
+    writer.writeheader()
+    writer.writerows(rows)
+    return text.getvalue()
+
+
+def write_tables(out: Path, results: list[tuple]) -> list[dict]:
+    """Write ``out/runs.csv`` (every run so far) and ``out/complex.csv`` (their table, when the
+    exact routes are in); returns the table's rows."""
     from usvtool.atomic import write_text
+
+    write_text(out / "runs.csv", _csv([dict(zip(RUN_COLUMNS, r, strict=True)) for r in results],
+                                      RUN_COLUMNS))  # fmt: skip
+    exact = {r[0] for r in results if r[1] == "anyangle"}
+    rows = table([r for r in results if r[0] in exact])
+    write_text(out / "complex.csv", _csv(rows, COLUMNS))
+    return rows
+
+
+def main() -> None:
     from usvtool.plan.optimizers import OPTIMIZERS
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -118,15 +143,14 @@ def main() -> None:
     algos = [a + v for a in args.algos.split(",") for v in args.variants.split(",")]
     jobs = [(n, out, args.map_seed, "anyangle", 0) for n in names]
     jobs += [(n, out, args.map_seed, a, s) for n in names for a in algos for s in range(args.seeds)]
-    with ProcessPoolExecutor(args.jobs) as pool:
-        results = list(pool.map(_plan, jobs, chunksize=max(1, args.seeds)))
-    rows = table(results)
-    text = io.StringIO()
-    writer = csv.DictWriter(text, COLUMNS, lineterminator="\n")
-    writer.writeheader()
-    writer.writerows(rows)
     out.mkdir(parents=True, exist_ok=True)
-    write_text(out / "complex.csv", text.getvalue())
+    results: list[tuple] = []
+    with ProcessPoolExecutor(args.jobs) as pool:
+        for result in pool.map(_plan, jobs, chunksize=max(1, args.seeds)):
+            results.append(result)
+            done = len(results) - len(names)  # the exact routes come first
+            if done >= 0 and done % args.seeds == 0:
+                rows = write_tables(out, results)
     print(f"{args.seeds} seeds, 50 x 300, single runs; map seed {args.map_seed}")
     print(" ".join(f"{c:>16}" if c in ("map", "algorithm") else f"{c:>8}" for c in COLUMNS))
     for row in rows:

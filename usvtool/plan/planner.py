@@ -153,10 +153,12 @@ def plan_route(grid: Grid, start, goal, options: PlanOptions | None = None) -> P
             cells, convergence, parameters, attempt = _optimize(
                 searched, base, opts.pop, opts.iters, seed, opts.params or {}, attempts
             )
-        else:  # a straight route: nothing to search
-            cells, parameters = route, {}
+        else:  # a straight station route: nothing to search
+            cells, parameters = searched.station, {}
+        cells, kept = guided.settle(route, searched.station, cells)
         parameters = {**parameters, "encoding": "guided", "turn_weight": turn_weight,
-                      "waypoints": searched.waypoints, "guide_vertices": len(route)}  # fmt: skip
+                      "waypoints": searched.waypoints, "guide_vertices": len(route),
+                      "station_route": kept}  # fmt: skip
     else:
         cells, convergence, parameters, attempt = _optimize(
             problem, base, opts.pop, opts.iters, seed, opts.params or {}, attempts
