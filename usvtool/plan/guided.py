@@ -373,8 +373,7 @@ class GuidedProblem:
         ``PathProblem.cost(routes, exact=True)``, without the collision check; ``exact`` is
         the planner's interface: repaired routes are always scored so)."""
         seg = metrics.segments(np.asarray(routes, float))
-        turning = self.base.turn_weight * metrics.turn_cost(seg)
-        return self.base.grid.cell_size * (np.abs(seg).sum(axis=1) + turning)
+        return self.base.grid.cell_size * self.base.free_cost(seg)
 
     def search(self) -> Search:
         """The dimensionless view (offsets and cost in units of the start-goal distance)."""

@@ -171,10 +171,13 @@ class PathProblem:
         )
         n_col = hit.reshape(n, m - 1).sum(axis=1)
         inside = inside.reshape(n, m - 1).sum(axis=1)
-        turning = self.turn_weight * metrics.turn_cost(seg)
-        return ell * (seg_length.sum(axis=1) + turning + INSIDE_WEIGHT * inside) + (
-            self.penalty * n_col
-        )
+        return ell * (self.free_cost(seg) + INSIDE_WEIGHT * inside) + self.penalty * n_col
+
+    def free_cost(self, seg: np.ndarray) -> np.ndarray:
+        """The length and turning terms (cells) of routes given by their segments
+        (:func:`metrics.segments`): the whole cost, over the cell size, of a route that touches
+        no blocked cell."""
+        return np.abs(seg).sum(axis=1) + self.turn_weight * metrics.turn_cost(seg)
 
     @property
     def unit(self) -> float:
