@@ -149,6 +149,35 @@ def test_the_decoder_checks_a_waypoint_from_the_kept_one_before_it(reference):
     assert reference(grid.blocked).segments_hit([[6.5, 8.5]], [[12.5, 2.5]])[0]
 
 
+def test_with_margin_the_decoder_refuses_a_waypoint_that_grazes_a_corner():
+    """The same grid: a waypoint w_1 on the line from s_0 = (0.5, 5.5) through the blocked
+    square's corner (8, 7), 3 cells past it and moved 1e-6 cell off it: its segment from s_0
+    is free by the exact check but within the search's PAD = 1e-3 of the square. With the
+    margin (the stations clear of the corners) it is put back on its station; without, it is
+    kept. A route so near a corner can collide once written in lon/lat and read back (seen on
+    the NOAA grids)."""
+    from affine import Affine
+
+    from usvtool.grid import Grid
+
+    cells_ = np.zeros((11, 20), np.uint8)
+    cells_[6, 8] = 1
+    grid = Grid(cells_, Affine(1, 0, 0, 0, -1, 11))
+    station = np.array([[0.5, 5.5], [6.5, 5.5], [12.5, 5.5], [18.5, 5.5]])
+    base = PathProblem(
+        grid, tuple(grid.to_map(0.5, 5.5)), tuple(grid.to_map(18.5, 5.5)), waypoints=1
+    )
+    d = np.array([8.0, 7.0]) - station[0]
+    w1 = station[0] + d * (1.0 + 3.0 / np.hypot(*d)) + [0.0, 1e-6]
+    for margin, kept in ((False, True), (True, False)):
+        problem = guided.GuidedProblem(base, station, margin=margin)
+        x = (w1 - station[1]) @ problem._frame[0].T  # offsets along and across at s_1
+        route = problem.decode(np.concatenate([x, [0.0, 0.0]])[None])[0]
+        assert np.allclose(route[1], w1 if kept else station[1]), (margin, route[1])
+        assert not SegmentChecker(grid.blocked).collides(route[:-1], route[1:]).any()
+    assert guided.clear_of_corners(base.checker, station) is not None
+
+
 def test_guided_cost_is_the_papers_cost_of_the_repaired_routes(maps):
     _, _, problem = _channel_problem(maps)
     X = np.random.default_rng(2).uniform(problem.lower, problem.upper, (20, problem.dim))

@@ -148,7 +148,10 @@ def plan_route(grid: Grid, start, goal, options: PlanOptions | None = None) -> P
         parameters = {"delta_cells": exact.DELTA}
     elif guide:
         route = exact.any_angle(checker, grid.blocked, start_c, goal_c)
-        searched = guided.GuidedProblem(problem, guided.stations(checker, route, waypoints))
+        station = guided.stations(checker, route, waypoints)
+        clear = guided.clear_of_corners(checker, station)
+        searched = (guided.GuidedProblem(problem, station) if clear is None
+                    else guided.GuidedProblem(problem, clear, margin=True))  # fmt: skip
         if searched.waypoints:
             cells, convergence, parameters, attempt = _optimize(
                 searched, base, opts.pop, opts.iters, seed, opts.params or {}, attempts
@@ -156,6 +159,8 @@ def plan_route(grid: Grid, start, goal, options: PlanOptions | None = None) -> P
         else:  # a straight station route: nothing to search
             cells, parameters = searched.station, {}
         cells, kept = guided.settle(route, searched.station, cells)
+        if not is_collision_free(grid, problem.to_map(cells), checker):
+            cells, kept = searched.station, True  # free in cells, not once in map metres
         parameters = {**parameters, "encoding": "guided", "turn_weight": turn_weight,
                       "waypoints": searched.waypoints, "guide_vertices": len(route),
                       "station_route": kept}  # fmt: skip
