@@ -70,9 +70,10 @@ def test_full_and_ci_read_with_the_stages_names():
     assert {"wso", "iwso", "ssa", "issa", "pso", "gwo", "woa", "mrfo", "boa"} <= set(
         full.functions.algorithms)
     assert full.functions.functions == tuple(f"F{i}" for i in range(1, 11))
-    # env: 9 optimizers x 25 seeds + 2 exact planners, on 2 charts; grid20: 3 x 50 + anyangle
+    # env: 9 optimizers and iwso+g x 25 seeds + 2 exact planners, on 2 charts; grid20: 3 x 50
+    # + anyangle
     routes = full.route_jobs(NAMES)
-    assert sum(j.matrix == "env" for j in routes) == 2 * (9 * 25 + 2)
+    assert sum(j.matrix == "env" for j in routes) == 2 * (10 * 25 + 2)
     assert sum(j.matrix == "grid20" for j in routes) == 3 * 50 + 1
     ci = load(ROOT / "pipelines" / "ci.yaml", NAMES)
     assert len(ci.route_jobs(NAMES)) + len(ci.simulation_jobs()) + len(ci.function_jobs()) < 120
