@@ -273,7 +273,10 @@ def test_sigterm_while_the_outputs_are_staged(case, usv, monkeypatch):
 @pytest.mark.parametrize("signum, status", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
 def test_a_signal_to_a_running_simulation(case, signum, status):
     directory, out = case
-    scenario = write_scenario(directory, {**BASE, "sim": {"duration": 3600}})  # minutes of work
+    # minutes of work: a goal 20 km away (with BASE's goal the ship arrives after 590 steps, in
+    # well under a second, and a signal sent from a busy machine could come after the end)
+    own = {**BASE["own"], "goal": [100, 20000]}
+    scenario = write_scenario(directory, {**BASE, "own": own, "sim": {"duration": 3600}})
     proc = subprocess.Popen(
         [sys.executable, "-m", "usvtool.cli", "-v", "simulate", scenario, "-o", out / "trace.csv",
          "--events", out / "events.json", "--tracks", out / "tracks.geojson"],
