@@ -127,10 +127,9 @@ def test_the_decoder_keeps_a_waypoint_exactly_when_its_segments_are_free(maps, r
     assert 0 < kept < X.size // 2  # both branches taken
 
 
-def test_the_decoder_checks_a_waypoint_from_the_kept_one_before_it(reference):
-    """Stations on the line y = 5.5 (legs of 6 cells), one blocked cell [8, 9] x [6, 7]:
-    w_1 = s_1 + 3 n = (6.5, 8.5) sees s_0 and s_2, so it is kept; w_2 = s_2 - 3 n = (12.5, 2.5)
-    is seen from s_1 but not from w_1 (the segment crosses (8.5, 6.5)), so s_2 stays."""
+def one_cell_case():
+    """``(grid, station, base)``: 20 x 11 cells of 1 m, one blocked cell [8, 9] x [6, 7]; four
+    stations on the line y = 5.5 (legs of 6 cells); the path problem between the ends."""
     from affine import Affine
 
     from usvtool.grid import Grid
@@ -142,6 +141,14 @@ def test_the_decoder_checks_a_waypoint_from_the_kept_one_before_it(reference):
     base = PathProblem(
         grid, tuple(grid.to_map(0.5, 5.5)), tuple(grid.to_map(18.5, 5.5)), waypoints=1
     )
+    return grid, station, base
+
+
+def test_the_decoder_checks_a_waypoint_from_the_kept_one_before_it(reference):
+    """Stations on the line y = 5.5 (legs of 6 cells), one blocked cell [8, 9] x [6, 7]:
+    w_1 = s_1 + 3 n = (6.5, 8.5) sees s_0 and s_2, so it is kept; w_2 = s_2 - 3 n = (12.5, 2.5)
+    is seen from s_1 but not from w_1 (the segment crosses (8.5, 6.5)), so s_2 stays."""
+    grid, station, base = one_cell_case()
     problem = guided.GuidedProblem(base, station)
     route = problem.decode(np.array([[0.0, 3.0, 0.0, -3.0]]))[0]
     assert route.tolist() == [[0.5, 5.5], [6.5, 8.5], [12.5, 5.5], [18.5, 5.5]]
@@ -156,17 +163,7 @@ def test_with_margin_the_decoder_refuses_a_waypoint_that_grazes_a_corner():
     margin (the stations clear of the corners) it is put back on its station; without, it is
     kept. A route so near a corner can collide once written in lon/lat and read back (seen on
     the NOAA grids)."""
-    from affine import Affine
-
-    from usvtool.grid import Grid
-
-    cells_ = np.zeros((11, 20), np.uint8)
-    cells_[6, 8] = 1
-    grid = Grid(cells_, Affine(1, 0, 0, 0, -1, 11))
-    station = np.array([[0.5, 5.5], [6.5, 5.5], [12.5, 5.5], [18.5, 5.5]])
-    base = PathProblem(
-        grid, tuple(grid.to_map(0.5, 5.5)), tuple(grid.to_map(18.5, 5.5)), waypoints=1
-    )
+    grid, station, base = one_cell_case()
     d = np.array([8.0, 7.0]) - station[0]
     w1 = station[0] + d * (1.0 + 3.0 / np.hypot(*d)) + [0.0, 1e-6]
     for margin, kept in ((False, True), (True, False)):

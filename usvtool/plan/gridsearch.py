@@ -59,17 +59,9 @@ def cell_path(free: np.ndarray, width: int, source: int, target: int) -> np.ndar
     b = 0
     best = np.inf
     while True:
-        while b < head.size and head[b] < 0:
-            b += 1
-        if b == head.size or f0 + b * WIDTH >= best:
+        b, u, gu = _pop(head, node, cost, below, g, state, b, f0, best)
+        if u < 0:
             break
-        e = head[b]
-        head[b] = below[e]
-        u = node[e]
-        gu = cost[e]
-        if gu > g[u] or state[u] == 2:
-            continue  # a stale entry
-        state[u] = 2
         if u == target:
             best = gu
             continue
@@ -141,6 +133,25 @@ def _queue():
 
 
 @njit(cache=True, nogil=True, inline="always")
+def _pop(head, node, cost, below, g, state, b: int, f0: float, limit: float):
+    """The next node to expand: the top entry of the lowest non-empty bucket (from ``b`` on)
+    whose lower edge ``f0 + b·WIDTH`` is below ``limit``, stale entries (a better ``g`` since, or
+    expanded already) dropped, marked expanded: ``(b, u, g_u)``, ``u = -1`` when none is left."""
+    while True:
+        while b < head.size and head[b] < 0:
+            b += 1
+        if b == head.size or f0 + b * WIDTH >= limit:
+            return b, -1, 0.0
+        e = head[b]
+        head[b] = below[e]
+        u = node[e]
+        if cost[e] > g[u] or state[u] == 2:
+            continue
+        state[u] = 2
+        return b, u, cost[e]
+
+
+@njit(cache=True, nogil=True, inline="always")
 def _push(head, node, cost, below, entries: int, k: int, v: int, gv: float):
     """Push ``(v, gv)`` onto bucket ``k`` (growing the arrays as needed): the queue's arrays and
     its new entry count."""
@@ -198,17 +209,9 @@ def point_bounds(
     stop = np.inf
     b = 0
     while True:
-        while b < head.size and head[b] < 0:
-            b += 1
-        if b == head.size or f0 + b * WIDTH >= stop:
+        b, u, gu = _pop(head, node, cost, below, g, state, b, f0, stop)
+        if u < 0:
             break
-        e = head[b]
-        head[b] = below[e]
-        u = node[e]
-        gu = cost[e]
-        if gu > g[u] or state[u] == 2:
-            continue
-        state[u] = 2
         if u == target:
             stop = gu
             continue
