@@ -63,10 +63,14 @@ def test_j2_killed_and_resumed_gives_the_bytes_of_j1_and_a_rerun_skips_all(refer
     os.killpg(proc.pid, signal.SIGKILL)  # the batch and its workers, with no warning
     proc.wait()
     assert done() and not (tmp_path / "metrics.csv").exists()
+    # the jobs whose results were renamed into place before the kill (how many depends on
+    # timing): exactly these are skipped
+    finished = [p for p in tmp_path.glob("*/*") if p.is_dir() and p.name[0] != "."]
     r = batch(TINY, "-j", 2, "-o", tmp_path)
     assert r.returncode == 0, r.stderr
     summary = json.loads(r.stdout)
-    assert summary["jobs"] == JOBS and summary["failed"] == 0 and summary["skipped"] >= 2
+    assert summary["jobs"] == JOBS and summary["failed"] == 0
+    assert summary["skipped"] == len(finished) >= 1
     assert summary["done"] + summary["skipped"] == JOBS
     assert set(summary["stage_time_s"]) <= {"grids", "routes", "runs", "functions", "table"}
     assert not list(tmp_path.glob("*/.tmp-*"))

@@ -11,9 +11,9 @@ from usvtool.sim.vessel import (
     Vessel,
     Window,
     admissible,
+    arcs,
     preset,
     ramps,
-    rollout,
     samples,
     step,
     travelled,
@@ -138,44 +138,44 @@ def _euler(x0, y0, psi0, v, omega, dt, steps, sub=100_000):
     return np.stack([x[:, at], y[:, at]], -1)
 
 
-def test_rollout_matches_fine_euler():
-    v = np.array([0.0, 1.0, 3.0, 5.0, 5.0, 2.0])
-    omega = np.array([0.3, 0.0, 1e-9, -0.3, 0.6, -math.radians(20)])
-    pos, head = rollout(10.0, -4.0, 0.7, v, omega, 0.5, 20)
-    assert pos.shape == (6, 20, 2) and head.shape == (6, 20)
-    assert np.abs(pos - _euler(10.0, -4.0, 0.7, v, omega, 0.5, 20)).max() < 2e-3
-    assert np.allclose(
-        head, (0.7 + omega[:, None] * 0.5 * np.arange(1, 21) + np.pi) % (2 * np.pi) - np.pi
-    )
+def _positions(fan) -> np.ndarray:
+    """A fan's rollouts as positions (N, steps, 2)."""
+    return np.stack([fan.x.T, fan.y.T], -1)
 
 
-def test_rollout_near_zero_yaw_rate_keeps_its_first_order_term():
+def test_arcs_match_fine_euler():
+    speeds = np.array([0.0, 1.0, 3.0, 5.0])
+    rates = np.array([0.3, 0.0, 1e-9, -0.3, 0.6, -math.radians(20)])
+    fan = arcs(10.0, -4.0, 0.7, speeds, rates, 0.5, 20)
+    assert fan.x.shape == fan.y.shape == (20, 24) and fan.u.shape == (20, 6)
+    v, omega = np.repeat(speeds, 6), np.tile(rates, 4)  # pair i·R + k: speed i, rate k
+    assert np.abs(_positions(fan) - _euler(10.0, -4.0, 0.7, v, omega, 0.5, 20)).max() < 2e-3
+    # each period's chord direction: the heading at the middle of the period
+    mid = 0.7 + rates * 0.5 * (np.arange(20)[:, None] + 0.5)
+    np.testing.assert_allclose(fan.u, np.exp(1j * mid), rtol=0, atol=1e-12)
+
+
+def test_arcs_near_zero_yaw_rate_keep_their_first_order_term():
     # omega = 1e-8: x = v t cos psi0 - v omega t^2/2 sin psi0 (+ v omega^2 t^3/6 ~ 1e-14)
     v, omega, psi0 = 5.0, 1e-8, 0.7
     t = 0.5 * np.arange(1, 21)
-    pos, _ = rollout(0.0, 0.0, psi0, [v], [omega], 0.5, 20)
+    pos = _positions(arcs(0.0, 0.0, psi0, [v], [omega, 0.0], 0.5, 20))
     x = v * t * math.cos(psi0) - v * omega * t**2 / 2 * math.sin(psi0)
     y = v * t * math.sin(psi0) + v * omega * t**2 / 2 * math.cos(psi0)
     assert np.abs(pos[0] - np.stack([x, y], -1)).max() < 1e-11
-    straight, _ = rollout(0.0, 0.0, psi0, [v], [0.0], 0.5, 20)
-    assert np.allclose(
-        straight[0],
-        np.stack([v * t * math.cos(psi0), v * t * math.sin(psi0)], -1),
-        atol=1e-12,
-        rtol=0,
+    np.testing.assert_allclose(
+        pos[1], np.stack([v * t * math.cos(psi0), v * t * math.sin(psi0)], -1), atol=1e-12, rtol=0
     )
 
 
-def test_rollout_equals_repeated_steps():
-    v, omega = np.array([1.0, 4.0]), np.array([0.2, -0.5])
-    pos, head = rollout(1.0, 2.0, 3.0, v, omega, 0.25, 7)
-    x, y, psi = np.full(2, 1.0), np.full(2, 2.0), np.full(2, 3.0)
+def test_arcs_equal_repeated_steps():
+    speeds, rates = np.array([1.0, 4.0]), np.array([0.2, -0.5])
+    pos = _positions(arcs(1.0, 2.0, 3.0, speeds, rates, 0.25, 7))
+    v, omega = np.repeat(speeds, 2), np.tile(rates, 2)
+    x, y, psi = np.full(4, 1.0), np.full(4, 2.0), np.full(4, 3.0)
     for k in range(7):
         x, y, psi = step(x, y, psi, v, omega, 0.25)
-        assert np.allclose(pos[:, k], np.stack([x, y], -1)) and np.allclose(head[:, k], psi)
-
-
-# -- the dynamic window -----------------------------------------------------------------------
+        assert np.allclose(pos[:, k], np.stack([x, y], -1))
 
 
 def test_window_hand_case():
@@ -215,20 +215,19 @@ def test_admissible_hand_case():
 
 def test_samples_grid_edges_current_and_straight():
     w = Window(1.0, 2.0, -0.3, 0.1)
-    v, omega = samples(w, 3, 3)
-    assert sorted(set(v)) == [1.0, 1.5, 2.0]
-    assert sorted(set(omega)) == pytest.approx([-0.3, -0.1, 0.0, 0.1])
-    assert v.shape == omega.shape == (12,)
-    v, omega = samples(w, 3, 3, current=(1.2, -0.25))
-    pairs = set(zip(v.tolist(), omega.tolist(), strict=True))
-    assert (1.2, -0.25) in pairs and (1.2, 0.0) in pairs and len(pairs) == 4 * 5
-    v, omega = samples(w, 3, 3, current=(5.0, 1.0))  # outside: not added
-    assert v.size == 12
+    speeds, rates = samples(w, 3, 3)
+    assert speeds.tolist() == [1.0, 1.5, 2.0]
+    assert rates.tolist() == pytest.approx([-0.3, -0.1, 0.0, 0.1])
+    speeds, rates = samples(w, 3, 3, current=(1.2, -0.25))
+    assert speeds.tolist() == [1.0, 1.2, 1.5, 2.0]
+    assert rates.tolist() == pytest.approx([-0.3, -0.25, -0.1, 0.0, 0.1])
+    speeds, rates = samples(w, 3, 3, current=(5.0, 1.0))  # outside: not added
+    assert speeds.size == 3 and rates.size == 4
 
 
 def test_samples_degenerate_window_and_bad_counts():
-    v, omega = samples(window(IWSO, 0.0, 0.0, 0.5), 5, 4)
-    assert set(v) == {0.35} and 0.0 in omega
+    speeds, rates = samples(window(IWSO, 0.0, 0.0, 0.5), 5, 4)
+    assert speeds.tolist() == [0.35] and 0.0 in rates
     with pytest.raises(ValueError):
         samples(Window(0, 1, 0, 1), 1, 3)
 
@@ -238,10 +237,9 @@ def test_samples_straight_on_is_exactly_zero():
     count as a turn (the side rules go by the sign): it is zero, once, and so is a current yaw
     rate within round-off of it."""
     assert np.linspace(-0.3, 0.2, 6)[3] != 0.0  # the premise
-    v, omega = samples(Window(1.0, 2.0, -0.3, 0.2), 2, 6, current=(1.0, -2.8e-17))
-    axis = sorted(set(omega.tolist()))
-    assert axis == pytest.approx([-0.3, -0.2, -0.1, 0.0, 0.1, 0.2]) and len(axis) == 6
-    assert 0.0 in axis and not ((omega != 0) & (np.abs(omega) < 1e-9)).any()
+    _, rates = samples(Window(1.0, 2.0, -0.3, 0.2), 2, 6, current=(1.0, -2.8e-17))
+    assert rates.tolist() == pytest.approx([-0.3, -0.2, -0.1, 0.0, 0.1, 0.2])
+    assert 0.0 in rates.tolist() and not ((rates != 0) & (np.abs(rates) < 1e-9)).any()
 
 
 def test_ramps_reach_the_sample_at_the_limits_then_hold_it():
@@ -260,10 +258,11 @@ def test_ramps_reach_the_sample_at_the_limits_then_hold_it():
     # slowing from 3 to 1 m/s at 2 m/s² takes 1 s: 3 t - t² up to 1 s, then 2 + (t - 1)
     run = travelled(3.0, v[1], UDWA.max_decel, UDWA.max_accel, t)
     np.testing.assert_allclose(run, [1.25, 2, 2.5, 3, 3.5, 4])
-    z, u = ramps(0.0, 0.0, 0.0, 3.0, 0.0, v, omega, UDWA, 0.5, 6)
-    np.testing.assert_allclose(z[0].real[:4], [1.75, 4, 6.75, 10], atol=0.25)  # turning a bit
-    np.testing.assert_allclose(np.abs(u), 1.0)
-    z = ramps(0.0, 0.0, 0.0, 3.0, 0.0, v, omega, UDWA, 0.2, 15)[0]
+    fan = ramps(0.0, 0.0, 0.0, 3.0, 0.0, v, omega, UDWA, 0.5, 6)  # pairs (7, 10), (1, -10)
+    np.testing.assert_allclose(fan.x[:4, 0], [1.75, 4, 6.75, 10], atol=0.25)  # turning a bit
+    np.testing.assert_allclose(np.abs(fan.u), 1.0)
+    fan = ramps(0.0, 0.0, 0.0, 3.0, 0.0, v, omega, UDWA, 0.2, 15)
+    z = (fan.x + 1j * fan.y).T[[0, 3]]  # the pairs (7 m/s, 10 deg/s) and (1 m/s, -10 deg/s)
     dt = 1e-4
     for i in range(2):
         x = y = h = 0.0

@@ -201,40 +201,45 @@ def step(x, y, psi, v, omega, dt):
     return x, y, wrap(psi)
 
 
-def arcs(x0, y0, psi0, v, omega, dt: float, steps: int, directions: bool = False):
-    """The predicted positions ``x + iy`` ``(N, steps)`` of ``N`` velocity samples held for
-    ``steps`` periods, at ``t = dt, 2·dt, …`` (the start pose not included).
+class Fan(NamedTuple):
+    """The rollouts of a grid of velocity samples: every speed of ``speeds`` ``(V,)`` with every
+    yaw rate of ``rates`` ``(R,)``, pair ``i·R + k`` the speed ``i`` and the rate ``k`` (the order
+    of :func:`samples`), at ``t = dt, 2·dt, …`` (the start pose not included). Time-major:
+    row ``j`` is the time ``(j + 1)·dt`` of every rollout, so the reductions over the horizon run
+    along contiguous rows."""
+
+    x: np.ndarray  # (steps, V·R) the predicted positions, east
+    y: np.ndarray  # (steps, V·R) and north
+    u: np.ndarray  # (steps, R) complex: each period's unit chord direction, per yaw rate
+
+
+def arcs(x0, y0, psi0, speeds, rates, dt: float, steps: int) -> Fan:
+    """The rollouts of the samples held for ``steps`` periods: eq. 16 integrated exactly.
 
     Each period's exact chord (:func:`step`: length ``v·dt·sinc(omega·dt / 2)``, direction
     ``psi0 + omega·dt·(j - 1/2)`` in period ``j``) is summed, the directions by repeated complex
-    multiplication: the positions of eq. 16 integrated exactly, with two complex exponentials per
-    yaw rate rather than transcendental functions at every step (each costs as much as a dozen
-    multiplications). ``np.sinc`` is exact at ``omega = 0`` (a straight line) and loses no
-    precision near it. With ``directions`` also each period's chord direction, a unit complex
-    number ``(N, steps)`` (the heading at the period's middle).
+    multiplication, once per yaw rate: two complex exponentials per rate rather than
+    transcendental functions at every step (each costs as much as a dozen multiplications). The
+    chord's length is constant along a rollout, so the positions are it times the summed unit
+    chords. ``np.sinc`` is exact at ``omega = 0`` (a straight line) and loses no precision near it.
 
-    >>> arcs(0, 0, 0, [1.0, 1.0], [0.0, math.pi], 0.5, 2).round(6).tolist()
-    [[(0.5+0j), (1+0j)], [(0.31831+0.31831j), 0.63662j]]
+    >>> fan = arcs(0, 0, 0, [1.0], [0.0, math.pi], 0.5, 2)  # straight on; half a circle
+    >>> fan.x.round(6).tolist(), fan.y.round(6).tolist()
+    ([[0.5, 0.31831], [1.0, 0.0]], [[0.0, 0.31831], [0.0, 0.63662]])
     """
-    v = np.atleast_1d(np.asarray(v, float))
-    omega = np.atleast_1d(np.asarray(omega, float))
-    v, omega = np.broadcast_arrays(v, omega)
-    # the directions depend on the yaw rate alone (and the start heading): a window's samples
-    # share a few dozen yaw rates, so they are stepped once per rate; the chord's length is
-    # constant along a rollout, so the positions are it times the summed unit chords
-    if np.ndim(psi0) == 0:
-        rates, which = np.unique(omega, return_inverse=True)
-    else:
-        rates, which = omega, np.arange(omega.size)
+    speeds, rates = _grid_axes(speeds, rates)
     turn = rates * dt
-    u = np.empty((rates.size, steps), complex)
-    u[:, 0] = np.exp(1j * (np.asarray(psi0, float) + turn / 2))
-    u[:, 1:] = np.exp(1j * turn)[:, None]
-    np.cumprod(u, axis=1, out=u)
-    chord = v * dt * np.sinc(omega * dt / (2 * np.pi))
-    z = chord[:, None] * np.cumsum(u, axis=1)[which]
-    z += np.asarray(x0, float)[..., None] + 1j * np.asarray(y0, float)[..., None]
-    return (z, u[which]) if directions else z
+    u = np.empty((steps, rates.size), complex)
+    u[0] = np.exp(1j * (float(psi0) + turn / 2))
+    u[1:] = np.exp(1j * turn)
+    np.cumprod(u, axis=0, out=u)
+    summed = np.cumsum(u, axis=0)
+    chord = speeds[:, None] * dt * np.sinc(turn / (2 * np.pi))  # (V, R)
+    x = (chord * summed.real[:, None, :]).reshape(steps, -1)
+    y = (chord * summed.imag[:, None, :]).reshape(steps, -1)
+    x += float(x0)
+    y += float(y0)
+    return Fan(x, y, u)
 
 
 def toward(now, target, down, up, t):
@@ -261,48 +266,36 @@ def travelled(now, target, down, up, t):
     return now * t + change * (t - ramp) + np.copysign(rate / 2 * ramp * ramp, change)
 
 
-def ramps(x0, y0, psi0, v0, omega0, v, omega, vessel: Vessel, dt: float, steps: int):
-    """The rollouts of a trajectory-rollout window: sample ``(v, omega)`` commanded now, the ship
+def ramps(x0, y0, psi0, v0, omega0, speeds, rates, vessel: Vessel, dt: float, steps: int) -> Fan:
+    """The rollouts of a trajectory-rollout window: each sample commanded now, the ship
     accelerating from ``(v0, omega0)`` toward it at her limits (:func:`toward`: ``max_accel`` /
     ``max_decel``, ``max_yaw_accel``), then holding it (Gerkey and Konolige 2008; ROS
     base_local_planner with ``dwa: false``).
 
-    Returns the positions ``x + iy`` ``(N, steps)`` at ``t = dt, 2·dt, …`` and each period's unit
-    chord direction ``(N, steps)``, as :func:`arcs` does. Each period's chord comes from the
-    speed and the heading at its middle (the midpoint rule: exact for constant velocities,
-    second order in ``dt`` while they change); the headings and the distance run at any time
-    are exact, :func:`travelled`. The work is done once per distinct speed and yaw rate.
+    Each period's chord comes from the speed and the heading at its middle (the midpoint rule:
+    exact for constant velocities, second order in ``dt`` while they change); the headings and
+    the distance run at any time are exact, :func:`travelled`. The speeds' ramps are worked out
+    once per speed, the headings once per yaw rate.
 
     >>> ship = preset("udwa-usv")  # 2 m/s²: 3 m/s rising to 7 in 2 s, straight on
-    >>> ramps(0, 0, 0, 3.0, 0.0, [7.0], [0.0], ship, 0.5, 5)[0].real.round(6).tolist()
+    >>> ramps(0, 0, 0, 3.0, 0.0, [7.0], [0.0], ship, 0.5, 5).x.round(6).T.tolist()
     [[1.75, 4.0, 6.75, 10.0, 13.5]]
     """
-    v = np.atleast_1d(np.asarray(v, float))
-    omega = np.atleast_1d(np.asarray(omega, float))
-    v, omega = np.broadcast_arrays(v, omega)
-    speeds, which_v = np.unique(v, return_inverse=True)
-    rates, which_w = np.unique(omega, return_inverse=True)
-    t_mid = dt * (np.arange(steps) + 0.5)
-    chord = dt * toward(v0, speeds[:, None], vessel.max_decel, vessel.max_accel, t_mid)
-    turned = travelled(omega0, rates[:, None], vessel.max_yaw_accel, vessel.max_yaw_accel, t_mid)
-    u = np.exp(1j * (psi0 + turned))[which_w]
-    z = u * chord[which_v]
-    np.cumsum(z, axis=1, out=z)
-    z += float(x0) + 1j * float(y0)
-    return z, u
+    speeds, rates = _grid_axes(speeds, rates)
+    t_mid = dt * (np.arange(steps) + 0.5)[:, None]
+    chord = dt * toward(v0, speeds, vessel.max_decel, vessel.max_accel, t_mid)  # (steps, V)
+    turned = travelled(omega0, rates, vessel.max_yaw_accel, vessel.max_yaw_accel, t_mid)
+    u = np.exp(1j * (psi0 + turned))  # (steps, R)
+    x = chord[:, :, None] * u.real[:, None, :]
+    y = chord[:, :, None] * u.imag[:, None, :]
+    x, y = (np.cumsum(a, axis=0).reshape(steps, -1) for a in (x, y))
+    x += float(x0)
+    y += float(y0)
+    return Fan(x, y, u)
 
 
-def rollout(x0, y0, psi0, v, omega, dt: float, steps: int):
-    """:func:`arcs` as positions ``(N, steps, 2)``, with the headings ``(N, steps)``, wrapped.
-
-    >>> pos, head = rollout(0, 0, 0, [1.0, 1.0], [0.0, math.pi], 0.5, 2)
-    >>> pos.round(6).tolist()  # straight on; half a circle of radius 1/π
-    [[[0.5, 0.0], [1.0, 0.0]], [[0.31831, 0.31831], [0.0, 0.63662]]]
-    """
-    z = arcs(x0, y0, psi0, v, omega, dt, steps)
-    omega = np.broadcast_to(np.atleast_1d(np.asarray(omega, float)), (len(z),))
-    psi = np.asarray(psi0, float)[..., None] + omega[:, None] * (dt * np.arange(1, steps + 1))
-    return np.stack([z.real, z.imag], -1), wrap(psi)
+def _grid_axes(speeds, rates) -> tuple[np.ndarray, np.ndarray]:
+    return np.atleast_1d(np.asarray(speeds, float)), np.atleast_1d(np.asarray(rates, float))
 
 
 # -- the dynamic window (eqs. 18-20) ----------------------------------------------------------
@@ -378,24 +371,23 @@ ZERO_TOLERANCE = 1e-9
 
 
 def samples(win: Window, n_v: int, n_omega: int, current=None) -> tuple[np.ndarray, np.ndarray]:
-    """The velocity pairs to evaluate: a regular ``n_v × n_omega`` grid over the window.
+    """The velocities to evaluate: a regular ``n_v × n_omega`` grid over the window, as its two
+    axes ``(speeds, rates)``, each sorted with no repeats; the samples are every pair of them
+    (:class:`Fan`: the speed varying slowest).
 
     Both axes include the window's edges. When ``current = (v, omega)`` is given, its speed and
     yaw rate join the axes if they lie in the window (so holding course and speed is a
     candidate); a zero yaw rate (straight on) joins the yaw axis whenever the window holds it.
-    Returns flat ``(N,)`` arrays ``v, omega``, the speed varying slowest; duplicates are dropped.
 
-    >>> v, w = samples(Window(1.0, 2.0, -0.2, 0.4), 2, 2)
-    >>> v.tolist(), w.tolist()
-    ([1.0, 1.0, 1.0, 2.0, 2.0, 2.0], [-0.2, 0.0, 0.4, -0.2, 0.0, 0.4])
+    >>> speeds, rates = samples(Window(1.0, 2.0, -0.2, 0.4), 2, 2)
+    >>> speeds.tolist(), rates.tolist()
+    ([1.0, 2.0], [-0.2, 0.0, 0.4])
     """
     if n_v < 2 or n_omega < 2:
         raise ValueError("samples: n_v and n_omega must be >= 2 (the grid includes both edges)")
     v_lo, v_hi, w_lo, w_hi = (float(a) for a in win)
     v_now, w_now = (None, None) if current is None else (float(a) for a in current)
-    v_axis = _axis(v_lo, v_hi, n_v, [v_now])
-    w_axis = _axis(w_lo, w_hi, n_omega, [0.0, w_now])
-    return np.repeat(v_axis, len(w_axis)), np.tile(w_axis, len(v_axis))
+    return _axis(v_lo, v_hi, n_v, [v_now]), _axis(w_lo, w_hi, n_omega, [0.0, w_now])
 
 
 def _axis(lo: float, hi: float, n: int, extra) -> np.ndarray:

@@ -272,55 +272,71 @@ class Controller(ABC):
         ramped = p["window"] == "horizon"
         span = self.times[-1] if ramped else world.period
         window = vessel_model.window(vessel, own.v, own.omega, span)
-        v, omega = vessel_model.samples(
+        speeds, rates = vessel_model.samples(
             window, int(p["v_samples"]), int(p["omega_samples"]), current=(own.v, own.omega)
         )
+        v, omega = np.repeat(speeds, rates.size), np.tile(rates, speeds.size)
         if ramped:
-            z, u = vessel_model.ramps(own.x, own.y, own.psi, own.v, own.omega, v, omega, vessel,
-                                      p["step"], len(self.times))  # fmt: skip
+            fan = vessel_model.ramps(own.x, own.y, own.psi, own.v, own.omega, speeds, rates,
+                                     vessel, p["step"], len(self.times))  # fmt: skip
         else:
-            z, u = vessel_model.arcs(
-                own.x, own.y, own.psi, v, omega, p["step"], len(self.times), directions=True
-            )
+            fan = vessel_model.arcs(own.x, own.y, own.psi, speeds, rates, p["step"],
+                                    len(self.times))  # fmt: skip
         radius = vessel.length / 2
         n, t = v.size, self.times.size
-        # (T, N) from here on: reductions over the horizon run along contiguous rows
-        x, y = np.ascontiguousarray(z.real.T), np.ascontiguousarray(z.imag.T)
+        x, y = fan.x, fan.y  # (T, N)
+        # hit: (T, N) contacts, made only when some rollout has one (most steps have none)
+        hit = static = None
         if world.clearance is not None:
-            static_gap = world.clearance.at(x, y) - radius
-            hit = static_gap <= 0
+            static_gap = world.clearance.at(x, y)
+            static_gap -= radius
             clearance = static_gap.min(axis=0)
+            if clearance.min() <= 0:
+                static = static_gap <= 0
+                hit = static.copy()
         else:
-            hit = np.zeros((t, n), bool)
             clearance = np.full(n, np.inf)
-        static = hit.copy()
         # one target at a time: (T, N) temporaries, small enough to stay in the allocator's
         # cache (fresh (k, T, N) arrays cost more in page faults than in arithmetic)
         ahead = targets.pos[:, None, :] + targets.vel[:, None, :] * self.times[:, None]
         intrudes = np.zeros(n, bool)
-        inv_a2 = 1 / np.square(colregs.DOMAIN_LENGTH_FACTOR * vessel.length / 2)
+        a = colregs.DOMAIN_LENGTH_FACTOR * vessel.length / 2  # the domain's semi-axes, a >= b
+        inv_a2 = 1 / np.square(a)
         inv_b2 = 1 / np.square(colregs.DOMAIN_WIDTH_FACTOR * vessel.length / 2)
         # the domain, a soft rule, is looked at every DOMAIN_EVERY seconds of the horizon
         rows = slice(None, None, max(1, int(round(DOMAIN_EVERY / p["step"]))))
-        ux, uy = np.ascontiguousarray(u.real.T[rows]), np.ascontiguousarray(u.imag.T[rows])
+        u = None
         for j, length in enumerate(targets.length):
             dx, dy = ahead[j, :, 0, None] - x, ahead[j, :, 1, None] - y
             d2 = np.square(dx)
             d2 += np.square(dy)
+            closest2 = d2.min(axis=0)
+            nearest2 = closest2.min()
             reach = (vessel.length + length) / 2
-            hit |= d2 <= reach * reach
-            np.minimum(clearance, np.sqrt(d2.min(axis=0)) - reach, out=clearance)
-            if p["domain"]:  # the target in the own ship's domain: along and across her heading
+            if nearest2 <= reach * reach:
+                touch = d2 <= reach * reach
+                hit = touch if hit is None else np.logical_or(hit, touch, out=hit)
+            np.minimum(clearance, np.sqrt(closest2) - reach, out=clearance)
+            # the target in the own ship's domain, along and across her heading: never farther
+            # than a (the margin keeps the skip clear of round-off in the ellipse's terms)
+            if p["domain"] and nearest2 <= a * a * (1 + 1e-9):
+                if u is None:  # (T', N): each period's direction, per sample
+                    u = np.tile(fan.u[rows], speeds.size)
+                    ux, uy = np.ascontiguousarray(u.real), np.ascontiguousarray(u.imag)
                 # along^2 / a^2 + across^2 / b^2, with across^2 = d2 - along^2
                 ellipse = np.square(dx[rows] * ux + dy[rows] * uy)
                 ellipse *= inv_a2 - inv_b2
                 ellipse += d2[rows] * inv_b2
                 intrudes |= (ellipse <= 1).any(axis=0)
-        first = np.where(hit.any(axis=0), hit.argmax(axis=0), t)
-        at = np.minimum(first, t - 1)
         columns = np.arange(n)
-        contact = np.where(first < t, self.times[at], np.inf)
-        static_first = (first < t) & static[at, columns]
+        if hit is None:
+            contact = np.full(n, np.inf)
+            static_first = np.zeros(n, bool)
+        else:
+            first = np.where(hit.any(axis=0), hit.argmax(axis=0), t)
+            at = np.minimum(first, t - 1)
+            contact = np.where(first < t, self.times[at], np.inf)
+            static_first = (first < t) & (static[at, columns] if static is not None else False)
         to_goal = np.square(x - world.goal[0])
         to_goal += np.square(y - world.goal[1])
         closest = to_goal.argmin(axis=0)
@@ -335,8 +351,9 @@ class Controller(ABC):
         else:
             psi_end = vessel_model.wrap(own.psi + omega * self.times[-1])
             psi_near = own.psi + omega * self.times[closest]
-        return Rollouts(v, omega, z[:, -1], psi_end, contact, static_first, clearance, intrudes,
-                        x, y, reached, near, psi_near)  # fmt: skip
+        end = x[-1] + 1j * y[-1]
+        return Rollouts(v, omega, end, psi_end, contact, static_first, clearance, intrudes, x, y,
+                        reached, near, psi_near)  # fmt: skip
 
     def side(self, encounter: Encounter | None) -> int:
         """The side the rule asks for in ``encounter``."""
