@@ -12,12 +12,19 @@ Two families, scaled to the vessel (``--family``):
   (15 m) at 7 m/s, goal (0, 450), targets of 15 m at x in [-120, 120], y in [80, 400] m,
   1-6 m/s, 90 s.
 
+- ``emergency`` (the UDWA paper's section 4.1 three-ship emergencies, varied): the
+  ``udwa-usv`` at 7 m/s toward (0, 450); by the scene's number a head-on, a crossing or an
+  overtaking encounter as in charts/scenarios/emergency-*.yaml, with a third ship that blocks
+  the starboard escape, its geometry drawn at random around the bundled one (ranges, offsets,
+  courses within a few degrees, speeds; all 15 m ships keeping course and speed), 150 s.
+
 For each controller the script prints the collisions, the arrivals, the median and 5th
-percentile of the closest centre distance over the scenes, and the median arrival time. Not a
-test: figures for docs/controllers.md.
+percentile of the closest centre distance over the scenes, and the median arrival time; with
+``--versus A,B``, scene by scene, how often A keeps further from every ship than B (and by 10 %
+or more), per kind of scene. Not a test: figures for docs/controllers.md.
 
 Usage: python benchmarks/bench_random_encounters.py [--scenes 60] [--family small]
-       [--controllers dwa,gdwa,ccdwa,udwa] [--param NAME=VALUE ...] [-j 1]
+       [--controllers dwa,gdwa,ccdwa,udwa] [--param NAME=VALUE ...] [--versus udwa,ccdwa ...] [-j 1]
 """
 
 from __future__ import annotations
@@ -39,8 +46,54 @@ FAMILIES = {
 }  # fmt: skip
 
 
+EMERGENCIES = ("head-on", "crossing", "overtaking")
+
+
+def emergency(seed: int) -> tuple[str, list[dict]]:
+    """The kind and the two other ships of emergency scene ``seed`` (the own ship: (0, 0),
+    north, 7 m/s). Around the bundled scenarios (charts/scenarios/README.md): head-on, the
+    target ahead on a near-reciprocal course and a ship abeam of it on the own ship's starboard;
+    crossing, the target from starboard on a collision course and a ship following it; overtaking,
+    a slow target ahead and a ship abeam of it to starboard."""
+    rng = np.random.default_rng(seed)
+    kind = EMERGENCIES[seed % 3]
+    u = rng.uniform
+
+    def ship(name, x, y, heading, speed):
+        return {"name": name, "start": [float(x), float(y)], "heading": float(heading),
+                "speed": float(speed), "length": 15.0}  # fmt: skip
+
+    if kind == "head-on":
+        rng_m, course, speed = u(180, 300), 180 + u(-5, 5), u(3, 6)
+        off, along = u(25, 60), u(-30, 30)
+        return kind, [ship("target", u(-5, 5), rng_m, course, speed),
+                      ship("blocker", off, rng_m + along, course + u(-5, 5),
+                           speed + u(-1, 1))]  # fmt: skip
+    if kind == "crossing":  # both would be at (0, 7 tau) after tau seconds
+        tau, course, speed, gap = u(8, 16), 270 + u(-10, 10), u(3, 6), u(40, 80)
+        heading = np.radians(90 - course)  # the target's direction, mathematical
+        dx, dy = np.cos(heading), np.sin(heading)
+        x0, y0 = -dx * speed * tau, 7 * tau - dy * speed * tau
+        return kind, [ship("target", x0, y0, course, speed),
+                      ship("follower", x0 - dx * gap, y0 - dy * gap, course, speed)]
+    rng_m, speed, off = u(80, 150), u(1.5, 3), u(30, 50)
+    course = u(-5, 5)
+    return kind, [ship("target", u(-5, 5), rng_m, course, speed),
+                  ship("blocker", off, rng_m + u(-20, 20), course, speed)]
+
+
 def scene(family: str, seed: int, controller: str) -> dict:
     """Scene ``seed`` of ``family`` as a scenario mapping (usvtool.sim.scenario.parse)."""
+    if family == "emergency":
+        kind, targets = emergency(seed)
+        return {
+            "name": f"random-emergency-{kind}-{seed}",
+            "sim": {"dt": 0.1, "duration": 150, "goal_tolerance": 5},
+            "own": {"start": [0, 0], "goal": [0, 450], "heading": 0, "speed": 7,
+                    "vessel": "udwa-usv"},
+            "targets": targets,
+            "controller": {"name": controller},
+        }  # fmt: skip
     f = FAMILIES[family]
     rng = np.random.default_rng(seed)
     targets = []
@@ -66,17 +119,38 @@ def one(job: tuple) -> tuple:
     family, seed, controller, params = job
     s = simulate(parse(scene(family, seed, controller), f"scene {seed}"),
                  Options(params=params)).summary()  # fmt: skip
-    return controller, s["collision"] is not None, s["arrived"], s["min_distance_m"], s["time_s"]
+    return (controller, seed, s["collision"] is not None, s["arrived"], s["min_distance_m"],
+            s["time_s"])  # fmt: skip
+
+
+def versus(results: list[tuple], a: str, b: str, family: str) -> None:
+    """Scene by scene: how often ``a`` keeps further from every ship than ``b``."""
+    closest = {(r[0], r[1]): r[4] for r in results}
+    collided = {(r[0], r[1]) for r in results if r[2]}
+    seeds = sorted({r[1] for r in results})
+    kinds = {s: emergency(s)[0] if family == "emergency" else "all" for s in seeds}
+    for kind in sorted(set(kinds.values())):
+        pairs = [(closest[a, s], closest[b, s]) for s in seeds if kinds[s] == kind]
+        pairs = [(x, y) for x, y in pairs if x is not None and y is not None]
+        further = sum(x > y for x, y in pairs)
+        clearly = sum(x >= 1.1 * y for x, y in pairs)
+        ratio = np.median([x / y for x, y in pairs]) if pairs else float("nan")
+        hits = [sum((c, s) in collided for s in seeds if kinds[s] == kind) for c in (a, b)]
+        print(f"{a} vs {b}, {kind}: further in {further} of {len(pairs)} scenes, by 10 % or more "
+              f"in {clearly}; median ratio {ratio:.2f}; collisions {hits[0]} and "
+              f"{hits[1]}")  # fmt: skip
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scenes", type=int, default=60)
     ap.add_argument("--first", type=int, default=0, help="the first scene's seed")
-    ap.add_argument("--family", choices=sorted(FAMILIES), default="small")
+    ap.add_argument("--family", choices=[*sorted(FAMILIES), "emergency"], default="small")
     ap.add_argument("--controllers", default="dwa,gdwa,ccdwa,udwa")
     ap.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
                     help="a controller parameter for every controller (JSON value or text)")
+    ap.add_argument("--versus", metavar="A,B", action="append", default=[],
+                    help="compare two of the controllers scene by scene (repeatable)")
     ap.add_argument("-j", "--jobs", type=int, default=1)
     args = ap.parse_args()
     params = {}
@@ -96,12 +170,14 @@ def main() -> None:
     print(f"{'controller':12} {'collisions':>10} {'arrived':>8} {'median m':>9} {'p5 m':>7} "
           f"{'median s':>9}")  # fmt: skip
     for c in controllers:
-        rows = [r for r in results if r[0] == c]
+        rows = [r[1:] for r in results if r[0] == c]
         closest = np.array([r[3] for r in rows if r[3] is not None])
         times = [r[4] for r in rows if r[2]]
         print(f"{c:12} {sum(r[1] for r in rows):10d} {sum(r[2] for r in rows):8d} "
               f"{np.median(closest):9.1f} {np.percentile(closest, 5):7.1f} "
               f"{np.median(times) if times else float('nan'):9.1f}")  # fmt: skip
+    for pair in args.versus:
+        versus(results, *pair.split(","), args.family)
 
 
 if __name__ == "__main__":
