@@ -12,11 +12,11 @@ Two families, scaled to the vessel (``--family``):
   (15 m) at 7 m/s, goal (0, 450), targets of 15 m at x in [-120, 120], y in [80, 400] m,
   1-6 m/s, 90 s.
 
-- ``emergency`` (the UDWA paper's section 4.1 three-ship emergencies, varied): the
-  ``udwa-usv`` at 7 m/s toward (0, 450); by the scene's number a head-on, a crossing or an
-  overtaking encounter as in charts/scenarios/emergency-*.yaml, with a third ship that blocks
-  the starboard escape, its geometry drawn at random around the bundled one (ranges, offsets,
-  courses within a few degrees, speeds; all 15 m ships keeping course and speed), 150 s.
+- ``emergency`` (the UDWA paper's section 4.1 three-ship emergencies, varied: the generator of
+  tests/sim/emergencies.py): the ``udwa-usv`` at 7 m/s toward (0, 450); by the scene's number
+  a head-on, a crossing or an overtaking encounter as in charts/scenarios/emergency-*.yaml, with
+  a third ship that blocks the starboard escape, its geometry drawn at random around the
+  bundled one, 150 s.
 
 For each controller the script prints the collisions, the arrivals, the median and 5th
 percentile of the closest centre distance over the scenes, and the median arrival time; with
@@ -30,13 +30,27 @@ Usage: python benchmarks/bench_random_encounters.py [--scenes 60] [--family smal
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import json
 from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
 
 import numpy as np
 
 from usvtool.sim.run import Options, simulate
 from usvtool.sim.scenario import parse
+
+
+def _tests_module(name: str):
+    """A helper module of tests/sim/ (the generator the tests use too)."""
+    path = Path(__file__).resolve().parent.parent / "tests" / "sim" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+EMERGENCIES = _tests_module("emergencies")
 
 FAMILIES = {
     "small": {"vessel": "iwso-dwa-usv", "speed": 4.0, "goal": 160.0, "length": 2.5,
@@ -46,54 +60,10 @@ FAMILIES = {
 }  # fmt: skip
 
 
-EMERGENCIES = ("head-on", "crossing", "overtaking")
-
-
-def emergency(seed: int) -> tuple[str, list[dict]]:
-    """The kind and the two other ships of emergency scene ``seed`` (the own ship: (0, 0),
-    north, 7 m/s). Around the bundled scenarios (charts/scenarios/README.md): head-on, the
-    target ahead on a near-reciprocal course and a ship abeam of it on the own ship's starboard;
-    crossing, the target from starboard on a collision course and a ship following it; overtaking,
-    a slow target ahead and a ship abeam of it to starboard."""
-    rng = np.random.default_rng(seed)
-    kind = EMERGENCIES[seed % 3]
-    u = rng.uniform
-
-    def ship(name, x, y, heading, speed):
-        return {"name": name, "start": [float(x), float(y)], "heading": float(heading),
-                "speed": float(speed), "length": 15.0}  # fmt: skip
-
-    if kind == "head-on":
-        rng_m, course, speed = u(180, 300), 180 + u(-5, 5), u(3, 6)
-        off, along = u(25, 60), u(-30, 30)
-        return kind, [ship("target", u(-5, 5), rng_m, course, speed),
-                      ship("blocker", off, rng_m + along, course + u(-5, 5),
-                           speed + u(-1, 1))]  # fmt: skip
-    if kind == "crossing":  # both would be at (0, 7 tau) after tau seconds
-        tau, course, speed, gap = u(8, 16), 270 + u(-10, 10), u(3, 6), u(40, 80)
-        heading = np.radians(90 - course)  # the target's direction, mathematical
-        dx, dy = np.cos(heading), np.sin(heading)
-        x0, y0 = -dx * speed * tau, 7 * tau - dy * speed * tau
-        return kind, [ship("target", x0, y0, course, speed),
-                      ship("follower", x0 - dx * gap, y0 - dy * gap, course, speed)]
-    rng_m, speed, off = u(80, 150), u(1.5, 3), u(30, 50)
-    course = u(-5, 5)
-    return kind, [ship("target", u(-5, 5), rng_m, course, speed),
-                  ship("blocker", off, rng_m + u(-20, 20), course, speed)]
-
-
 def scene(family: str, seed: int, controller: str) -> dict:
     """Scene ``seed`` of ``family`` as a scenario mapping (usvtool.sim.scenario.parse)."""
     if family == "emergency":
-        kind, targets = emergency(seed)
-        return {
-            "name": f"random-emergency-{kind}-{seed}",
-            "sim": {"dt": 0.1, "duration": 150, "goal_tolerance": 5},
-            "own": {"start": [0, 0], "goal": [0, 450], "heading": 0, "speed": 7,
-                    "vessel": "udwa-usv"},
-            "targets": targets,
-            "controller": {"name": controller},
-        }  # fmt: skip
+        return EMERGENCIES.scene(seed, controller)
     f = FAMILIES[family]
     rng = np.random.default_rng(seed)
     targets = []
@@ -128,7 +98,7 @@ def versus(results: list[tuple], a: str, b: str, family: str) -> None:
     closest = {(r[0], r[1]): r[4] for r in results}
     collided = {(r[0], r[1]) for r in results if r[2]}
     seeds = sorted({r[1] for r in results})
-    kinds = {s: emergency(s)[0] if family == "emergency" else "all" for s in seeds}
+    kinds = {s: EMERGENCIES.kind(s) if family == "emergency" else "all" for s in seeds}
     for kind in sorted(set(kinds.values())):
         pairs = [(closest[a, s], closest[b, s]) for s in seeds if kinds[s] == kind]
         pairs = [(x, y) for x, y in pairs if x is not None and y is not None]
