@@ -7,8 +7,8 @@ headings ``psi`` are mathematical radians, counter-clockwise from +x (east), and
 speeds in m/s and angular figures in degrees (deg/s, deg/s²): :func:`vessel_from` converts them
 once. Equation numbers are those of the IWSO-DWA paper (``/work/shared/papers/000_*``).
 
-Everything is vectorised: :func:`rollout` moves ``N`` velocity samples over a horizon of
-``steps`` control periods in one NumPy expression.
+Everything is vectorised: :func:`arcs` (and :func:`ramps`) move every velocity sample of the
+window's grid over a horizon of ``steps`` periods in a few broadcast NumPy expressions.
 
 >>> ship = preset("udwa-usv")
 >>> ship.max_speed, round(math.degrees(ship.max_yaw_rate), 9)
