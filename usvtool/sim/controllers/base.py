@@ -305,7 +305,7 @@ class Controller(ABC):
         inv_b2 = 1 / np.square(colregs.DOMAIN_WIDTH_FACTOR * vessel.length / 2)
         # the domain, a soft rule, is looked at every DOMAIN_EVERY seconds of the horizon
         rows = slice(None, None, max(1, int(round(DOMAIN_EVERY / p["step"]))))
-        u = None
+        ux = uy = None  # each period's direction per sample, made when a domain test needs it
         for j, length in enumerate(targets.length):
             dx, dy = ahead[j, :, 0, None] - x, ahead[j, :, 1, None] - y
             d2 = np.square(dx)
@@ -320,7 +320,7 @@ class Controller(ABC):
             # the target in the own ship's domain, along and across her heading: never farther
             # than a (the margin keeps the skip clear of round-off in the ellipse's terms)
             if p["domain"] and nearest2 <= a * a * (1 + 1e-9):
-                if u is None:  # (T', N): each period's direction, per sample
+                if ux is None:  # (T', N)
                     u = np.tile(fan.u[rows], speeds.size)
                     ux, uy = np.ascontiguousarray(u.real), np.ascontiguousarray(u.imag)
                 # along^2 / a^2 + across^2 / b^2, with across^2 = d2 - along^2
