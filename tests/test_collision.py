@@ -1,5 +1,6 @@
-"""The exact collision check (:mod:`usvtool.collision`) against an independent rasteriser
-(the shapely reference of tests/conftest.py), and the per-point and per-route checks."""
+"""The exact collision check (:mod:`usvtool.collision` and its compiled kernels) against an
+independent rasteriser (the shapely reference of tests/conftest.py), and the per-point and
+per-route checks."""
 
 from __future__ import annotations
 
@@ -43,6 +44,27 @@ def test_collisions_agree_with_an_independent_rasteriser(density, samples, refer
     assert 0.05 < expected.mean() < 0.95
     assert np.array_equal(chk.collides(a, b), expected)
     assert np.array_equal(chk.touches(a, b), expected)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_the_planners_line_of_sight_agrees_with_an_independent_rasteriser(seed, reference):
+    """collision_kernels.touches, one segment at a time as the any-angle search calls it, on
+    random segments and on segments between grid points, some moved 1e-5 off them (the
+    any-angle vertices): there corner passes decide."""
+    from usvtool.collision_kernels import touches
+
+    rng = np.random.default_rng(seed)
+    h, w = rng.integers(2, 25, 2)
+    blocked = rng.random((h, w)) < rng.uniform(0.02, 0.2)
+    prefix = SegmentChecker(blocked)._prefix
+    k = 400
+    a, b = rng.uniform(0, 1, (2, k, 2)) * [w, h]
+    a[: k // 2] = rng.integers(0, [w + 1, h + 1], (k // 2, 2))
+    b[: k // 2] = rng.integers(0, [w + 1, h + 1], (k // 2, 2))
+    a[: k // 4] = np.clip(a[: k // 4] + rng.choice([-1e-5, 1e-5], (k // 4, 2)), 0, [w, h])
+    expected = reference(blocked).segments_hit(a, b)
+    assert 0.02 < expected.mean() < 0.98
+    assert [touches(prefix, w + 2, *a[i], *b[i]) for i in range(k)] == expected.tolist()
 
 
 def test_long_segments_near_obstacles_agree(reference):
@@ -130,8 +152,13 @@ def test_length_inside_grows_linearly_to_the_grown_corner(one_cell):
 
 
 def test_segments_must_lie_inside_the_grid():
+    chk = SegmentChecker(np.zeros((5, 5), bool))
     with pytest.raises(ValueError, match="inside the grid"):
-        SegmentChecker(np.zeros((5, 5), bool)).collides([[0, 0]], [[6, 1]])
+        chk.collides([[0, 0]], [[6, 1]])
+    # guide does not check its arrays first, but its compiled filter refuses a sample off the
+    # tables rather than read past them
+    with pytest.raises(ValueError, match="inside the grid"):
+        chk.guide(np.array([[0.5, 0.5]]), np.array([[0.5, 12.0]]))
 
 
 def test_a_route_in_map_metres_is_checked_on_the_grid_cells(one_cell):

@@ -39,7 +39,10 @@ The check (:meth:`SegmentChecker.collides`) is exact under that definition and f
    edges ``x = c - EPS`` and ``c + 1 + EPS``, clipped to its ends) and touches exactly the cells
    of rows ``ceil(y_lo - 1 - EPS) … floor(y_hi + EPS)`` of that column: its supercover, corners
    included. Whether any of them is blocked is one difference of running counts down the
-   column, so an interval costs one step per column it crosses, vectorised over all intervals.
+   column, so an interval costs one step per column it crosses.
+
+Both steps are compiled (:mod:`usvtool.collision_kernels`): a call checks tens of short
+segments, and as NumPy array operations its time went on the calls' overheads.
 
 The result is the exact answer for the definition above, with no sampling step that can step
 over a one-cell obstacle: sampling only ever proves freedom (step 1) or collision (a sample in a
@@ -91,6 +94,8 @@ class SegmentChecker:
     def __init__(self, blocked: np.ndarray, samples: int | None = None, pad: float = 0.0):
         if not (pad == 0.0 or EPS < pad < 0.5):
             raise ValueError("pad must be 0 or in (1e-9, 0.5)")
+        from usvtool import collision_kernels  # noqa: F401  (loaded here, before any timing)
+
         self.pad = float(pad)
         blocked = np.asarray(blocked, bool)
         self.height, self.width = h, w = blocked.shape
@@ -99,7 +104,6 @@ class SegmentChecker:
         samples = self.samples
         t = np.linspace(0.0, 1.0, samples)
         self._basis = np.vstack([1.0 - t, t])
-        self._ones = np.ones(samples)
         self._blocked = blocked.copy() if pad else None  # for _grown
         self._clear = _clearance(blocked)
         # Column counts padded so that rows -1 … h + 1 and columns -1 … w (outside the grid,
@@ -115,14 +119,14 @@ class SegmentChecker:
         """The tables of the squares grown by ``pad`` (only :meth:`guide` and :meth:`inside`
         with ``pad`` > 0 read them), laid out as ``_prefix``: ``below``, the length of column
         c's grown squares below y = r; ``band``, in row r, whether [r, r + pad), [r + pad, r + 1
-        - pad], (r + 1 - pad, r + 1] are in them."""
+        - pad], (r + 1 - pad, r + 1] are in them (1.0 or 0.0)."""
         d, w = self.pad, self.width
         cells = np.pad(self._blocked, ((2, 3), (1, 1)))  # rows -2 … h + 2
         mid = cells[1:-1]
         band = np.stack([cells[:-2] | mid, mid, mid | cells[2:]])
         per_row = d * band[0] + (1.0 - 2.0 * d) * band[1] + d * band[2]
         below = np.cumsum(np.vstack([np.zeros((1, w + 2)), per_row[:-1]]), axis=0).ravel()
-        return below, band.reshape(3, -1)
+        return below, band.reshape(3, -1).astype(float)
 
     def collides(self, a, b) -> np.ndarray:
         """Whether each segment ``a[i] → b[i]`` (arrays ``(k, 2)``) touches a blocked cell."""
@@ -150,43 +154,31 @@ class SegmentChecker:
         >>> chk.inside([[0.0, 0.5], [0.0, 0.0]], [[2.0, 0.5], [2.0, 2.0]]).tolist()
         [1.0, 2.8284271247461903]
         """
-        a, b = self._segments(a, b)
-        return self._traverse(a[:, 0], a[:, 1], b[:, 0], b[:, 1], self.pad)[1]
+        return self._traverse(*self._segments(a, b), self.pad)[1]
 
     def touches(self, a, b) -> np.ndarray:
         """Exact strip traversal of whole segments, without the filter (step 2 alone)."""
-        a, b = self._segments(a, b)
-        return self._traverse(a[:, 0], a[:, 1], b[:, 0], b[:, 1], None)[0]
+        return self._traverse(*self._segments(a, b), None)[0]
 
     def _check(self, a, b, length, pad: float | None) -> tuple[np.ndarray, np.ndarray | None]:
         """The filter, then the traversal of the intervals it leaves (module docstring); the
         inside lengths against the squares grown by ``pad``, unless it is None."""
-        guide = pad is not None
+        from usvtool import collision_kernels
+
         k = len(a)
         if length is None:
             length = np.hypot(b[:, 0] - a[:, 0], b[:, 1] - a[:, 1])
         # samples (1 - t) a + t b: x of the k segments then y, as one small matrix product
         ends = np.concatenate([a, b], axis=1).reshape(k, 2, 2).transpose(2, 0, 1)
         xy = ends.reshape(2 * k, 2) @ self._basis
-        x, y = xy[:k], xy[k:]
-        cell = y.astype(np.intp)  # truncation: coordinates are >= 0 (up to rounding)
-        cell *= self.width + 1
-        cell += x.astype(np.intp)
-        r = self._clear.take(cell)
-        n_in = (r < 0).astype(float) @ self._ones
-        hit = n_in > 0
+        d = pad or 0.0
         # a point farther than pad √2 from every blocked square is outside the grown ones
-        margin = _MARGIN + 2 * _SQRT2 * (pad or 0.0)
-        unsure = r[:, :-1] + r[:, 1:] <= (length / (self.samples - 1) + margin)[:, None]
-        unsure[hit] = False
-        inside = n_in * length / self.samples if guide else None
-        i, j = np.divmod(np.flatnonzero(unsure), self.samples - 1)
-        if i.size:
-            touch, within = self._traverse(x[i, j], y[i, j], x[i, j + 1], y[i, j + 1], pad)
-            hit[i[touch]] = True
-            if guide:
-                inside += np.bincount(i, within, k)
-        return hit, inside
+        margin = _MARGIN + 2 * _SQRT2 * d
+        hit, inside = collision_kernels.check(
+            xy[:k], xy[k:], np.ascontiguousarray(length, float), self._clear, self.samples,
+            margin, d, pad is not None, self._prefix, self.width + 2, *self._tables(d),
+        )  # fmt: skip
+        return hit, inside if pad is not None else None
 
     def _segments(self, a, b) -> tuple[np.ndarray, np.ndarray]:
         a = np.asarray(a, float).reshape(-1, 2)
@@ -195,104 +187,21 @@ class SegmentChecker:
         extent = np.array([self.width, self.height]) + 1e-9
         if ends.size and (ends.min() < -1e-9 or (ends.max(axis=0) > extent).any()):
             raise ValueError("segments must lie inside the grid extent")
-        return a, b
+        return np.ascontiguousarray(a), np.ascontiguousarray(b)
 
-    def _traverse(
-        self, x0, y0, x1, y1, pad: float | None
-    ) -> tuple[np.ndarray, np.ndarray | None]:
-        """``(touches, inside)`` of each segment, column strip by column strip.
+    def _traverse(self, a, b, pad: float | None) -> tuple[np.ndarray, np.ndarray]:
+        """``(touches, inside)`` of whole segments (step 2 alone; ``inside`` is 0 if ``pad`` is
+        None): :func:`usvtool.collision_kernels.strips`."""
+        from usvtool import collision_kernels
 
-        ``touches``: whether the segment touches a blocked square enlarged by ``g = max(pad,
-        EPS)`` on every side (EPS, exact, when ``pad`` is 0 or None). Segments are oriented west
-        to east, with slope ``k = dy/dx`` (0 when ``dx = 0``). In the strip of column ``c`` a
-        segment spans ``y`` from ``y0 + k·max(c - g - x0, 0)`` to ``y1 - k·max(x1 - c - 1 - g,
-        0)``: its enlarged strip clipped to its ends. A north-south segment (``k = 0``) thus
-        spans all of ``[y0, y1]``. The rows of that span (the supercover) are tested against the
-        running counts.
-
-        ``inside`` (None when ``pad`` is None; else ``pad`` is 0 or the checker's): in the strip
-        ``[c - pad, c + 1 + pad]`` the piece spans ``y_lo … y_hi`` and is ``w √(1 + k²)`` long
-        (``w`` its width); with ``G(y)`` the grown length of the column below ``y`` (``below``
-        at ``⌊y⌋`` plus the part of row ``⌊y⌋``'s bands below ``y``; with ``pad`` 0 the running
-        count plus ``blocked(⌊y⌋) (y - ⌊y⌋)``) its share inside is ``(G(y_hi) - G(y_lo)) / (y_hi
-        - y_lo)``, or the band holding ``y_lo`` when the piece is level.
-        """
         d = pad or 0.0
-        g = max(d, EPS)
-        back = x1 < x0
-        x0, y0, x1, y1 = np.where(back, (x1, y1, x0, y0), (x0, y0, x1, y1))
-        dx = x1 - x0
-        slope = np.divide(y1 - y0, dx, out=np.zeros_like(dx), where=dx > 0)
-        first = np.ceil(x0 - (1 + g))  # columns first … floor(x1 + g), -1 … width
-        counts = (np.floor(x1 + g) - first + 1).astype(np.intp)
-        starts = np.cumsum(counts) - counts
-        shift = first - starts  # column c = j + shift for the j-th strip overall
-        stride = self.width + 2
-        strip = np.repeat(np.arange(counts.size), counts)  # the segment of each strip
-        y0, y1, slope, to_c, dx, base = (
-            v.take(strip) for v in (y0, y1, slope, shift - x0, dx, shift + (1 + stride))
+        return collision_kernels.traverse(
+            a, b, d, pad is not None, self._prefix, self.width + 2, *self._tables(d)
         )
-        j = np.arange(y0.size)
-        cx = j + to_c  # c - x0
-        ya = y0 + slope * np.minimum(np.maximum(cx - g, 0.0), dx)
-        yb = y1 - slope * np.minimum(np.maximum(dx - (1 + g) - cx, 0.0), dx)
-        lo, hi = np.minimum(ya, yb), np.maximum(ya, yb)
-        r0 = np.ceil(lo - (1 + g))  # rows r0 … r1, -1 … height
-        r1 = np.floor(hi + g)
-        base += j  # c + 1 + stride: table[r * stride + base] is about row r, column c
-        above = self._prefix.take((r0 * stride + base).astype(np.intp))
-        through = self._prefix.take(((r1 + 1) * stride + base).astype(np.intp))
-        touches = np.logical_or.reduceat(through > above, starts)
-        if pad is None:
-            return touches, None
 
-        # only the segments touching the (grown) squares have a length inside them
-        take = np.flatnonzero(touches.take(strip))
-        if not take.size:
-            return touches, np.zeros(touches.size)
-        y0, y1, slope, dx, cx, lo, hi, base = (
-            v.take(take) for v in (y0, y1, slope, dx, cx, lo, hi, base)
-        )
-        if d != g:  # pad = 0: the exact strip [c, c + 1], not the EPS-enlarged one
-            ya = y0 + slope * np.minimum(np.maximum(cx, 0.0), dx)
-            yb = y1 - slope * np.minimum(np.maximum(dx - 1.0 - cx, 0.0), dx)
-            lo, hi = np.minimum(ya, yb), np.maximum(ya, yb)
-        ys = np.concatenate([lo, hi])
-        row = np.floor(ys)
-        f = ys - row  # position in the row, [0, 1)
-        at = (row * stride + np.concatenate([base, base])).astype(np.intp)
-        if d:
-            below, bands = self._grown
-            lower, middle, upper = bands.take(at, axis=1)
-            grown = below.take(at) + (
-                lower * np.minimum(f, d)
-                + middle * np.minimum(np.maximum(f - d, 0.0), 1.0 - 2.0 * d)
-                + upper * np.maximum(f - (1.0 - d), 0.0)
-            )
-        else:  # the squares themselves: the running counts
-            grown = self._prefix.take(at)
-            middle = self._prefix.take(at + stride) - grown
-            grown = grown + middle * f
-        # share × piece = (G(y_hi) - G(y_lo)) · (length per unit of y: √(1 + k²) / |k|, 1 if
-        # north-south); a level piece instead takes its width √(1 + k²) times its band
-        n = lo.size
-        rise = hi - lo
-        steep = slope != 0
-        per_y = np.divide(np.hypot(1.0, slope), np.abs(slope), out=np.ones_like(slope), where=steep)
-        within = (grown[n:] - grown[:n]) * per_y
-        flat = np.flatnonzero(rise <= 1e-12)
-        if flat.size:
-            fl, cf, dxf = f[flat], cx[flat], dx[flat]
-            if d:
-                top = np.where(fl > 1 - d, upper[flat], middle[flat])
-                band = np.where(fl < d, lower[flat], top)
-            else:  # on a row edge: outside the open squares
-                band = middle[flat] * (fl != 0.0)
-            width = np.maximum(np.minimum(dxf, cf + (1.0 + d)) - np.maximum(cf - d, 0.0), 0.0)
-            within[flat] = np.where(dxf > 0, width * np.hypot(1.0, slope[flat]), 0.0) * band
-        if not dx.all():  # a north-south piece counts in the strips whose interior holds it
-            within *= (dx > 0) | ((cx < d) & (cx > -1.0 - d))
-        return touches, np.bincount(strip.take(take), within, touches.size)
+    def _tables(self, d: float) -> tuple[np.ndarray, np.ndarray]:
+        """The grown squares' tables for the kernels, empty when ``d`` is 0 (not read)."""
+        return self._grown if d else (np.empty(0), np.empty((3, 0)))
 
 
 def _clearance(blocked: np.ndarray) -> np.ndarray:

@@ -1,5 +1,5 @@
-"""The exact planners' compiled kernels (usvtool/plan/gridsearch.py): the line-of-sight kernel
-against the checker it mirrors, and the any-angle heuristic against true distances."""
+"""The exact planners' compiled kernels (usvtool/plan/gridsearch.py): the any-angle heuristic
+against true distances (their line of sight is tested in tests/test_collision.py)."""
 
 from __future__ import annotations
 
@@ -7,25 +7,7 @@ import numpy as np
 import pytest
 from scipy.sparse.csgraph import dijkstra
 
-from usvtool.collision import SegmentChecker
-from usvtool.plan import exact, gridsearch
-
-
-@pytest.mark.parametrize("seed", range(6))
-def test_touches_agrees_with_the_checker(seed):
-    """Random segments, and segments between grid points (some moved 1e-5 off them: the
-    any-angle vertices), where rounding decides: the same answer as SegmentChecker.touches."""
-    rng = np.random.default_rng(seed)
-    h, w = rng.integers(2, 25, 2)
-    blocked = rng.random((h, w)) < rng.uniform(0.05, 0.5)
-    chk = SegmentChecker(blocked)
-    k = 400
-    a, b = rng.uniform(0, 1, (2, k, 2)) * [w, h]
-    a[: k // 2] = rng.integers(0, [w + 1, h + 1], (k // 2, 2))
-    b[: k // 2] = rng.integers(0, [w + 1, h + 1], (k // 2, 2))
-    a[: k // 4] = np.clip(a[: k // 4] + rng.choice([-1e-5, 1e-5], (k // 4, 2)), 0, [w, h])
-    mine = [gridsearch.touches(chk._prefix, w + 2, *a[i], *b[i]) for i in range(k)]
-    assert mine == chk.touches(a, b).tolist()
+from usvtool.plan import exact
 
 
 def visibility_distances(blocked, points, goal, reference) -> np.ndarray:

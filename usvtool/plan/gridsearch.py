@@ -21,9 +21,10 @@ cell's eight neighbours are at fixed index offsets and need no bounds test.
     optimum, as with a heap, at O(1) per queue operation (a binary heap of a few 10⁵ entries is
     about 3 times slower here). Memory: a float64 ``g``, an int32 parent and a uint8 state per
     cell, allocated untouched (``np.empty``, ``np.zeros``), so only the explored rows cost pages.
-Any-angle route (:func:`point_bounds`, :func:`visibility_path`, :func:`touches`)
-    The heuristic's grid-point search, the lazy visibility-graph A* and its exact line of sight,
-    for :func:`usvtool.plan.exact.any_angle` (whose docstring gives the method).
+Any-angle route (:func:`point_bounds`, :func:`visibility_path`)
+    The heuristic's grid-point search and the lazy visibility-graph A* (its exact line of sight
+    is :func:`usvtool.collision_kernels.touches`), for :func:`usvtool.plan.exact.any_angle`
+    (whose docstring gives the method).
 """
 
 from __future__ import annotations
@@ -32,6 +33,8 @@ import math
 
 import numpy as np
 from numba import njit
+
+from usvtool.collision_kernels import touches
 
 SQRT2 = math.sqrt(2.0)
 WIDTH = 1.0 / 64  # bucket width (cells of path length)
@@ -256,30 +259,6 @@ def point_bounds(
 
 
 @njit(cache=True, nogil=True)
-def touches(prefix: np.ndarray, stride: int, x0: float, y0: float, x1: float, y1: float) -> bool:
-    """Whether the segment touches a blocked square grown by 1e-9 (:mod:`usvtool.collision`'s
-    definition): its exact column-strip traversal (``SegmentChecker._traverse``) for one
-    segment, stopping at the first touched column; ``prefix`` and ``stride`` are the checker's
-    column counts and their row length."""
-    eps = 1e-9
-    if x1 < x0:
-        x0, y0, x1, y1 = x1, y1, x0, y0
-    dx = x1 - x0
-    slope = (y1 - y0) / dx if dx > 0 else 0.0
-    for c in range(int(math.ceil(x0 - (1 + eps))), int(math.floor(x1 + eps)) + 1):
-        cx = c - x0
-        ya = y0 + slope * min(max(cx - eps, 0.0), dx)
-        yb = y1 - slope * min(max(dx - (1 + eps) - cx, 0.0), dx)
-        lo, hi = min(ya, yb), max(ya, yb)
-        r0 = int(math.ceil(lo - (1 + eps)))
-        r1 = int(math.floor(hi + eps))
-        base = c + 1 + stride
-        if prefix[(r1 + 1) * stride + base] > prefix[r0 * stride + base]:
-            return True
-    return False
-
-
-@njit(cache=True, nogil=True)
 def visibility_path(
     pos: np.ndarray, at: np.ndarray, kind: np.ndarray, h: np.ndarray, free: np.ndarray,
     prefix: np.ndarray, stride: int, bound: float,
@@ -290,9 +269,9 @@ def visibility_path(
     and not pruned by ``g + |uv| + h(v) ≥`` the goal's ``g`` or ``bound``, then tests its line
     of sight: first whether the points at 1/2, 1/4 or 3/4 of it lie in a blocked cell (of the
     padded grid ``free``, :func:`cell_path`'s layout; a certain collision, decided in O(1)),
-    then exactly (:func:`touches`). ``h`` must be admissible; a vertex is reopened when its ``g``
-    improves, so it need not be consistent. Returns the vertex indices 0 … 1 of the shortest
-    route if it is shorter than ``bound``, else an empty array."""
+    then exactly (:func:`~usvtool.collision_kernels.touches`). ``h`` must be admissible; a
+    vertex is reopened when its ``g`` improves, so it need not be consistent. Returns the vertex
+    indices 0 … 1 of the shortest route if it is shorter than ``bound``, else an empty array."""
     n = pos.shape[0]
     px, py, cx, cy = pos[:, 0].copy(), pos[:, 1].copy(), at[:, 0].copy(), at[:, 1].copy()
     g = np.full(n, np.inf)
