@@ -18,7 +18,6 @@ Usage: python benchmarks/bench_exact.py [--repeat 3] [--base HEAD] [--skip-old-a
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import subprocess
 import sys
 import tempfile
@@ -30,6 +29,7 @@ import numpy as np
 from usvtool.grid import read_grid
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "benchmarks"))
 BUILD = ROOT / "build"
 US4 = ROOT / "charts" / "noaa" / "US4MD81M" / "US4MD81M.000"
 # map metres (EPSG:32618) of cell centres; lon/lat in the comments
@@ -41,26 +41,13 @@ US4_PAIRS = {
 }
 
 
-def load_module(name: str, source: str, tmp: Path):
-    path = tmp / f"{name}.py"
-    path.write_text(source)
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    spec.loader.exec_module(module)
-    return module
-
-
 def old_modules(base: str, tmp: Path):
     """The collision and exact modules of git revision ``base``, the old exact importing the
     old collision."""
-    def show(path: str) -> str:
-        return subprocess.run(
-            ["git", "show", f"{base}:{path}"], cwd=ROOT, check=True, capture_output=True, text=True
-        ).stdout
+    from revision import load_module, source_at
 
-    collision = load_module("old_collision", show("usvtool/collision.py"), tmp)
-    exact_src = show("usvtool/plan/exact.py").replace(
+    collision = load_module("old_collision", source_at(base, "usvtool/collision.py"), tmp)
+    exact_src = source_at(base, "usvtool/plan/exact.py").replace(
         "from usvtool.collision import", "from old_collision import"
     )
     return collision, load_module("old_exact", exact_src, tmp)
@@ -100,7 +87,6 @@ def cases(which: set[str]):
         for name in ("env1", "env2"):
             yield name, ROOT / "charts" / f"{name}.tif", ((10.0, 10.0), (490.0, 490.0))
     if "bundled" in which:
-        sys.path.insert(0, str(ROOT / "benchmarks"))
         from bench_charts import bundled_ends, map_points
 
         for chart, ends in bundled_ends().items():

@@ -5,26 +5,36 @@ the collision-free rate, and over the collision-free routes the median length re
 any-angle optimum, the median turns, mot and planning time; the paper's Table 2 figures are
 printed beside (its environments are not ours: its Figure 6 is not in the text, so only the
 orders of magnitude compare). Then the timings: the cost of one population of 50 routes, IWSO
-with 50 agents x 300 iterations, the exact planners.
+with 50 agents x 300 iterations, the exact planners. With ``--base REV`` the first two also with
+the collision check of git revision REV (the plain way: ``--base da8affc``, the NumPy check
+before it was compiled), alternating the two per seed in one process (this machine's speed
+varies by up to 2 times between processes), and how many IWSO routes are the same bit for bit.
 
 Usage: python benchmarks/bench_plan.py [--seeds 25] [--algos iwso,iwso+s] [--envs env1,env2]
-       [--pop 50] [--iters 300] [--waypoints 5]
+       [--pop 50] [--iters 300] [--waypoints 5] [--base da8affc] [--timings-only]
 """
 
 from __future__ import annotations
 
 import argparse
+import sys
+import tempfile
 import time
 from pathlib import Path
+from unittest import mock
 
 import numpy as np
 
+from usvtool.collision import SegmentChecker
 from usvtool.grid import read_grid
+from usvtool.plan import problem as problem_module
 from usvtool.plan.optimizers import OPTIMIZERS
 from usvtool.plan.planner import EXACT, PlanOptions, plan_route
 from usvtool.plan.problem import PathProblem
 
-CHARTS = Path(__file__).resolve().parent.parent / "charts"
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "benchmarks"))
+CHARTS = ROOT / "charts"
 START, GOAL = (10.0, 10.0), (490.0, 490.0)
 # IWSO paper, Table 2: length (m), steering cost, mot, time (s)
 PAPER = {
@@ -85,14 +95,34 @@ def quality(env: str, algos: list[str], args) -> None:
 
 def timings(args) -> None:
     grid = read_grid(CHARTS / "env1.tif")
-    print(f"\nTimings on env1 ({grid.width} x {grid.height} cells), medians:")
-    problem = PathProblem(grid, START, GOAL, waypoints=args.waypoints)
-    X = np.random.default_rng(0).uniform(problem.lower, problem.upper, (50, problem.dim))
-    per_call = median_time(lambda: problem(X), 300)
-    print(f"  cost of 50 random routes ({args.waypoints} waypoints): {per_call * 1e3:.3f} ms")
-    runs = [plan_route(grid, START, GOAL, PlanOptions("iwso", 50, 300, seed, args.waypoints)).route
-            for seed in range(max(args.seeds, 5))]  # fmt: skip
-    print(f"  IWSO 50 x 300: {np.median([r.planning_time_s for r in runs]):.3f} s")
+    checkers = {"now": SegmentChecker}
+    if args.base:  # the plain way: an earlier revision's check (NumPy before 6ce2f5b)
+        from revision import load_module, source_at
+
+        source = source_at(args.base, "usvtool/collision.py")
+        checkers[args.base] = load_module("old_collision", source, Path(tempfile.mkdtemp()))
+        checkers[args.base] = checkers[args.base].SegmentChecker
+    print(f"\nTimings on env1 ({grid.width} x {grid.height} cells), medians"
+          + (f", alternating the check of {args.base} and the current one:" if args.base else ":"))
+    cost, seconds, routes = ({name: [] for name in checkers} for _ in range(3))
+    for seed in range(max(args.seeds, 5)):  # alternating: both see the same minutes
+        for name, cls in checkers.items():
+            with mock.patch.object(problem_module, "SegmentChecker", cls):
+                problem = PathProblem(grid, START, GOAL, waypoints=args.waypoints)
+                X = np.random.default_rng(seed).uniform(problem.lower, problem.upper,
+                                                        (50, problem.dim))  # fmt: skip
+                cost[name].append(median_time(lambda p=problem, X=X: p(X), 30))
+                options = PlanOptions("iwso", 50, 300, seed, args.waypoints)
+                route = plan_route(grid, START, GOAL, options).route
+            seconds[name].append(route.planning_time_s)
+            routes[name].append(route.points)
+    for name in checkers:
+        print(f"  [{name}] cost of 50 random routes ({args.waypoints} waypoints): "
+              f"{np.median(cost[name]) * 1e3:.3f} ms; IWSO 50 x 300: "
+              f"{np.median(seconds[name]):.3f} s (best {min(seconds[name]):.3f} s)")  # fmt: skip
+    if args.base:
+        same = sum(np.array_equal(a, b) for a, b in zip(*routes.values(), strict=True))
+        print(f"  the same IWSO route bit for bit in {same} of {len(routes['now'])} seeds")
     for env in ("env1", "env2"):
         g = read_grid(CHARTS / f"{env}.tif")
         t_any = median_time(lambda g=g: plan_route(g, START, GOAL, PlanOptions("anyangle")), 7)
@@ -108,9 +138,12 @@ def main() -> None:
     ap.add_argument("--pop", type=int, default=50)
     ap.add_argument("--iters", type=int, default=300)
     ap.add_argument("--waypoints", type=int, default=3)
+    ap.add_argument("--base", help="also time the collision check of this git revision")
+    ap.add_argument("--timings-only", action="store_true", help="skip the quality tables")
     args = ap.parse_args()
-    for env in args.envs.split(","):
-        quality(env, args.algos.split(","), args)
+    if not args.timings_only:
+        for env in args.envs.split(","):
+            quality(env, args.algos.split(","), args)
     timings(args)
 
 
