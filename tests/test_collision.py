@@ -134,6 +134,22 @@ def test_length_inside_agrees_with_shapely(pad):
         assert chk.inside(a, b) == pytest.approx(expected, rel=1e-6, abs=1e-7)
 
 
+@pytest.mark.parametrize("pad", [0.0, PAD])
+def test_a_segments_answer_does_not_depend_on_the_rest_of_the_call(pad):
+    """A route's cost must not depend on the other routes of its population: each segment's
+    touches and length inside are the same, to the bit, checked alone or among 400 others
+    (lattice-aligned ones included, where rounding decides)."""
+    rng = np.random.default_rng(11)
+    blocked = rng.random((30, 40)) < 0.15
+    chk = SegmentChecker(blocked, pad=pad or 0.0)
+    a, b = random_segments(rng, 200, 40, 30)
+    together = chk.guide(a, b, exact=pad == 0.0)
+    alone = [chk.guide(a[i : i + 1], b[i : i + 1], exact=pad == 0.0) for i in range(len(a))]
+    assert together[0].tolist() == [bool(t[0][0]) for t in alone]
+    assert together[1].tolist() == [float(t[1][0]) for t in alone]
+    assert 0.05 < together[0].mean() < 0.95
+
+
 def test_length_inside_grows_linearly_to_the_grown_corner(one_cell):
     """The segments x + y = 12 + u pass the corner (6, 6) of cell x 5..6, y 5..6 at u = 0, and
     the grown square's corner (6 + pad, 6 + pad) at u = 2 pad: they cut a triangle of legs
