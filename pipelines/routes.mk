@@ -6,7 +6,7 @@
 # collision_free false in the table), not a failed target (plan would exit 3 for it).
 PATHS_DIR := build/paths
 # the plan stage's code (CLI_SRC and contracts from charts.mk): a chart-only change re-plans nothing
-PLAN_CONTRACTS := grid route collision metrics geodesy atomic errors
+PLAN_CONTRACTS := grid route collision collision_kernels metrics geodesy atomic errors
 PLAN_SRC := $(shell find usvtool/plan -name '*.py') usvtool/cli/plan.py $(CLI_SRC) \
 	$(call contracts,$(PLAN_CONTRACTS))
 
