@@ -165,9 +165,9 @@ def check(
 
     ``x``, ``y``: ``(k, samples)`` sample points of k segments of lengths ``length``; ``clear``:
     the filter's table (rows of width + 1, -1 on blocked cells); ``margin`` the extra clearance
-    the filter demands. Returns ``hit`` and, if ``want_inside``, the length inside: the share of
-    samples in blocked cells times the length for a segment with such a sample, else the sum
-    over its intervals."""
+    the filter demands. Returns ``hit`` and, if ``want_inside``, the length inside (else zeros):
+    the share of samples in blocked cells times the length for a segment with such a sample,
+    else the sum over its intervals."""
     k = x.shape[0]
     row = stride - 1
     hit = np.zeros(k, np.bool_)
@@ -183,7 +183,8 @@ def check(
             n_in += r[j] < 0
         if n_in:
             hit[i] = True
-            inside[i] = n_in * length[i] / samples
+            if want_inside:
+                inside[i] = n_in * length[i] / samples
             continue
         spacing = length[i] / (samples - 1) + margin
         total = 0.0
