@@ -112,13 +112,13 @@ def load(name: str):
     sys.exit(f"bench_fewest_links: no grid for {name!r}")
 
 
-def analyse(name: str, spacing: float, bound: float) -> None:
-    grid, start, goal = load(name)
-    checker = SegmentChecker(grid.blocked)
-    exact = plan_route(grid, start, goal, PlanOptions("anyangle")).route
-    route = np.column_stack(grid.to_cell_coords(*np.asarray(exact.points, float).T))
+def fewest_links(checker: SegmentChecker, route, spacing: float, bound: float):
+    """``(lengths, routes, size)``: for 1 … ``len(route) - 1`` links, the shortest free route
+    (cell coordinates) from the route's start to its end over the lattice (module docstring),
+    and its length, or inf and None when none is within ``bound``; ``size`` the lattice's
+    number of points."""
+    route = np.asarray(route, float)
     length = float(metrics.path_length(route))
-    links = len(route) - 1
     s, g = route[0], route[-1]
     xs = np.arange(spacing / 2, checker.width, spacing)
     ys = np.arange(spacing / 2, checker.height, spacing)
@@ -127,19 +127,31 @@ def analyse(name: str, spacing: float, bound: float) -> None:
     lattice = lattice[inside]
     lattice = lattice[~checker.collides(lattice, lattice)]  # on no blocked cell
     points = np.ascontiguousarray(np.vstack([s, g, lattice]))
-    t0 = time.perf_counter()
     found, parents = shortest_by_links(
-        points, (1 + bound) * length, links, checker._prefix, checker.width + 2
+        points, (1 + bound) * length, len(route) - 1, checker._prefix, checker.width + 2
     )
+    routes = [route_of(points, parents, k) if np.isfinite(found[k]) else None
+              for k in range(len(found))]  # fmt: skip
+    return found, routes, len(lattice)
+
+
+def analyse(name: str, spacing: float, bound: float) -> None:
+    grid, start, goal = load(name)
+    checker = SegmentChecker(grid.blocked)
+    exact = plan_route(grid, start, goal, PlanOptions("anyangle")).route
+    route = np.column_stack(grid.to_cell_coords(*np.asarray(exact.points, float).T))
+    length = float(metrics.path_length(route))
+    t0 = time.perf_counter()
+    found, routes, size = fewest_links(checker, route, spacing, bound)
     seconds = time.perf_counter() - t0
-    print(f"\n{name}: exact route {length:.3f} cells, {links} links, {int(exact.turns)} turns, "
-          f"mot {exact.mot:.3f}; {len(lattice)} lattice points every {spacing} cell within "
-          f"{bound:.0%} ({seconds:.1f} s)")  # fmt: skip
-    for k in range(1, links + 1):
-        if not np.isfinite(found[k]):
+    print(f"\n{name}: exact route {length:.3f} cells, {len(route) - 1} links, "
+          f"{int(exact.turns)} turns, mot {exact.mot:.3f}; {size} lattice points every "
+          f"{spacing} cell within {bound:.0%} ({seconds:.1f} s)")  # fmt: skip
+    for k in range(1, len(route)):
+        r = routes[k]
+        if r is None:
             print(f"  {k} links: none within {bound:.0%}")
             continue
-        r = route_of(points, parents, k)
         print(f"  {k} links: {found[k] / length:.4f} x the optimum, {int(metrics.turns(r))} "
               f"turns, mot {float(metrics.mot(r)):.3f}: "
               + " ".join(f"({x:.2f}, {y:.2f})" for x, y in r))  # fmt: skip
