@@ -45,6 +45,16 @@ def map_points(grid, ends: Ends) -> tuple[tuple[float, float], tuple[float, floa
     return start, goal
 
 
+def bundled_case(name: str):
+    """``(grid, start, goal)`` of a bundled chart's route (its grid from charts/, else from
+    build/grids/ where `make report` writes it), or None if there is no such grid."""
+    for folder in (ROOT / "charts", GRIDS):
+        if (folder / f"{name}.tif").exists():
+            grid = read_grid(folder / f"{name}.tif")
+            return (grid, *map_points(grid, bundled_ends()[name]))
+    return None
+
+
 def main() -> None:
     ends = bundled_ends()
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])

@@ -51,20 +51,16 @@ RUN_COLUMNS = ("map", "algorithm", "seed", "collision_free", "length_m", "turns"
 
 def load_map(name: str, out: Path, map_seed: int):
     """``(grid, start, goal)`` of a generated kind (written to ``out/maps``) or bundled chart."""
-    from bench_charts import bundled_ends, map_points
-
-    from usvtool.grid import read_grid
+    from bench_charts import bundled_case
 
     if name in make_complex.KINDS:
         doc, grid = make_complex.connected_map(name, map_seed)
         (out / "maps").mkdir(parents=True, exist_ok=True)
         make_complex.write_map(out / "maps" / f"{name}.geojson", doc)
         return grid, tuple(doc["start"]), tuple(doc["goal"])
-    for folder in (ROOT / "charts", ROOT / "build" / "grids"):
-        if (folder / f"{name}.tif").exists():
-            grid = read_grid(folder / f"{name}.tif")
-            return (grid, *map_points(grid, bundled_ends()[name]))
-    sys.exit(f"bench_complex: no grid for {name!r} (run `make report` for the NOAA charts)")
+    return bundled_case(name) or sys.exit(
+        f"bench_complex: no grid for {name!r} (run `make report` for the NOAA charts)"
+    )
 
 
 _MAPS: dict = {}

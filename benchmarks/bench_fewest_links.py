@@ -101,15 +101,9 @@ def load(name: str):
         options = {"margin": 1} if size < 500 else None
         doc, grid = make_complex.connected_map(kind, int(seed), size, options)
         return grid, tuple(doc["start"]), tuple(doc["goal"])
-    from bench_charts import bundled_ends, map_points
+    from bench_charts import bundled_case
 
-    from usvtool.grid import read_grid
-
-    for folder in (ROOT / "charts", ROOT / "build" / "grids"):
-        if (folder / f"{name}.tif").exists():
-            grid = read_grid(folder / f"{name}.tif")
-            return (grid, *map_points(grid, bundled_ends()[name]))
-    sys.exit(f"bench_fewest_links: no grid for {name!r}")
+    return bundled_case(name) or sys.exit(f"bench_fewest_links: no grid for {name!r}")
 
 
 def fewest_links(checker: SegmentChecker, route, spacing: float, bound: float):

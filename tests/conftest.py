@@ -7,6 +7,7 @@ The reference: a segment collides when it intersects the closed unit square of a
 """
 
 import contextlib
+import importlib.util
 import shutil
 from pathlib import Path
 
@@ -36,6 +37,23 @@ def enc() -> Path:
 @pytest.fixture(scope="session")
 def charts() -> Path:
     return CHARTS
+
+
+@pytest.fixture(scope="session")
+def benchmark():
+    """``benchmark(name)``: the script benchmarks/NAME.py as a module (they are scripts, not a
+    package), loaded once."""
+    loaded = {}
+
+    def load(name: str):
+        if name not in loaded:
+            path = ROOT / "benchmarks" / f"{name}.py"
+            spec = importlib.util.spec_from_file_location(name, path)
+            loaded[name] = importlib.util.module_from_spec(spec)
+            spec.loader.exec_module(loaded[name])
+        return loaded[name]
+
+    return load
 
 
 @pytest.fixture

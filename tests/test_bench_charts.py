@@ -1,8 +1,5 @@
 """benchmarks/bench_charts.py reads the bundled routes through usvtool.pipeline: one source."""
 
-import importlib.util
-from pathlib import Path
-
 import numpy as np
 import pytest
 from affine import Affine
@@ -10,16 +7,10 @@ from affine import Affine
 from usvtool.grid import Grid
 from usvtool.pipeline import Ends, load
 
-ROOT = Path(__file__).resolve().parent.parent
-
 
 @pytest.fixture(scope="module")
-def bench():
-    path = ROOT / "benchmarks" / "bench_charts.py"
-    spec = importlib.util.spec_from_file_location("bench_charts", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+def bench(benchmark):
+    return benchmark("bench_charts")
 
 
 def test_the_bench_reads_the_route_matrix_of_the_pipeline(bench):

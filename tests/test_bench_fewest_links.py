@@ -1,25 +1,17 @@
 """benchmarks/bench_fewest_links.py, whose figures say where fewer turns cannot exist: its
 shortest routes per number of links on a hand-made wall, against hand computations."""
 
-import importlib.util
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from usvtool.collision import SegmentChecker
 
-ROOT = Path(__file__).resolve().parent.parent
-
 
 @pytest.fixture(scope="module")
-def bench():
-    path = ROOT / "benchmarks" / "bench_fewest_links.py"
-    spec = importlib.util.spec_from_file_location("bench_fewest_links", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+def bench(benchmark):
+    return benchmark("bench_fewest_links")
 
 
 def test_over_a_wall_one_link_is_blocked_two_cost_the_apex_and_three_reach_the_optimum(

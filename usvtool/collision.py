@@ -74,6 +74,7 @@ EPS = 1e-9
 _MARGIN = 1e-6  # extra clearance the filter demands, >> √2·EPS
 _SQRT2 = float(np.sqrt(2.0))
 _EDT_CELLS = 2_000_000  # up to this size the filter also uses the exact Euclidean transform
+_NO_TABLES = (np.empty(0), np.empty((3, 0)))  # the kernels' grown tables when pad is 0
 
 
 class SegmentChecker:
@@ -201,7 +202,7 @@ class SegmentChecker:
 
     def _tables(self, d: float) -> tuple[np.ndarray, np.ndarray]:
         """The grown squares' tables for the kernels, empty when ``d`` is 0 (not read)."""
-        return self._grown if d else (np.empty(0), np.empty((3, 0)))
+        return self._grown if d else _NO_TABLES
 
 
 def _clearance(blocked: np.ndarray) -> np.ndarray:

@@ -13,6 +13,12 @@ Tables (built by :class:`~usvtool.collision.SegmentChecker`, raveled, rows of ``
 + 2): ``prefix[(r + 1) * stride + c + 1]`` is the number of blocked cells of column ``c`` in
 rows ``< r``; ``below`` and ``bands`` (1.0 or 0.0) the grown squares' tables
 (:attr:`usvtool.collision.SegmentChecker._grown`, only read when ``d > 0``).
+
+numba's cache keys a compiled function on its own file only: the cached kernels of
+:mod:`usvtool.plan.gridsearch` (and of benchmarks/bench_fewest_links.py) that call
+:func:`touches` keep the old version after an edit of this file alone. After changing it,
+remove ``usvtool/plan/__pycache__/gridsearch.*.nb*`` (or touch gridsearch.py); a fresh checkout
+or install compiles everything anew.
 """
 
 from __future__ import annotations
