@@ -32,9 +32,9 @@ from collections.abc import Collection
 from dataclasses import dataclass
 from pathlib import Path
 
-import yaml
-
 from usvtool.errors import UsvError
+from usvtool.yamlfile import read_yaml
+from usvtool.yamlfile import show as _show
 
 #: The pipeline of ``make report``.
 BUNDLED = Path(__file__).resolve().parent.parent / "pipelines" / "report.yaml"
@@ -208,23 +208,6 @@ class Pipeline:
         return [(fn, a, seed) for fn in f.functions for a in f.algorithms for seed in f.seeds]
 
 
-class _Twice(yaml.constructor.ConstructorError):
-    """A key given twice in one mapping."""
-
-
-class _Loader(yaml.SafeLoader):
-    """YAML's safe loader refusing a key given twice in one mapping (PyYAML keeps the last)."""
-
-    def construct_mapping(self, node, deep=False):
-        seen: set = set()
-        for key_node, _ in node.value:
-            key = self.construct_object(key_node, deep=True)
-            if key in seen:
-                raise _Twice(None, None, f"{key!r} named twice", key_node.start_mark)
-            seen.add(key)
-        return super().construct_mapping(node, deep)
-
-
 class _Reader:
     """Field checks that raise ``FILE: FIELD: problem``."""
 
@@ -321,25 +304,6 @@ class _Reader:
         return found
 
 
-def _show(value) -> str:
-    text = repr(value)
-    return text if len(text) <= 60 else text[:57] + "..."
-
-
-def _read_yaml(path: Path):
-    try:
-        return yaml.load(path.read_text(encoding="utf-8"), Loader=_Loader)
-    except FileNotFoundError:
-        raise UsvError(f"{path}: no such file") from None
-    except _Twice as exc:
-        raise UsvError(f"{path}: line {exc.problem_mark.line + 1}: {exc.problem}") from None
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        line = f" (line {mark.line + 1})" if mark else ""
-        problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
-        raise UsvError(f"{path}: not valid YAML{line}: {problem}") from None
-
-
 def load(path: str | Path = BUNDLED, names: Names | None = None) -> Pipeline:
     """Read and validate a pipeline file (the bundled one by default); with ``names``, also
     refuse an algorithm, controller or function the stages do not know."""
@@ -348,7 +312,7 @@ def load(path: str | Path = BUNDLED, names: Names | None = None) -> Pipeline:
 
 def _load(path: Path, names: Names | None, including: tuple[Path, ...]) -> Pipeline:
     r = _Reader(path)
-    data = _read_yaml(path)
+    data = read_yaml(path)
     r.mapping(data, "", {"root", "include", "charts", "routes", "simulation", "functions"})
     root_field = data.get("root", ".")
     if not isinstance(root_field, str):

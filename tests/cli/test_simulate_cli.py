@@ -233,7 +233,7 @@ def test_malformed_yaml_and_missing_scenario(case, usv):
     directory, out = case
     bad = directory / "bad.yaml"
     bad.write_text("name: x\nown: {start: [0, 0], goal: [0, 1]\n")
-    assert_failed(simulate(usv, bad, out), 1, "bad.yaml: not valid YAML at line 3")
+    assert_failed(simulate(usv, bad, out), 1, "bad.yaml: not valid YAML (line 3: ")
     bad.write_text("- a list\n")
     assert_failed(simulate(usv, bad, out), 1, "bad.yaml: must be a mapping, not a list")
     assert_failed(simulate(usv, directory / "none.yaml", out), 1, "none.yaml: no such file")

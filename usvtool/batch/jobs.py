@@ -19,10 +19,9 @@ from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
 
-import yaml
-
 from usvtool.errors import UsvError
 from usvtool.pipeline import Names, Pipeline
+from usvtool.yamlfile import read_yaml
 
 PACKAGE = Path(__file__).resolve().parent.parent
 #: The stage and the command of each kind of job.
@@ -75,8 +74,8 @@ def scenario_hashes(path: Path) -> dict[str, str]:
     """
     hashes = {path.name: _file_hash(path)}
     try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
-    except (yaml.YAMLError, UnicodeDecodeError):
+        data = read_yaml(path)
+    except UsvError:
         return hashes
     stack = [data]
     while stack:

@@ -246,20 +246,9 @@ def load_tolerances(path: str | None) -> Tolerances:
     """The defaults (:data:`RULES`) updated from the YAML file ``path`` (None: the defaults)."""
     if path is None:
         return Tolerances()
-    import yaml
+    from usvtool.yamlfile import read_yaml
 
-    if not Path(path).exists():
-        raise UsvError(f"{path}: no such file")
-    if Path(path).is_dir():
-        raise UsvError(f"{path}: is a directory, not a file")
-    try:
-        data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
-    except UnicodeDecodeError:
-        raise UsvError(f"{path}: not a UTF-8 text file") from None
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = f" at line {mark.line + 1}" if mark is not None else ""
-        raise UsvError(f"{path}: not valid YAML{where}") from None
+    data = read_yaml(path)
     data = {} if data is None else data
     if not isinstance(data, dict):
         raise UsvError(f"{path}: must be a mapping with count_timings and metrics")

@@ -19,8 +19,9 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from usvtool.errors import UsvError, check_input_file
+from usvtool.errors import UsvError
 from usvtool.sim.vessel import PRESETS, USER_UNITS
+from usvtool.yamlfile import read_yaml, show
 
 DEFAULT_VESSEL = "iwso-dwa-usv"
 #: Inline vessel fields a scenario may set, in user units (:data:`usvtool.sim.vessel.USER_UNITS`).
@@ -91,20 +92,8 @@ class Scenario:
 
 
 def read_scenario(path: str | os.PathLike) -> Scenario:
-    """Read and validate a scenario YAML file."""
-    import yaml
-
-    check_input_file(path)
-    try:
-        with open(path, encoding="utf-8") as f:
-            data = yaml.safe_load(f)
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = f" at line {mark.line + 1}" if mark is not None else ""
-        raise UsvError(f"{path}: not valid YAML{where}") from None
-    except UnicodeDecodeError:
-        raise UsvError(f"{path}: not a text file") from None
-    return parse(data, path)
+    """Read and validate a scenario YAML file (bounded: :func:`usvtool.yamlfile.read_yaml`)."""
+    return parse(read_yaml(path), path)
 
 
 def parse(data, path: str | os.PathLike) -> Scenario:
@@ -122,21 +111,25 @@ def parse(data, path: str | os.PathLike) -> Scenario:
     controller_name = v.text(controller["name"], "controller.name")
     if controller_name not in _controllers():
         v.fail("controller.name", f"must be one of {', '.join(_controllers())}, not "
-                                  f"{controller_name!r}")  # fmt: skip
+                                  f"{show(controller_name)}")  # fmt: skip
     controller_params(controller_name, {k: val for k, val in controller.items() if k != "name"},
                       lambda key: f"{path}: controller.{key}")  # fmt: skip
     vessel = v.text(own.get("vessel", DEFAULT_VESSEL), "own.vessel")
     if vessel not in PRESETS:
         v.fail("own.vessel", f"must be a vessel preset ({', '.join(sorted(PRESETS))}), not "
-                             f"{vessel!r}")  # fmt: skip
+                             f"{show(vessel)}")  # fmt: skip
     dt = v.number(sim.get("dt", Sim.dt), "sim.dt", positive=True)
     if dt < MIN_DT:
         v.fail("sim.dt", f"must be at least {MIN_DT:g} s (the trace's time resolution), not {dt:g}")
+    duration = v.number(sim.get("duration", Sim.duration), "sim.duration", positive=True)
+    if dt > duration:
+        v.fail("sim.dt", f"must be at most sim.duration ({duration:g} s), not {dt:g}: the run "
+                         "would take no step")  # fmt: skip
     targets = [_target(v, t, i) for i, t in enumerate(targets)]
     names = [OWN_NAME]
     for i, t in enumerate(targets):
         if t.name in names:
-            v.fail(f"targets[{i}].name", f"{t.name!r} is taken (by the own ship or another target)")
+            v.fail(f"targets[{i}].name", f"{show(t.name)} is taken (by the own ship or a target)")
         names.append(t.name)
     return Scenario(
         name=v.text(top["name"], "name"),
@@ -145,7 +138,7 @@ def parse(data, path: str | os.PathLike) -> Scenario:
         route=v.file(top["route"], "route") if "route" in top else None,
         sim=Sim(
             dt=dt,
-            duration=v.number(sim.get("duration", Sim.duration), "sim.duration", positive=True),
+            duration=duration,
             goal_tolerance=v.number(
                 sim.get("goal_tolerance", Sim.goal_tolerance), "sim.goal_tolerance", positive=True
             ),
@@ -192,7 +185,7 @@ def _target(v: _Fields, data, index: int) -> Target:
         waypoints = [v.point(p, f"{where}.waypoints[{i}]") for i, p in enumerate(points)]
     name = v.text(t.get("name", f"target{index + 1}"), f"{where}.name")
     if any(c in name for c in _BAD_NAME):
-        v.fail(f"{where}.name", f"must hold no comma, quote or line break, not {name!r}")
+        v.fail(f"{where}.name", f"must hold no comma, quote or line break, not {show(name)}")
     return Target(
         name=name,
         start=v.point(t["start"], f"{where}.start") if "start" in t else None,
@@ -260,7 +253,7 @@ def controller_params(name: str, params: dict, where) -> dict:
         else:
             ok, what = True, ""
         if not ok:
-            raise UsvError(f"{where(key)} must be {what}, not {value!r}")
+            raise UsvError(f"{where(key)} must be {what}, not {show(value)}")
     return params
 
 
@@ -298,12 +291,12 @@ class _Fields:
 
     def text(self, value, where: str) -> str:
         if not isinstance(value, str) or not value:
-            self.fail(where, f"must be a non-empty string, not {value!r}")
+            self.fail(where, f"must be a non-empty string, not {show(value)}")
         return value
 
     def number(self, value, where: str, positive=False, minimum=None) -> float:
         if isinstance(value, bool) or not isinstance(value, int | float):
-            self.fail(where, f"must be a number, not {value!r}")
+            self.fail(where, f"must be a number, not {show(value)}")
         value = float(value)
         if not math.isfinite(value):
             self.fail(where, f"must be finite, not {value}")
@@ -325,16 +318,16 @@ class _Fields:
                 self.fail(where, f"is not a lon/lat position: {lon}, {lat}")
             return {"lon": lon, "lat": lat}
         if not isinstance(value, list) or len(value) != 2:
-            self.fail(where, f"must be [x, y] or {{lon, lat}}, not {value!r}")
+            self.fail(where, f"must be [x, y] or {{lon, lat}}, not {show(value)}")
         return (self.number(value[0], f"{where}[0]"), self.number(value[1], f"{where}[1]"))
 
     def file(self, value, where: str) -> Path:
         name = self.text(value, where)
         path = (self.path.parent / name).resolve()
         if not path.is_file():
-            self.fail(where, f"names {name!r}, which is not a file ({path})")
+            self.fail(where, f"names {show(name)}, which is not a file ({path})")
         return path
 
 
 def _kind(value) -> str:
-    return {dict: "a mapping", list: "a list", str: "a string"}.get(type(value), repr(value))
+    return {dict: "a mapping", list: "a list", str: "a string"}.get(type(value), show(value))
