@@ -310,3 +310,25 @@ def assert_failed(result, code, *words):
 def assert_untouched(out: Path) -> None:
     assert sorted(p.name for p in out.iterdir()) == ["trace.csv"]  # no temporary left
     assert (out / "trace.csv").read_bytes() == OLD
+
+
+def test_the_events_run_object_holds_the_scenario_as_resolved(case, usv):
+    """Readers of a run (batch, report) take its ships, lengths and files from here, not from
+    the YAML: an unnamed target is ``target<i>`` with the YAML's length."""
+    directory, out = case
+    data = copy.deepcopy(BASE)
+    del data["targets"][1]["name"]  # the second target, unnamed, 3 m long
+    data["map"], data["route"] = "map.tif", "route.geojson"
+    data["sim"]["duration"] = 2
+    r = simulate(usv, write_scenario(directory, data), out)
+    assert r.exit_code == 0, r.stderr
+    run = read_events(out / "events.json")["run"]
+    assert run["ships"] == [{"name": "own", "length": run["own_length"]},
+                            {"name": "t1", "length": 2.5}, {"name": "target2", "length": 3.0},
+                            {"name": "t3", "length": 2.0}]  # fmt: skip
+    assert [s["name"] for s in run["ships"]] == list(read_trace(out / "trace.csv").ships)
+    assert run["scenario_file"] == str((directory / "s.yaml").resolve())
+    assert run["map"] == str((directory / "map.tif").resolve())
+    assert run["route"] == str((directory / "route.geojson").resolve())
+    assert run["tracks"] == [None, None, str((directory / "track.csv").resolve())]
+    assert run["wind_field"] is None

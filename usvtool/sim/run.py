@@ -24,7 +24,8 @@ change between two such legs (per 0.1 s step a smooth turn would count once per 
 The events JSON's ``run`` object makes the trace and events pair self-describing (``usvtool
 metrics`` reads it): ``scenario``, ``controller``, ``parameters``, ``seed``, ``arrived``,
 ``collision``, ``time_s``, ``dt``, ``goal`` [x, y] (map metres), ``goal_tolerance``, ``own_length``,
-``domain_intrusion_s``.
+``domain_intrusion_s``, and the scenario's resolved facts (:func:`scenario_facts`:
+``scenario_file``, ``ships`` with their lengths, ``map``, ``route``, ``tracks``, ``wind_field``).
 """
 
 from __future__ import annotations
@@ -32,6 +33,7 @@ from __future__ import annotations
 import contextlib
 import time
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
@@ -321,9 +323,32 @@ def _result(scenario, setup, opts, controller, times, own, ahead, lengths, contr
             "goal_tolerance": float(scenario.sim.goal_tolerance),
             "own_length": float(setup.vessel.length),
             "domain_intrusion_s": figures["domain_intrusion_s"],
+            **scenario_facts(scenario, setup.vessel.length),
         },
     }
     return Result(scenario, trace, events, figures, setup.crs)
+
+
+def scenario_facts(scenario: Scenario, own_length: float) -> dict:
+    """The scenario as the run resolved it, for readers of its events (``usvtool metrics``,
+    the report) that must not parse scenario YAML: its file, ``ships`` (name and length, in the
+    trace's order, the own ship first), and the absolute paths of its ``map``, ``route``,
+    ``tracks`` (per target, None when it sails a course) and ``wind_field`` (None when absent
+    or uniform)."""
+
+    def path(p) -> str | None:
+        return None if p is None else str(p)
+
+    weather = scenario.weather
+    return {
+        "scenario_file": str(Path(scenario.path).resolve()),
+        "ships": [{"name": "own", "length": float(own_length)},
+                  *({"name": t.name, "length": float(t.length)} for t in scenario.targets)],
+        "map": path(scenario.map),
+        "route": path(scenario.route),
+        "tracks": [path(t.track) for t in scenario.targets],
+        "wind_field": None if weather is None else path(weather.field),
+    }  # fmt: skip
 
 
 def _per_target(j: int, name: str, encounters: list[dict], times, x, y) -> dict:
