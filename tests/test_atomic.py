@@ -265,3 +265,19 @@ def test_a_forked_worker_gets_the_handlers_found_before(handlers):
         assert os.read(read, 8) == b"dfl"
         os.waitpid(pid, 0)
     os.close(read)
+
+
+def test_a_full_disk_inside_the_block_names_the_output_and_leaves_nothing(tmp_path):
+    import errno
+
+    (tmp_path / "a.csv").write_text("old")
+    with pytest.raises(UsvError) as info:
+        with staged(tmp_path / "a.csv", tmp_path / "b.json") as (a, b):
+            a.write_text("new")
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))  # what a full disk's write says
+    assert str(info.value) == f"{tmp_path / 'a.csv'}: cannot write it: No space left on device"
+    assert listing(tmp_path) == ["a.csv"] and (tmp_path / "a.csv").read_text() == "old"
+    # an error naming its own file is left as it is
+    with pytest.raises(FileNotFoundError):
+        with atomic_path(tmp_path / "c.txt"):
+            open(tmp_path / "missing" / "x")

@@ -26,6 +26,8 @@ How the pieces fit:
   directory where the target belongs to another user) is reported naming it, and targets
   renamed before it keep their new content: the main output, renamed last, is then untouched.
   There is no fsync: a power cut right after a run may lose the new content.
+- An ``OSError`` of the block that names no file (a write on a full disk: ``ENOSPC``) becomes a
+  :class:`UsvError` naming the first target, once the temporaries are removed.
 
 Hand-written: the atomic-write libraries (``atomicwrites``, archived; ``atomik``) write one file
 or one folder and leave signals alone.
@@ -185,6 +187,9 @@ class staged(catch_signals):
                 _handed_out.discard(os.path.abspath(tmp))
             self._temps.clear()
             super().__exit__(exc_type, exc, tb)  # a signal held: raised now
+        if isinstance(exc, OSError) and exc.filename is None:  # a write's error names no file
+            target = next(t for t in self._targets if t is not None)
+            raise UsvError(f"{target}: cannot write it: {exc.strerror or exc}") from None
 
 
 class atomic_path(staged):

@@ -16,7 +16,7 @@ import click
 
 from usvtool import __version__
 from usvtool.atomic import catch_signals
-from usvtool.errors import UsvError
+from usvtool.errors import UsvError, one_line
 
 SUBCOMMANDS = {
     "preprocess": ("usvtool.cli.preprocess", "Turn a chart into a navigation grid GeoTIFF."),
@@ -57,15 +57,19 @@ class LazyGroup(click.Group):
             click.echo(f"Error: interrupted by {signal.Signals(signum).name}", err=True)
             raise click.exceptions.Exit(128 + signum) from None
         except UsvError as exc:
-            raise click.ClickException(str(exc)) from None
+            raise click.ClickException(one_line(str(exc))) from None
         except (click.ClickException, click.exceptions.Exit, click.Abort):
             raise
+        except OSError as exc:  # a file the OS refused (disk full, permission): named
+            if exc.filename is None or (ctx.obj and ctx.obj.get("verbose", 0) > 0):
+                raise
+            raise click.ClickException(one_line(f"{exc.filename}: {exc.strerror}")) from None
         except Exception as exc:  # a bug: one line unless -v asks for the traceback
             if ctx.obj and ctx.obj.get("verbose", 0) > 0:
                 raise
-            raise click.ClickException(
+            raise click.ClickException(one_line(
                 f"internal error: {type(exc).__name__}: {exc} (run with -v for the traceback)"
-            ) from None
+            )) from None  # fmt: skip
 
 
 @click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
