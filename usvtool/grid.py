@@ -115,24 +115,33 @@ class Grid:
 
 def read_grid(path: str | os.PathLike) -> Grid:
     """Read a grid GeoTIFF written by :func:`write_grid` (or any single-band uint8 raster)."""
+    import warnings
+
     import rasterio
-    from rasterio.errors import RasterioIOError
+    from rasterio.errors import NotGeoreferencedWarning, RasterioIOError
 
     check_input_file(path)
     try:
-        with rasterio.open(path) as ds:
-            if ds.count != 1:
-                raise UsvError(f"{path}: a grid has one band, this raster has {ds.count}")
-            cells = ds.read(1)
-            transform, crs, tags = ds.transform, ds.crs, ds.tags()
+        with warnings.catch_warnings():  # no geotransform: refused below, in one line
+            warnings.simplefilter("ignore", NotGeoreferencedWarning)
+            with rasterio.open(path) as ds:
+                if ds.count != 1:
+                    raise UsvError(f"{path}: a grid has one band, this raster has {ds.count}")
+                cells = ds.read(1)
+                transform, crs, tags = ds.transform, ds.crs, ds.tags()
     except RasterioIOError as exc:
         raise UsvError(f"{path}: not a readable grid GeoTIFF ({exc})") from None
     if cells.dtype != np.uint8 or cells.max(initial=0) > MARGIN:
         raise UsvError(f"{path}: not a navigation grid (expected uint8 values 0, 1, 2)")
+    if transform.is_identity:
+        raise UsvError(f"{path}: no geotransform; a map is a grid GeoTIFF (usvtool preprocess)")
     if transform.b != 0 or transform.d != 0 or abs(transform.a + transform.e) > 1e-9 * abs(
         transform.a
     ):
-        raise UsvError(f"{path}: grid cells must be square and north-up")
+        raise UsvError(
+            f"{path}: grid cells must be square and north-up (preprocess a rotated chart: "
+            "it is warped north-up)"
+        )
     return Grid(cells, transform, crs, tags)
 
 

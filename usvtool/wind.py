@@ -70,18 +70,22 @@ def read_wind_field(
     another CRS is refused (reproject it), one without a CRS is taken to be in the chart's
     frame. Errors are one line naming the file.
     """
+    import warnings
+
     import rasterio
-    from rasterio.errors import RasterioIOError
+    from rasterio.errors import NotGeoreferencedWarning, RasterioIOError
 
     check_input_file(path)
     try:
-        with rasterio.open(path) as ds:
-            if ds.count == 0 and ds.subdatasets:
-                names, arrays, transform, raster_crs = _read_variables(path, ds.subdatasets)
-            else:
-                names = [d or "" for d in ds.descriptions]
-                arrays = [_read_band(ds, i) for i in range(1, ds.count + 1)]
-                transform, raster_crs = ds.transform, ds.crs
+        with warnings.catch_warnings():  # no geotransform: refused below, in one line
+            warnings.simplefilter("ignore", NotGeoreferencedWarning)
+            with rasterio.open(path) as ds:
+                if ds.count == 0 and ds.subdatasets:
+                    names, arrays, transform, raster_crs = _read_variables(path, ds.subdatasets)
+                else:
+                    names = [d or "" for d in ds.descriptions]
+                    arrays = [_read_band(ds, i) for i in range(1, ds.count + 1)]
+                    transform, raster_crs = ds.transform, ds.crs
     except RasterioIOError as exc:
         raise UsvError(f"{path}: not a readable raster ({' '.join(str(exc).split())})") from None
     if bands is not None:

@@ -5,10 +5,11 @@
   chart. From plain images (PNG, JPEG, TIFF: local metre frame from ``--resolution``, origin at
   the lower-left corner), georeferenced GeoTIFFs (RGB(A), grey or palette, 8 or 16 bits) and
   BSB/KAP raster charts (georeferenced from their GCPs, masked by ``BSB_CUTLINE``). A source is
-  kept in its own CRS only when that CRS is metric at the chart (:func:`keeps_frame`); every
-  other one (lon/lat, Web Mercator, a chart projection, a far UTM zone, GCPs) is warped to the
-  UTM zone of its centre. The warp moves the index band alone, nearest neighbour, so chart
-  colours stay pure. No-data, alpha and mask bands, and an optional cutline polygon, mark the
+  kept in its own CRS only when that CRS is metric at the chart and its geotransform north-up
+  (:func:`keeps_frame`); every other one (lon/lat, Web Mercator, a chart projection, a far UTM
+  zone, GCPs, a rotated or sheared geotransform) is warped north-up to the UTM zone of its
+  centre, over its whole footprint. The warp moves the index band alone, nearest neighbour, so
+  chart colours stay pure. No-data, alpha and mask bands, and an optional cutline polygon, mark the
   pixels outside the chart.
 * :class:`VectorChart`: obstacle geometries in a metric CRS and the polygon of the chart's
   extent. From S-57 cells (:mod:`usvtool.chart.s57`) and GeoJSON obstacle polygons.
@@ -17,6 +18,7 @@
 from __future__ import annotations
 
 import json
+import math
 import os
 import warnings
 from dataclasses import dataclass
@@ -35,6 +37,7 @@ MIN_PIXELS = 4  # an image narrower than this cannot hold a chart
 #: every direction is within this of 1 (see :func:`keeps_frame`).
 MAX_SCALE_ERROR = 0.002
 WARP_THREADS = 2  # GDAL warper threads: 0.27 s against 0.46 s on SanDiego_2 (2 cores)
+EDGE_SAMPLES = 21  # points per edge where a footprint is projected (GDAL's suggested output)
 
 
 @dataclass
@@ -148,6 +151,8 @@ def read_raster(
             cutlines.append((own, WGS84, "its BSB_CUTLINE"))
         index, valid, frame = _warp(index, valid, len(palette), gcps=gcps, src_crs=gcp_crs)
     else:
+        if transform.is_degenerate:
+            raise UsvError(f"{path}: its geotransform is degenerate (pixels of no area)")
         frame = Frame(transform, width, height, crs)
         if not keeps_frame(frame):
             index, valid, frame = _warp(
@@ -434,28 +439,33 @@ def _index_table(band: np.ndarray, table: np.ndarray, path):
 
 
 def _warp(index, valid, nodata: int, *, src_crs, gcps=None, transform=None):
-    """(index, valid, frame) warped to the UTM zone of the chart's centre.
+    """(index, valid, frame) warped north-up to the UTM zone of the chart's centre.
 
-    Only the index band moves (nearest neighbour, GDAL's warper on :data:`WARP_THREADS`
-    threads); ``nodata``, one past the last palette index, carries the pixels outside the chart
-    and marks those outside the source; they get index 0 afterwards.
+    The source is placed by its GCPs or by its geotransform, any affine (north-up, rotated,
+    sheared or mirrored). GDAL suggests the output's extent and resolution, made square;
+    ``calculate_default_transform`` takes no source transform, so a geotransform is given to it
+    as its four corners (GCPs an order-1 fit reproduces exactly), and the frame is grown to
+    whole pixels over the footprint (:func:`_covering`). Only the index band moves (nearest
+    neighbour, GDAL's warper on :data:`WARP_THREADS` threads); ``nodata``, one past the last
+    palette index, carries the pixels outside the chart and marks those outside the source;
+    they get index 0 afterwards.
     """
     from rasterio.transform import from_gcps
     from rasterio.warp import Resampling, calculate_default_transform, reproject, transform_bounds
 
     height, width = index.shape
     src_transform = from_gcps(gcps) if gcps else transform
-    left, top = src_transform @ (0, 0)
-    right, bottom = src_transform @ (width, height)
-    lon0, lat0 = _centre_lonlat(src_crs, left, bottom, right, top, transform_bounds)
+    xs, ys = src_transform @ (np.array([0, width, 0, width]), np.array([0, 0, height, height]))
+    lon0, lat0 = _centre_lonlat(src_crs, xs.min(), ys.min(), xs.max(), ys.max(), transform_bounds)
     dst_crs = utm_crs(lon0, lat0)
-    edges = {"left": left, "bottom": bottom, "right": right, "top": top}
-    kwargs = {"gcps": gcps} if gcps else edges
-    dst_transform, w, h = calculate_default_transform(src_crs, dst_crs, width, height, **kwargs)
+    corners = gcps or _corner_gcps(src_transform, width, height)
+    dst_transform, w, h = calculate_default_transform(src_crs, dst_crs, width, height, gcps=corners)
     res = float(np.sqrt(abs(dst_transform.a * dst_transform.e)))
     dst_transform, w, h = calculate_default_transform(
-        src_crs, dst_crs, width, height, resolution=res, **kwargs
+        src_crs, dst_crs, width, height, resolution=res, gcps=corners
     )
+    if not gcps:
+        w, h = _covering(dst_transform, w, h, src_transform, width, height, src_crs, dst_crs)
     if nodata > np.iinfo(index.dtype).max:
         index = index.astype(index_dtype(nodata))
     if valid is not None:
@@ -477,6 +487,31 @@ def _warp(index, valid, nodata: int, *, src_crs, gcps=None, transform=None):
     inside = out != nodata
     np.multiply(out, inside, out=out, casting="unsafe")
     return out, inside, Frame(dst_transform, w, h, dst_crs)
+
+
+def _corner_gcps(transform, width: int, height: int) -> list:
+    """The four corners of a ``width`` x ``height`` raster as GCPs of ``transform``."""
+    from rasterio.control import GroundControlPoint
+
+    return [
+        GroundControlPoint(row, col, *(transform @ (col, row)), z=0.0)
+        for col, row in ((0, 0), (width, 0), (0, height), (width, height))
+    ]
+
+
+def _covering(dst_transform, w: int, h: int, src_transform, width, height, src_crs, dst_crs):
+    """(w, h) grown to whole pixels over the source's footprint, its edges sampled at
+    :data:`EDGE_SAMPLES` points each (GDAL's count): GDAL rounds its suggested size to the
+    nearest pixel, which leaves up to half a pixel of the right and bottom edges out."""
+    from rasterio.warp import transform as transform_points
+
+    s = np.linspace(0, 1, EDGE_SAMPLES)
+    cols = np.concatenate([s * width, np.full_like(s, width), s * width, np.zeros_like(s)])
+    rows = np.concatenate([np.zeros_like(s), s * height, np.full_like(s, height), s * height])
+    xs, ys = transform_points(src_crs, dst_crs, *(src_transform @ (cols, rows)))
+    right = (max(xs) - dst_transform.c) / dst_transform.a
+    bottom = (dst_transform.f - min(ys)) / -dst_transform.e
+    return max(w, math.ceil(right - 1e-9)), max(h, math.ceil(bottom - 1e-9))
 
 
 def _clip(valid: np.ndarray, frame: Frame, cutlines, path) -> None:
