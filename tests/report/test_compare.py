@@ -4,8 +4,10 @@ atomicity; bad inputs; the command line in a subprocess."""
 
 from __future__ import annotations
 
+import errno
 import hashlib
 import json
+import os
 import re
 import subprocess
 import sys
@@ -13,6 +15,7 @@ from pathlib import Path
 
 import pytest
 
+from usvtool.errors import UsvError
 from usvtool.report.compare import (
     MARKDOWN_ROWS,
     RULES,
@@ -275,23 +278,37 @@ def test_a_failure_leaves_earlier_outputs_as_they_were(usv, tables, tmp_path):
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before  # no temporary either
 
 
+def full_disk_at(monkeypatch, suffix: str) -> None:
+    """Writing the staged temporary of a file ending in ``suffix`` fails: no space left."""
+    write_bytes = Path.write_bytes
+
+    def failing(self, data):
+        if self.name.startswith(".") and self.suffix == suffix:
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        return write_bytes(self, data)
+
+    monkeypatch.setattr(Path, "write_bytes", failing)
+
+
 def test_a_writer_failing_while_staged_writes_none_of_the_three(tables, tmp_path, monkeypatch):
     base, head = tables(baseline_rows())
     out = tmp_path / "out"
     compare(CompareOptions(str(base), str(head), out_dir=str(out)))
     before = outputs(out)
-    write_text = Path.write_text
-
-    def failing(self, text, *args, **kwargs):
-        if self.suffix == ".md":
-            raise OSError("disk full")
-        return write_text(self, text, *args, **kwargs)
-
-    monkeypatch.setattr(Path, "write_text", failing)
+    full_disk_at(monkeypatch, ".md")
     head = write(head, replaced(baseline_rows(), LENGTH, [770.0, 772.0, 771.0]))
-    with pytest.raises(OSError, match="disk full"):
+    with pytest.raises(UsvError, match=f"^{re.escape(str(out / 'summary.md'))}: cannot write "
+                                       "it: No space left on device$"):  # fmt: skip
         compare(CompareOptions(str(base), str(head), out_dir=str(out)))
     assert outputs(out) == before  # the HTML and JSON written before it were not renamed
+
+
+def test_a_full_disk_leaves_no_output_directory(tables, tmp_path, monkeypatch):
+    base, head = tables(baseline_rows())
+    full_disk_at(monkeypatch, ".json")
+    with pytest.raises(UsvError, match="regression.json: cannot write it: No space left"):
+        compare(CompareOptions(str(base), str(head), out_dir=str(tmp_path / "a" / "b")))
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["base", "head"]  # no a/, no a/b/
 
 
 def test_an_output_that_is_a_file_is_a_usage_error(usv, tables, tmp_path):
@@ -418,3 +435,117 @@ def test_the_committed_ci_baseline_flags_an_injected_regression(tmp_path):
         ("routes", "env1", "iwso", "length_m")]
     same = compare(CompareOptions(str(baseline), str(baseline)))
     assert same.status == 0
+
+
+# ---- values that are not what their metric holds (the class `invalid`) ----
+
+
+def ci_rows() -> list[Row]:
+    from usvtool.results import read_results
+
+    return read_results(ROOT / "baselines" / "ci.csv")
+
+
+def test_a_table_of_nan_is_invalid_everywhere_a_number_is_expected(usv, tmp_path):
+    """The issue's case: every value `nan` passed with "333 changed". Only the words of
+    failed_rules may be any word (a rule named "nan" is a change); every other group of the
+    CI baseline holds numbers or True/False."""
+    from dataclasses import replace
+
+    base = ROOT / "baselines" / "ci.csv"
+    head = write(tmp_path / "nan.csv", [replace(r, value="nan") for r in ci_rows()])
+    groups = {r.group for r in ci_rows()}
+    words = {g for g in groups if g[3] == "failed_rules"}
+    assert len(groups) == 333 and len(words) == 10  # hand-counted from the file
+    r = usv("compare", base, head, "-o", tmp_path / "out")
+    assert r.exit_code == 1
+    summary = json.loads(r.stdout)
+    assert summary["counts"]["invalid"] == 323 and summary["counts"]["changed"] == 10
+    assert len(summary["invalid"]) == 323 and summary["status"] == 1
+    last = r.stderr.strip().splitlines()[-1]
+    assert last.startswith("Error: 0 regressed, 0 missing, 323 invalid")
+    assert "## usvtool compare: FAIL: 323 invalid" in r.stderr
+
+
+def test_one_infinite_length_is_invalid_and_shown_first_in_every_report(tables, tmp_path):
+    head = replaced(baseline_rows(), LENGTH, [700.0, "inf", 701.0])
+    base, head = tables(head)
+    result = compare(CompareOptions(str(base), str(head), out_dir=str(tmp_path / "out")))
+    c = by_label(result)
+    bad = c["routes/env1/iwso/length_m"]
+    assert (bad.status, bad.base, bad.head, bad.invalid, bad.n_head) == (
+        "invalid", 701.0, "inf", 1, 3)  # fmt: skip
+    assert bad.change is None and result.status == 1
+    assert {x.status for x in result.comparisons if x is not bad} == {"ok"}
+    data = json.loads((tmp_path / "out" / "regression.json").read_text())
+    assert data["invalid"] == ["routes/env1/iwso/length_m"] and data["counts"]["invalid"] == 1
+    assert data["status"] == 1
+    md = (tmp_path / "out" / "summary.md").read_text()
+    assert md.startswith("## usvtool compare: FAIL: 1 invalid\n")
+    assert "| invalid | routes | env1 | iwso | length_m | 701 | inf | 1 of 3 not numbers |" in md
+    page = (tmp_path / "out" / "index.html").read_text()
+    body = page[page.index("<tbody>"):]
+    assert re.findall(r'<tr class="status-(\w+)"', body)[0] == "invalid"
+    assert "1 of 3 not numbers" in body
+
+
+def test_one_word_for_a_number_and_a_number_for_a_boolean_are_invalid(tables):
+    head = replaced(baseline_rows(), ("runs", "head-on", "udwa", "closest_distance_m"),
+                    [20.0, "abc", 21.0])  # fmt: skip
+    head = replaced(head, ("routes", "env1", "iwso", "collision_free"), ["True", "1", "nan"])
+    result = compare(CompareOptions(*map(str, tables(head))))
+    c = by_label(result)
+    word = c["runs/head-on/udwa/closest_distance_m"]
+    assert (word.status, word.head, word.invalid) == ("invalid", "abc", 1)
+    boolean = c["routes/env1/iwso/collision_free"]  # the contract writes True / False
+    assert (boolean.status, boolean.head, boolean.invalid) == ("invalid", "1;nan", 2)
+    assert result.status == 1
+    assert sorted(result.summary()["invalid"]) == ["routes/env1/iwso/collision_free",
+                                                   "runs/head-on/udwa/closest_distance_m"]
+
+
+def test_words_stay_words_and_an_unknown_metric_is_judged_by_the_baseline(tables):
+    """A collision names what was hit and failed_rules lists rules: any word is valid there.
+    A metric the contract does not know holds numbers when every baseline value is one."""
+    base = baseline_rows() + rows("routes", "env1", "iwso", "my_metric", [1, 2, 3]) + rows(
+        "routes", "env1", "iwso", "my_word", ["a", "b", "c"])  # fmt: skip
+    head = replaced(base, ("runs", "head-on", "udwa", "collision"), ["12"])
+    head = replaced(head, ("routes", "env1", "iwso", "my_metric"), [1, 2, "nan"])
+    head = replaced(head, ("routes", "env1", "iwso", "my_word"), ["a", "nan", "c"])
+    head += rows("routes", "env1", "iwso", "fitness", ["nan"] * 3)  # a new group, broken
+    c = by_label(compare(CompareOptions(*map(str, tables(head, base)))))
+    assert c["runs/head-on/udwa/collision"].status == "ok"  # the same share of the jobs
+    assert (c["routes/env1/iwso/my_metric"].status, c["routes/env1/iwso/my_metric"].head) == (
+        "invalid", "nan")  # fmt: skip
+    assert c["routes/env1/iwso/my_word"].status == "changed"
+    assert (c["routes/env1/iwso/fitness"].status, c["routes/env1/iwso/fitness"].n_base) == (
+        "invalid", 0)  # fmt: skip
+
+
+def test_an_invalid_timing_counts_only_when_timings_count(tables):
+    base, head = tables(baseline_rows())
+    timing = rows("routes", "env1", "iwso", "wall_time_s", [1.0, 1.0, 1.0])
+    write(base.with_name("timings.csv"), timing)
+    write(head.with_name("timings.csv"), replaced(timing, timing[0].group, [1.0, "nan", 1.0]))
+    result = compare(CompareOptions(str(base), str(head)))
+    c = by_label(result)["routes/env1/iwso/wall_time_s"]
+    assert (c.status, c.counted, result.status) == ("invalid", False, 0)
+    base.with_suffix(".tolerances.yaml").write_text("count_timings: true\n")
+    assert compare(CompareOptions(str(base), str(head))).status == 1
+
+
+def test_a_baseline_holding_nan_is_refused_in_one_line_naming_it(usv, tables, tmp_path):
+    table = replaced(baseline_rows(), LENGTH, ["nan", 702.0, "inf"])
+    table = replaced(table, ("routes", "env1", "iwso", "collision_free"), ["True", "yes", "True"])
+    base, head = tables(baseline_rows(), table)
+    out = tmp_path / "out"
+    r = usv("compare", base, head, "-o", out)
+    assert r.exit_code == 1 and r.stdout == ""
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and len(lines[0]) <= 200, r.stderr
+    assert lines[0].startswith(f"Error: {base}: 3 values are not")
+    first = next(n for n, line in enumerate(base.read_text().splitlines(), start=1)
+                 if line.endswith((",nan", ",inf", ",yes")))  # fmt: skip
+    value = base.read_text().splitlines()[first - 1].split(",")
+    assert f"(collision_free, length_m); line {first}: {value[5]} '{value[6]}'" in lines[0]
+    assert not out.exists()

@@ -20,8 +20,8 @@ from usvtool.cli.options import emit
               help="Tolerances (default: BASELINE with the suffix .tolerances.yaml when it "
               "exists, else the built-in ones).")  # fmt: skip
 def compare(baseline, current, out_dir, tolerances) -> None:
-    """Compare CURRENT.csv with BASELINE.csv (results tables); exit 1 when a metric regressed
-    or went missing.
+    """Compare CURRENT.csv with BASELINE.csv (results tables); exit 1 when a metric regressed,
+    went missing or holds values that are not numbers where numbers are expected.
 
     The summary JSON goes to stdout, the Markdown summary (summary.md) to stderr too.
     """
@@ -34,5 +34,8 @@ def compare(baseline, current, out_dir, tolerances) -> None:
     summary = result.summary()
     emit(summary)
     if result.status:
-        failed = f"{len(summary['regressed'])} regressed, {len(summary['missing'])} missing"
+        failed = (
+            f"{len(summary['regressed'])} regressed, {len(summary['missing'])} missing, "
+            f"{len(summary['invalid'])} invalid"
+        )
         raise click.ClickException(f"{failed} (see {out_dir}/summary.md)")

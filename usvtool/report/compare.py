@@ -13,6 +13,11 @@ method, metric) and each side's value of a group is one figure over its jobs (se
 A metric of :data:`ABSENT_IS_NONE` that a side lacks while it has the case and method is that
 side's "none" (a share of 0, no words), not a missing group.
 
+Each metric's values must be of its kind (:mod:`usvtool.report.values`: the contract's finite
+numbers, ``True``/``False`` or words; a metric it does not list takes the baseline's kind). A
+baseline holding a value that is not of its kind is refused; a group of the current table
+holding one is ``invalid`` (its figure: those values), whatever the other values are.
+
 Each metric has a :class:`Rule` (:data:`RULES`; unknown metrics are informational): the better
 direction and a tolerance. With ``change = head - base`` and ``allowed = max(relative * |base|,
 absolute)``, a group is ``ok`` when ``|change| <= allowed``, else ``improved`` or ``regressed``
@@ -21,7 +26,8 @@ by the direction, or ``changed`` for an informational metric (words: ``ok`` when
 only in the baseline is ``missing``, only in the current table ``new``. Timings
 (:data:`usvtool.results.TIMING_METRICS`, from ``timings.csv`` beside either table) are
 classified the same way but count towards the status only when the tolerances file says
-``count_timings: true``. The status is 1 when a counted group regressed or went missing.
+``count_timings: true``. The status is 1 when a counted group is invalid, regressed or went
+missing.
 
 The tolerances file (YAML, ``BASELINE`` with the suffix ``.tolerances.yaml`` unless given)::
 
@@ -44,14 +50,15 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 from usvtool import __version__
-from usvtool.atomic import staged
 from usvtool.errors import UsvError
+from usvtool.report import values
+from usvtool.report.output import write_together
 from usvtool.results import TIMING_METRICS, Row, read_results, timings_path
 
 LOWER, HIGHER, NONE = "lower", "higher", "none"
 #: The classes, in the order the reports list them.
-CLASSES = ("regressed", "missing", "improved", "new", "changed", "ok")
-FAILING = ("regressed", "missing")
+CLASSES = ("invalid", "regressed", "missing", "improved", "new", "changed", "ok")
+FAILING = ("invalid", "regressed", "missing")
 FILES = ("index.html", "regression.json", "summary.md")  # index.html is renamed last
 #: Rows of the Markdown summary's table at most.
 MARKDOWN_ROWS = 30
@@ -107,6 +114,8 @@ RULES: dict[str, Rule] = {
 EVENTS = ("collision",)
 #: Metrics whose absence from a job means "none" (no collision, no failed rule).
 ABSENT_IS_NONE = ("collision", "failed_rules")
+#: The distinct values an invalid group's figure shows at most.
+INVALID_SHOWN = 3
 
 
 @dataclass(frozen=True)
@@ -134,8 +143,9 @@ class Tolerances:
 
 @dataclass(frozen=True)
 class Comparison:
-    """One group of both tables: each side's figure (None: absent) over ``n`` jobs, the change,
-    the tolerance ``allowed`` and the class (module docstring)."""
+    """One group of both tables: each side's figure (None: absent) over ``n`` jobs, how many of
+    the current values are ``invalid``, the change, the tolerance ``allowed`` and the class
+    (module docstring)."""
 
     kind: str
     case: str
@@ -148,6 +158,7 @@ class Comparison:
     head: float | str | None
     n_base: int
     n_head: int
+    invalid: int
     change: float | None
     relative_change: float | None
     relative: float
@@ -185,7 +196,7 @@ class CompareResult:
 
     @property
     def status(self) -> int:
-        """The exit status: 1 when a counted group regressed or went missing."""
+        """The exit status: 1 when a counted group is invalid, regressed or went missing."""
         return 1 if self.failures() else 0
 
     def summary(self) -> dict:
@@ -202,6 +213,7 @@ class CompareResult:
             "timings": self.counts(timing=True),
             "regressed": [c.label for c in failures if c.status == "regressed"],
             "missing": [c.label for c in failures if c.status == "missing"],
+            "invalid": [c.label for c in failures if c.status == "invalid"],
             "status": self.status,
         }
 
@@ -229,12 +241,12 @@ class CompareResult:
 def compare(options: CompareOptions) -> CompareResult:
     """Compare the tables (module docstring); write the outputs when ``out_dir`` is given."""
     tolerances = load_tolerances(_tolerances_path(options))
-    base, head = _Side.read(options.baseline), _Side.read(options.current)
-    comparisons = [
-        _compare_group(group, base, head, tolerances)
-        for group in sorted(base.values.keys() | head.values.keys(),
-                            key=lambda g: (g[3] in TIMING_METRICS, g))  # fmt: skip
-    ]
+    base = _Side.read(options.baseline, refuse_invalid=True)
+    head = _Side.read(options.current, refuse_invalid=False)
+    groups = sorted(base.values.keys() | head.values.keys(),
+                    key=lambda g: (g[3] in TIMING_METRICS, g))  # fmt: skip
+    kinds = {metric: base.kind(metric) for metric in {g[3] for g in groups}}
+    comparisons = [_compare_group(g, base, head, tolerances, kinds[g[3]]) for g in groups]
     result = CompareResult(options.baseline, options.current, tolerances, comparisons)
     if options.out_dir is not None:
         result.output = options.out_dir
@@ -298,6 +310,17 @@ def _tolerances_path(options: CompareOptions) -> str | None:
 Group = tuple[str, str, str, str]
 
 
+@dataclass(frozen=True)
+class _Figure:
+    """A side's figure of a group: its aggregate, value, how many jobs (or values) it is over,
+    and how many of them are invalid (the value then lists those, as words)."""
+
+    aggregate: str
+    value: float | str
+    n: int
+    invalid: int = 0
+
+
 @dataclass
 class _Side:
     """One table (and its timings): the rows of each group, the jobs of each case and method."""
@@ -306,20 +329,28 @@ class _Side:
     jobs: dict[tuple[str, str, str], int]
 
     @classmethod
-    def read(cls, table: str) -> _Side:
-        rows = read_results(table)
+    def read(cls, table: str, refuse_invalid: bool) -> _Side:
+        """Read the table and the timings beside it; with ``refuse_invalid``, refuse either
+        when it holds a value not of its metric's kind (:mod:`usvtool.report.values`)."""
+        rows = _read(table, refuse_invalid)
         timings = timings_path(table)
         if timings.is_file() and timings.resolve() != Path(table).resolve():
-            rows += read_results(timings)
-        values: dict[Group, list[Row]] = defaultdict(list)
+            rows += _read(timings, refuse_invalid)
+        groups: dict[Group, list[Row]] = defaultdict(list)
         keys: dict[tuple[str, str, str], set[str]] = defaultdict(set)
         for r in rows:
-            values[r.group].append(r)
+            groups[r.group].append(r)
             keys[r.group[:3]].add(r.key)
-        return cls(dict(values), {job: len(k) for job, k in keys.items()})
+        return cls(dict(groups), {job: len(k) for job, k in keys.items()})
 
-    def figure(self, group: Group) -> tuple[str, float | str, int] | None:
-        """(aggregate, value, jobs) of a group on this side; None when absent."""
+    def kind(self, metric: str) -> str | None:
+        """The metric's kind: the contract's, else the one of this side's values."""
+        return values.kind(metric) or values.inferred(
+            [r for g, rows in self.values.items() if g[3] == metric for r in rows]
+        )
+
+    def figure(self, group: Group, kind: str | None) -> _Figure | None:
+        """The figure of a group on this side, its values being of ``kind``; None when absent."""
         rows = self.values.get(group)
         jobs = self.jobs.get(group[:3], 0)
         metric = group[3]
@@ -327,38 +358,55 @@ class _Side:
             return None
         rows = rows or []
         if metric in EVENTS:
-            return "share", len({r.key for r in rows}) / jobs, jobs
+            return _Figure("share", len({r.key for r in rows}) / jobs, jobs)
+        aggregate = {values.NUMBER: "median", values.BOOLEAN: "mean"}.get(kind)
+        bad = [r.value for r in rows if not values.valid(kind, r.value)]
+        if bad:
+            shown = sorted(set(bad))
+            text = ";".join(shown[:INVALID_SHOWN]) + (";…" if len(shown) > INVALID_SHOWN else "")
+            return _Figure(aggregate, text, len(rows), len(bad))
         numbers = [r.number for r in rows]
         if rows and all(r.value in ("True", "False") for r in rows):
-            return "mean", statistics.fmean(numbers), len(rows)
+            return _Figure("mean", statistics.fmean(numbers), len(rows))
         if rows and None not in numbers:
-            return "median", float(statistics.median(numbers)), len(rows)
+            return _Figure("median", float(statistics.median(numbers)), len(rows))
         words = sorted({w for r in rows for w in r.value.split(";") if w})
-        return "words", ";".join(words), len(rows)
+        return _Figure("words", ";".join(words), len(rows))
 
 
-def _compare_group(group: Group, base: _Side, head: _Side, tolerances: Tolerances) -> Comparison:
+def _read(path: str | Path, refuse_invalid: bool) -> list[Row]:
+    rows = read_results(path)
+    bad = values.invalid(rows) if refuse_invalid else []
+    if bad:
+        raise UsvError(values.refusal(path, bad))
+    return rows
+
+
+def _compare_group(group: Group, base: _Side, head: _Side, tolerances: Tolerances,
+                   kind: str | None) -> Comparison:  # fmt: skip
     metric = group[3]
     rule = tolerances.rule(metric)
     timing = metric in TIMING_METRICS
-    b, h = base.figure(group), head.figure(group)
+    b, h = base.figure(group, kind), head.figure(group, kind)
     change = relative_change = allowed = None
-    if b is None or h is None:
+    if h is not None and h.invalid:
+        status = "invalid"
+    elif b is None or h is None:
         status = "new" if b is None else "missing"
-    elif isinstance(b[1], str) or isinstance(h[1], str):
-        status = "ok" if b[1] == h[1] else "changed"
+    elif isinstance(b.value, str) or isinstance(h.value, str):
+        status = "ok" if b.value == h.value else "changed"
     else:
-        change = _significant(h[1] - b[1])
-        relative_change = _significant(change / abs(b[1])) if b[1] else None
-        allowed = _significant(max(rule.relative * abs(b[1]), rule.absolute))
+        change = _significant(h.value - b.value)
+        relative_change = _significant(change / abs(b.value)) if b.value else None
+        allowed = _significant(max(rule.relative * abs(b.value), rule.absolute))
         status = _classify(rule.better, change, allowed)
-    aggregate = (b or h)[0]
     return Comparison(
-        *group, timing=timing, better=rule.better, aggregate=aggregate,
-        base=None if b is None else b[1], head=None if h is None else h[1],
-        n_base=0 if b is None else b[2], n_head=0 if h is None else h[2],
-        change=change, relative_change=relative_change, relative=rule.relative,
-        absolute=rule.absolute, allowed=allowed, status=status,
+        *group, timing=timing, better=rule.better, aggregate=(b or h).aggregate,
+        base=None if b is None else b.value, head=None if h is None else h.value,
+        n_base=0 if b is None else b.n, n_head=0 if h is None else h.n,
+        invalid=0 if h is None else h.invalid, change=change,
+        relative_change=relative_change, relative=rule.relative, absolute=rule.absolute,
+        allowed=allowed, status=status,
         counted=not timing or tolerances.count_timings,
     )  # fmt: skip
 
@@ -379,17 +427,14 @@ def _classify(better: str, change: float, allowed: float) -> str:
 
 
 def _write(result: CompareResult, out: Path) -> None:
-    """Render everything, then write the three files together."""
+    """Render everything, then write the three files together (``DIR`` made when missing,
+    removed again when the writing fails)."""
     if out.exists() and not out.is_dir():
         raise UsvError(f"{out}: exists and is not a directory")
     texts = (result.to_html(), result.to_json(), result.to_markdown())
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise UsvError(f"{out}: cannot create the directory: {exc.strerror}") from None
-    with staged(*(out / name for name in FILES)) as temps:
-        for tmp, text in zip(temps, texts, strict=True):
-            tmp.write_text(text, encoding="utf-8")
+    write_together(
+        {out / name: text.encode("utf-8") for name, text in zip(FILES, texts, strict=True)}
+    )
 
 
 # ---- presentation (HTML and Markdown share the cells) ----
@@ -420,6 +465,9 @@ def _cells(c: Comparison) -> dict[str, str]:
             change += f" ({c.relative_change:+.1%})".replace("%", " %")
     elif c.change == 0:
         change = "0"
+    elif c.status == "invalid":
+        expected = "True/False" if c.aggregate == "mean" else "numbers"
+        change = f"{c.invalid} of {c.n_head} not {expected}"
     elif c.status == "changed":
         change = "changed"
     n = str(c.n_base) if c.n_base == c.n_head else f"{c.n_base} → {c.n_head}"
@@ -454,7 +502,7 @@ def _counts_line(counts: dict[str, int]) -> str:
 
 def _markdown(result: CompareResult) -> str:
     """The short summary for CI logs (docs/compare.md)."""
-    shown = ("regressed", "missing", "improved")
+    shown = ("invalid", "regressed", "missing", "improved")
     timings = "counted" if result.tolerances.count_timings else "not counted"
     lines = [
         f"## usvtool compare: {_verdict(result)}",
