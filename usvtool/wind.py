@@ -138,6 +138,9 @@ def read_wind_field(
             )
     if transform.is_identity or transform.determinant == 0:
         raise UsvError(f"{path}: no usable geotransform, so no map position for its cells")
+    if transform.b != 0 or transform.d != 0:  # the figures draw a field as a north-up image
+        raise UsvError(f"{path}: a rotated or sheared geotransform; warp the field north-up "
+                       "(gdalwarp)")  # fmt: skip
     stack = np.nan_to_num(np.stack(layers).astype(float), nan=0.0)
     return WindField(stack, transform, "wave_height" in found, "wave_from" in found, raster_crs)
 

@@ -281,6 +281,16 @@ def test_crs_mismatch_refused(uv_tif, speed_tif):
     read_weather(speed_tif, crs="EPSG:32618")  # no CRS: taken to be in the chart's frame
 
 
+def test_a_rotated_field_is_refused(tmp_path):
+    path = _write_tif(tmp_path / "r.tif", [U, V], ("u", "v"))
+    import rasterio
+
+    with rasterio.open(path, "r+") as ds:
+        ds.transform = TRANSFORM * Affine.rotation(30)
+    with pytest.raises(UsvError, match=r"r\.tif: a rotated or sheared geotransform; warp"):
+        read_weather(path)
+
+
 def test_unreadable_file(tmp_path):
     path = tmp_path / "junk.tif"
     path.write_bytes(b"this is not a raster\n" * 10)
