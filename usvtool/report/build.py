@@ -3,8 +3,10 @@
 Writes into the output directory ``index.html`` (self-contained), ``report.pdf`` (the same page
 laid out by WeasyPrint; skipped with a one-line hint when WeasyPrint cannot run),
 ``figures/<id>.png`` and ``data/<id>.csv`` (each figure's picture and data). Every file is
-staged and renamed together (:class:`usvtool.atomic.staged`), ``index.html`` last; files of an
-earlier report that this one no longer has are then removed from ``figures/`` and ``data/``.
+staged and renamed together (:func:`usvtool.report.output.write_together`), ``index.html``
+last; the directories made for them are removed again when that fails (a full disk), so a
+failed report leaves the output directory as it was. Files of an earlier report that this one
+no longer has are then removed from ``figures/`` and ``data/``.
 """
 
 from __future__ import annotations
@@ -13,11 +15,11 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from usvtool.atomic import staged
 from usvtool.errors import UsvError
 from usvtool.report import claims, encounters, functions, methods, planning, preprocessing
 from usvtool.report.data import load
 from usvtool.report.document import Section
+from usvtool.report.output import write_together
 from usvtool.report.render import PdfUnavailable, html, pdf
 
 TITLE = "usvtool: path planning and collision avoidance, compared with the papers"
@@ -107,12 +109,10 @@ def make_report(options: ReportOptions) -> ReportResult:
     for f in figures:
         files[out / "figures" / f"{f.id}.png"] = f.png
         files[out / "data" / f"{f.id}.csv"] = f.data.encode("utf-8")
+    write_together(files)
     for d in ("figures", "data"):
-        (out / d).mkdir(parents=True, exist_ok=True)
-    with staged(*files) as temporaries:
-        for tmp, content in zip(temporaries, files.values(), strict=True):
-            Path(tmp).write_bytes(content)
-    for d in ("figures", "data"):
+        if not (out / d).is_dir():
+            continue
         for stale in set((out / d).iterdir()) - set(files):
             if stale.is_file() and not stale.name.startswith("."):
                 stale.unlink()

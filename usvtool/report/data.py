@@ -5,6 +5,8 @@ Each row of a table is one metric of one job; :func:`load` gathers a job's rows 
 the batch engine ran: the grid of a route, the scenario of a run) and its timings (the
 ``timings.csv`` beside the table, when there is one). Several tables may be given (several
 batches); a key found in two of them is refused, as the report could not tell which is meant.
+A table (or its timings) holding a value that is not of its metric's kind (``nan`` where a
+number is expected: :mod:`usvtool.report.values`) is refused, naming how many and which.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from usvtool.errors import UsvError
+from usvtool.report import values
 from usvtool.results import Row, job_dir, read_results, timings_path
 
 #: The order methods are shown in: the papers' algorithms, then the project's variants, then
@@ -94,8 +97,8 @@ def load(tables) -> Results:
     jobs: dict[str, Job] = {}
     where: dict[str, Path] = {}
     for table in map(Path, tables):
-        rows = read_results(table)
-        timings = read_results(timings_path(table)) if timings_path(table).is_file() else []
+        rows = _read(table)
+        timings = _read(timings_path(table)) if timings_path(table).is_file() else []
         mine: dict[str, Job] = {}
         for row in rows:
             if row.key in where and where[row.key] != table:
@@ -117,6 +120,15 @@ def load(tables) -> Results:
                 mine[row.key].timings[row.metric] = row.number
         jobs.update(mine)
     return Results([jobs[k] for k in sorted(jobs)], [Path(t) for t in tables])
+
+
+def _read(path: Path) -> list[Row]:
+    """A results table whose every value is of its metric's kind."""
+    rows = read_results(path)
+    bad = values.invalid(rows)
+    if bad:
+        raise UsvError(values.refusal(path, bad))
+    return rows
 
 
 def stats(values) -> dict[str, float | None]:

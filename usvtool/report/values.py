@@ -34,8 +34,8 @@ BOOLEANS = frozenset({"collision_free", "arrived"})
 #: ``collision`` names what was hit (a target's name may be anything, ``12`` or ``nan``).
 WORDS = frozenset({"collision", "failed_rules", "reference_controller", "chart", "algorithm",
                    "run", "scenario", "controller"})  # fmt: skip
-#: What :func:`refusal` says each kind must be.
-EXPECTED = {NUMBER: "finite numbers", BOOLEAN: "True/False"}
+#: What :func:`refusal` says each kind must be: (one value, several).
+EXPECTED = {NUMBER: ("a finite number", "finite numbers"), BOOLEAN: ("True/False", "True/False")}
 
 
 def kind(metric: str) -> str | None:
@@ -78,13 +78,14 @@ def refusal(path, bad: list[tuple[int, Row]], shown: int = 4) -> str:
     """One line refusing the table ``path`` for its :func:`invalid` rows: how many, which
     metrics (the first ``shown``), the first one's line and value."""
     metrics = sorted({r.metric for _, r in bad})
-    expected = " or ".join(EXPECTED[k] for k in (NUMBER, BOOLEAN)
+    several = len(bad) > 1
+    expected = " or ".join(EXPECTED[k][several] for k in (NUMBER, BOOLEAN)
                            if any(kind(m) == k for m in metrics))  # fmt: skip
     names = ", ".join(metrics[:shown]) + (f" and {len(metrics) - shown} more"
                                           if len(metrics) > shown else "")  # fmt: skip
     line, first = bad[0]
     value = first.value if len(first.value) <= 20 else first.value[:20] + "…"
     return (
-        f"{path}: {len(bad)} value{'s are' if len(bad) > 1 else ' is'} not {expected} "
+        f"{path}: {len(bad)} value{'s are' if several else ' is'} not {expected} "
         f"({names}); line {line}: {first.metric} {value!r}"
     )
