@@ -15,8 +15,17 @@ seed_option = click.option(
 )
 
 
+class OutputPath(click.Path):
+    """A file the command writes (a file option of any other ``click.Path`` type is one it
+    reads): ``usvtool batch`` refuses such an option in a pipeline, as it names a job's
+    outputs itself (:func:`usvtool.cli.batch.file_options`)."""
+
+    def __init__(self) -> None:
+        super().__init__(dir_okay=False)
+
+
 def output_option(help: str):
-    return click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help=help)
+    return click.option("-o", "--output", required=True, type=OutputPath(), help=help)
 
 
 class PositiveFloat(click.ParamType):
@@ -86,7 +95,7 @@ def param_option(help: str):
 def summary_option(f):
     """``--summary FILE``: also write the summary JSON to FILE (atomically, with the outputs)."""
     return click.option(
-        "--summary", "summary_path", type=click.Path(dir_okay=False), metavar="FILE.json",
+        "--summary", "summary_path", type=OutputPath(), metavar="FILE.json",
         help="Also write the summary JSON printed on stdout to this file (atomically, together "
         "with the outputs: none is written when the command fails).",
     )(f)  # fmt: skip

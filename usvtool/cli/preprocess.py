@@ -9,6 +9,7 @@ import click
 from usvtool.cli.options import (
     NON_NEGATIVE,
     POSITIVE,
+    OutputPath,
     emit,
     output_option,
     seed_option,
@@ -35,7 +36,7 @@ class Colour(click.ParamType):
 @click.command()
 @click.argument("chart", type=click.Path(dir_okay=False))
 @output_option("Output grid GeoTIFF.")
-@click.option("--preview", type=click.Path(dir_okay=False), help="Also write a preview PNG.")
+@click.option("--preview", type=OutputPath(), help="Also write a preview PNG.")
 @click.option("--preview-resolution", type=POSITIVE, metavar="METRES",
               help="Metres per preview pixel [default: longest side 1200 pixels; an S-57 "
               "cell's background drawn at half a cell, or coarser to match].")
