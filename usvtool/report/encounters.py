@@ -2,16 +2,20 @@
 domains, the own ship's states against time, the distance to the nearest ship for every
 controller, and a table of the run metrics; then COLREGs compliance per encounter.
 
-A run job's files are ``trace.csv`` and ``trace.events.json`` in its directory; the events'
-``run`` object gives the own ship's length, and the scenario file named by the job's
-``job.json`` the targets' lengths, the map and the weather field.
+A run job's files are ``trace.csv`` and ``trace.events.json`` in its directory. The events'
+``run`` object holds the scenario as the simulator resolved it (docs/simulate.md): every ship's
+name and length in the trace's order (``ships``; an unnamed target is ``target1``, ...), the
+absolute paths of the ``map`` and the ``wind_field``. The report reads them there and never
+the scenario YAML; events without them (written by an older usvtool) are refused, one line
+saying to simulate the run again.
 """
 
 from __future__ import annotations
 
-import json
+import math
 from functools import cache
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -20,7 +24,7 @@ from usvtool.grid import read_grid
 from usvtool.report import figures, published
 from usvtool.report.data import Job, Results, stats
 from usvtool.report.document import Cell, Figure, Section, Table, number
-from usvtool.trace import Trace, read_trace
+from usvtool.trace import Trace, read_events, read_trace
 from usvtool.wind import read_wind_field
 
 #: The controller whose snapshots are shown, by the scenario's family (its name's first word):
@@ -37,55 +41,74 @@ def _trace(path: Path) -> Trace:
     return read_trace(path)
 
 
+#: The keys of the events' ``run`` object the report reads (docs/simulate.md).
+RUN_FACTS = ("ships", "map", "wind_field")
+RERUN = "simulate the run again (usvtool batch reruns it when its directory is removed)"
+
+
 @cache
 def _events(path: Path) -> dict:
-    try:
-        return json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError) as e:
-        raise UsvError(f"{path}: cannot read the events JSON ({e})") from None
+    return read_events(path)
 
 
-def run_files(job: Job) -> tuple[Trace, dict] | None:
+class RunFiles(NamedTuple):
+    """A run's trace and events, and the events' file (named in errors)."""
+
+    trace: Trace
+    events: dict
+    path: Path
+
+
+def run_files(job: Job) -> RunFiles | None:
     trace, events = job.dir / "trace.csv", job.dir / "trace.events.json"
     if not (trace.is_file() and events.is_file()):
         return None
-    return _trace(trace), _events(events)
+    return RunFiles(_trace(trace), _events(events), events)
 
 
-@cache
-def _scenario(path: str) -> dict:
-    import yaml
+def run_facts(events: dict, where: Path | str) -> dict:
+    """The events' ``run`` object, refused (naming ``where``) when it lacks :data:`RUN_FACTS`."""
+    run = events.get("run")
+    if not isinstance(run, dict):
+        raise UsvError(f"{where}: the events hold no 'run' object (an older usvtool): {RERUN}")
+    missing = [k for k in RUN_FACTS if k not in run]
+    if missing:
+        raise UsvError(f"{where}: run has no {', '.join(missing)} (written by an older usvtool, "
+                       f"before the run held the scenario's facts): {RERUN}")  # fmt: skip
+    return run
 
-    try:
-        data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
-    except (OSError, yaml.YAMLError) as e:
-        raise UsvError(f"{path}: cannot read the scenario ({' '.join(str(e).split())})") from None
-    return data if isinstance(data, dict) else {}
+
+def lengths(trace: Trace, events: dict, where: Path | str) -> dict[str, float]:
+    """Every ship's length by name, from the events' ``run.ships`` (the trace's ships, in its
+    order, each with a length > 0 m)."""
+    ships = run_facts(events, where)["ships"]
+    if not isinstance(ships, list) or not all(isinstance(s, dict) for s in ships):
+        raise UsvError(f"{where}: run.ships must be a list of {{name, length}}")
+    names = tuple(s.get("name") for s in ships)
+    if names != trace.ships:
+        raise UsvError(f"{where}: run.ships name {len(names)} ship(s), not the trace's "
+                       f"{', '.join(trace.ships)}: {RERUN}")  # fmt: skip
+    for s in ships:
+        length = s.get("length")
+        if (isinstance(length, bool) or not isinstance(length, int | float)
+                or not math.isfinite(length) or length <= 0):  # fmt: skip
+            raise UsvError(f"{where}: run.ships: {s['name']}'s length {length!r} is not a "
+                           "number > 0")  # fmt: skip
+    return {s["name"]: float(s["length"]) for s in ships}
 
 
-def scenario_file(job: Job, *keys: str) -> Path | None:
-    """A file the run's scenario names (``map``; ``weather``, ``field``), resolved against the
-    scenario file of the job's ``job.json`` (docs/scenario.md: paths are relative to it)."""
-    scenario = job.config.get("scenario")
-    value = _scenario(scenario) if scenario and Path(scenario).is_file() else {}
-    for key in keys:
-        value = value.get(key) if isinstance(value, dict) else None
-    if not isinstance(value, str):
+def run_file(events: dict, key: str, where: Path | str) -> Path | None:
+    """The run's ``map`` or ``wind_field`` (``key``) as the run resolved it; None when it had
+    none. Refused when the file is gone since."""
+    value = run_facts(events, where)[key]
+    if value is None:
         return None
-    path = (Path(scenario).parent / value).resolve()
-    return path if path.is_file() else None
-
-
-def lengths(job: Job, trace: Trace, events: dict) -> dict[str, float]:
-    """Every ship's length: the own ship's from the events' ``run.own_length``, each target's
-    from its entry in the scenario file (``targets[].length``, required there; matched by
-    ``name``); a ship found in neither takes the own ship's."""
-    own = float(events.get("run", {}).get("own_length", 1.0))
-    scenario = job.config.get("scenario")
-    data = _scenario(scenario) if scenario and Path(scenario).is_file() else {}
-    known = {str(t.get("name")): float(t["length"]) for t in data.get("targets") or []
-             if isinstance(t, dict) and isinstance(t.get("length"), int | float)}  # fmt: skip
-    return {s: own if s == "own" else known.get(s, own) for s in trace.ships}
+    if not isinstance(value, str):
+        raise UsvError(f"{where}: run.{key} must be a path or null")
+    if not Path(value).is_file():
+        raise UsvError(f"{where}: run.{key} {value}: no such file (moved or removed since the "
+                       "run?)")  # fmt: skip
+    return Path(value)
 
 
 def primary(scenario: str, controllers: list[str]) -> str:
@@ -100,13 +123,14 @@ def scenario_section(results: Results, scenario: str) -> Section:
             for c in controllers}  # fmt: skip
     main = primary(scenario, controllers)
     files = run_files(runs[main])
-    grid_path = scenario_file(runs[main], "map")
-    field_path = scenario_file(runs[main], "weather", "field")
+    field_path = None
     if files is not None:
-        trace, events = files
+        trace, events, where = files
+        grid_path = run_file(events, "map", where)
+        field_path = run_file(events, "wind_field", where)
         grid = read_grid(grid_path) if grid_path else None
         times = figures.snapshot_times(trace, events)
-        sizes = lengths(runs[main], trace, events)
+        sizes = lengths(trace, events, where)
         plot = figures.encounter_snapshots(trace, times, sizes, grid=grid,
                                            title=f"{scenario}: {main}",
                                            goal=events.get("run", {}).get("goal"))  # fmt: skip
@@ -118,7 +142,7 @@ def scenario_section(results: Results, scenario: str) -> Section:
         section.blocks.append(Figure(
             f"encounter-{scenario}-states", f"{scenario} with {main}: states",
             "The own ship's x, y and heading against time.", plot.png, plot.data))
-    traces = {c: f[0] for c, f in ((c, run_files(j)) for c, j in runs.items()) if f}
+    traces = {c: f.trace for c, f in ((c, run_files(j)) for c, j in runs.items()) if f}
     if field_path is not None and traces:
         field = read_wind_field(field_path)
         plot = figures.wind_runs(field.layers[0], field.layers[1], field.extent, traces,
