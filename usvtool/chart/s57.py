@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 import shapely
 
+from usvtool.companions import s57_updates
 from usvtool.errors import UsvError, check_input_file
 from usvtool.geodesy import WGS84, reproject_geometries, utm_crs
 
@@ -146,18 +147,6 @@ def read_coverage(path, updates: bool = True) -> shapely.Geometry:
     return _Reader(path, updates).coverage()
 
 
-def update_files(path) -> list[Path]:
-    """The update files beside the base cell ``path``: same name, extension .001 to .999, in
-    the order of their numbers."""
-    path = Path(path)
-    found = [
-        p for p in path.parent.iterdir()
-        if p.stem == path.stem and len(p.suffix) == 4 and p.suffix[1:].isdigit()
-        and p.suffix != ".000"
-    ]  # fmt: skip
-    return sorted(found, key=lambda p: int(p.suffix[1:]))
-
-
 def update_status(path) -> dict:
     """Edition and update number applied (``DSID_EDTN``, ``DSID_UPDN``, with the update files
     applied) and the names of the update files beside the cell.
@@ -168,7 +157,7 @@ def update_status(path) -> dict:
     path = Path(path)
     check_input_file(path)
     identity = _Reader(path, True).identity()
-    files = update_files(path)
+    files = s57_updates(path)  # the files GDAL's driver applies (usvtool.companions)
     numbers = [int(p.suffix[1:]) for p in files]
     missing = sorted(set(range(1, max(numbers, default=0) + 1)) - set(numbers))
     if missing:
