@@ -22,7 +22,7 @@ resolver reads them as strings and needs ``1.0e+3``).
 >>> read_yaml(p)
 {'dt': 0.1, 'duration': 1000.0}
 >>> _ = p.write_text("a: 1\\nb: 2\\na: 3\\n")
->>> read_yaml(p)
+>>> read_yaml(p)  # doctest: +ELLIPSIS
 Traceback (most recent call last):
 usvtool.errors.UsvError: ...a.yaml: line 3: 'a' named twice
 """
