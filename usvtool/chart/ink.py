@@ -66,7 +66,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
-MODES = ("auto", "clutter", "obstacle")
+MODES = ("auto", "auto+bridges", "clutter", "obstacle")
 BAND = 1024  # image rows per step where a whole-image temporary is not needed
 REACH = 64  # rows a band is grown by on each side for the ink's distances (see _sides)
 #: Solids are at least this many ordinary stroke widths thick, and their area is at most
@@ -96,6 +96,9 @@ DOCK_FILL = 0.05
 #: times its length times its thickness.
 BAR_LENGTH = 25.0
 BAR_FILL = (0.75, 1.0)
+#: A structure candidate is a line crossing water when it cuts water that reaches this many
+#: ordinary strokes beyond its box on two sides.
+LINE_MARGIN = 10.0
 #: Holes filled as ring symbols: largest area in units of ``w^2``, and shape limits.
 RING_HOLE_AREA = 2.25 * np.pi  # pi (1.5 w)^2: a disc three strokes across
 RING_HOLE_ASPECT = 1.5
@@ -171,7 +174,7 @@ def resolve(
     """
     if mode not in MODES:
         raise ValueError(f"ink mode must be one of {MODES}")
-    on_land, w = _sides(ink, land, width=mode == "auto")
+    on_land, w = _sides(ink, land, width=mode.startswith("auto"))
     land = (land & ~ink) | on_land
     wet = ink & ~on_land
     del on_land
@@ -184,13 +187,75 @@ def resolve(
     hazard = _docks(separate, wet, land, shore, w)
     filled = (wet | _round_holes(wet, separate, w)).view(np.uint8)
     del separate
-    parts = _solids(filled, SOLID_WIDTH * w + 1)
     dark = None if layers is None or dark_layers is None else np.isin(layers, dark_layers)
+    parts = _solids(filled, SOLID_WIDTH * w + 1, shore, dark)
     cv2.bitwise_or(parts, _structures(filled, shore, w, dark), dst=parts)
-    del dark
     # an opening rounds corners off: grow back by half a stroke, inside the ink
-    hazard |= cv2.bitwise_and(_around(parts, (w + 1) / 2), filled).view(bool)
+    hazard |= _grown(parts, filled, w)
+    lines = _crossings(hazard, land, wet, w, dark if mode == "auto+bridges" else None)
+    if lines.any():
+        hazard &= ~lines
+        # a line's ends at the banks are nearer land than water: over the water all the same
+        land &= ~cv2.bitwise_and(_around(lines, w + 1.5), ink.view(np.uint8)).view(bool)
     return land, hazard
+
+
+def _grown(parts: np.ndarray, filled: np.ndarray, w: float) -> np.ndarray:
+    """``parts`` grown back by half a stroke inside the ink ``filled`` (bool)."""
+    return cv2.bitwise_and(_around(parts, (w + 1) / 2), filled).view(bool)
+
+
+def _crossings(
+    candidates: np.ndarray, land: np.ndarray, wet: np.ndarray, w: float, bridges
+) -> np.ndarray:
+    """The hazard ``candidates`` that are lines crossing water (bool): the groups of them (their
+    pixels within twice the shore band of each other) that, grown by a shore band and by the
+    ``wet`` ink within another ``w + 1`` (the rest of a line, too thin to be a candidate),
+    cut a piece of the water of their box, grown by :data:`LINE_MARGIN` strokes, into two or
+    more pieces that reach the box's edge. ``bridges``: the dark ink, whose groups stay (a
+    bridge is drawn in black), or None.
+    """
+    reach = _around(candidates, w + 0.5)
+    n, labels, at, label_at = _label(reach, 8)
+    del reach
+    out = np.zeros_like(candidates)
+    if n == 1:
+        return out
+    _, left, top, box_w, box_h = _boxes(n, at, label_at, land.shape[1])
+    margin = int(np.ceil(LINE_MARGIN * w))
+    rows, cols = land.shape
+    line = np.zeros(n, bool)
+    for k in range(1, n):
+        box = np.s_[max(0, top[k] - margin) : min(rows, top[k] + box_h[k] + margin),
+                    max(0, left[k] - margin) : min(cols, left[k] + box_w[k] + margin)]  # fmt: skip
+        group = labels[box] == k
+        group |= wet[box] & _around(group, w + 1).view(bool)
+        line[k] = _cuts(land[box], group)
+    if bridges is not None and line.any():
+        ink_at = candidates.ravel()[at]
+        dark_share = np.bincount(label_at, weights=ink_at & bridges.ravel()[at], minlength=n)
+        line &= dark_share <= 0.5 * np.bincount(label_at, weights=ink_at, minlength=n)
+    out.ravel()[at] = line[label_at]
+    return out & candidates
+
+
+def _cuts(land: np.ndarray, group: np.ndarray) -> bool:
+    """Whether ``group`` cuts a 4-connected piece of the water ``~land`` into two or more
+    pieces that reach the edge of the image.
+
+    >>> land = np.zeros((5, 9), bool); land[[0, -1]] = True
+    >>> line = np.zeros_like(land); line[1:4, 4] = True  # bank to bank
+    >>> _cuts(land, line), _cuts(land, line & (np.arange(5)[:, None] < 3))  # and one short
+    (True, False)
+    """
+    _, before = label(~land, 4)
+    _, after = label(~(land | group), 4)
+    edge = np.s_[[0, -1], :], np.s_[:, [0, -1]]
+    pieces = np.concatenate([after[e].ravel() for e in edge])
+    water = np.concatenate([before[e].ravel() for e in edge])
+    pieces, first = np.unique(pieces, return_index=True)
+    water = water[first[pieces > 0]]
+    return water.size > np.unique(water).size
 
 
 def _cut_layers(wet: np.ndarray, layers: np.ndarray | None) -> np.ndarray:
@@ -276,10 +341,14 @@ def _sides(ink: np.ndarray, land: np.ndarray, width: bool = False) -> tuple[np.n
     return on_land, _width(np.concatenate(ridges)) if width else 2.0
 
 
-def _solids(filled: np.ndarray, width: float) -> np.ndarray:
+def _solids(
+    filled: np.ndarray, width: float, shore: np.ndarray, dark: np.ndarray | None = None
+) -> np.ndarray:
     """The parts of ``filled`` at least ``width`` thick (a morphological opening) whose area is
-    at most ``SOLID_AREA`` times their inscribed disc: discs, squares, blobs, not bars (uint8
-    0/1)."""
+    at most ``SOLID_AREA`` times their inscribed disc: discs, squares, blobs, not bars; or that
+    taper (uint8 0/1). With ``dark`` ink given, the solids of light ink neither taper nor
+    reach the ``shore`` band: a light's magenta flare, and the piece of a magenta dash that
+    a narrow channel leaves, are no symbols standing in the water."""
     thick = _open(filled, width)
     n, labels, at, label_at = _label(thick, 8)  # the thick pixels: a small share of the chart
     if n == 1:
@@ -291,9 +360,16 @@ def _solids(filled: np.ndarray, width: float) -> np.ndarray:
     deep = label_at[dist_at >= CORE_DEPTH * radius[label_at]]
     core_share = np.bincount(deep, minlength=n) / np.maximum(area, 1)
     tapered = (area <= TAPERED_AREA * disc) & (core_share <= CORE_SHARE)
+    if dark is not None:
+        light = np.bincount(label_at, weights=dark.ravel()[at], minlength=n) <= 0.5 * area
+        tapered &= ~light
+        ashore = np.zeros(n, bool)
+        ashore[labels.ravel()[np.flatnonzero(cv2.bitwise_and(thick, shore))]] = True
     # deeper than the opening's own disc: where the strokes of a glyph meet, that disc just fits
     deep_enough = radius >= SOLID_DEPTH * np.ceil(width) / 2
     solid = ((area <= SOLID_AREA * disc) | tapered) & deep_enough
+    if dark is not None:
+        solid &= ~(light & ashore)
     solid[0] = False
     out = np.zeros_like(thick)
     out.ravel()[at] = solid[label_at]
@@ -312,8 +388,10 @@ def _structures(
     area, left, top, bw, bh = _boxes(n, at, label_at, strokes.shape[1])
     extent = np.hypot(bw, bh)
     long_ = ~attached & (extent >= BAR_LENGTH * w)
-    if dark is not None:
-        long_ &= np.bincount(label_at, weights=dark.ravel()[at], minlength=n) > 0.5 * area
+    if dark is not None:  # structures are drawn in dark ink
+        dark_ink = np.bincount(label_at, weights=dark.ravel()[at], minlength=n) > 0.5 * area
+        attached &= dark_ink
+        long_ &= dark_ink
     for k in np.flatnonzero(long_):  # few candidates: each one's thickness on its own box
         box = np.s_[top[k] : top[k] + bh[k], left[k] : left[k] + bw[k]]
         radius = _distance(np.pad(labels[box] == k, 1)).max()
