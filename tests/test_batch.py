@@ -21,7 +21,7 @@ from click.testing import CliRunner
 from usvtool.batch.jobs import expand
 from usvtool.batch.progress import Bar, Lines
 from usvtool.cli import cli
-from usvtool.cli.batch import stage_names
+from usvtool.cli.batch import scenario_files, stage_names
 from usvtool.pipeline import load
 from usvtool.results import TIMING_METRICS, read_results
 
@@ -254,6 +254,11 @@ def invoke(*args):
          "other options"),
         ("controllers: [dwa, gdwa]", "controllers: [dwa, gdwa, dwa]", "simulation.controllers: "
          "named twice: dwa"),
+        # an option naming an output: the grid job would write it outside -o DIR
+        ("occupancy: 0.5}", "occupancy: 0.5, summary: ../../../x.json}",
+         "charts.grid20.options.summary: names an output file"),
+        ("options: {pop: 10, iters: 10}", "options: {pop: 10, iters: 10, summary: /tmp/x.json}",
+         "routes.tiny.options.summary: names an output file"),
     ],
 )  # fmt: skip
 def test_a_bad_pipeline_is_one_line_exit_1_and_nothing_runs(tmp_path, old, new, field):
@@ -316,7 +321,8 @@ def test_a_run_key_covers_the_files_its_scenario_names(tmp_path):
     names = stage_names()
 
     def run_keys() -> set[str]:
-        return {j.key for j in expand(load(path, names), names) if j.kind == "runs"}
+        jobs = expand(load(path, names), names, scenario_files)
+        return {j.key for j in jobs if j.kind == "runs"}
 
     before = run_keys()
     assert len(before) == 2  # dwa, gdwa

@@ -205,6 +205,49 @@ def test_errors_name_the_file_and_the_field(tmp_path, dotted, value, field, word
     assert words in message
 
 
+@pytest.mark.parametrize(
+    "where, option, value",
+    [
+        ("charts.m.options", "summary", "/abs/x.json"),
+        ("charts.m.options", "summary", "../../../x.json"),
+        ("charts.m.options", "preview", "p.png"),
+        ("charts.m.options", "output", "g.tif"),
+        ("routes.a.options", "summary", "/abs/x.json"),
+        ("routes.a.options", "output", "r.geojson"),
+    ],
+)
+def test_an_option_naming_an_output_file_is_refused(tmp_path, where, option, value):
+    """usvtool batch names a job's outputs (in the job's directory): an option naming another
+    would write outside -o DIR. Which options name outputs: the commands' declarations."""
+    data = minimal()
+    node = data
+    for part in where.split("."):
+        node = node.setdefault(part, {})
+    node[option] = value
+    path = write(tmp_path, data)
+    with pytest.raises(UsvError) as info:
+        load(path, NAMES)
+    assert str(info.value) == (f"{path}: {where}.{option}: names an output file: usvtool batch "
+                               "writes every output of a job in the job's directory under -o "
+                               "DIR")  # fmt: skip
+
+
+def test_an_option_naming_an_input_file_is_read_relative_to_the_root(tmp_path):
+    data = minimal()
+    data["charts"]["m"]["options"]["cutline"] = "cut.geojson"
+    path = write(tmp_path, data)
+    with pytest.raises(UsvError) as info:
+        load(path, NAMES)
+    assert str(info.value) == f"{path}: charts.m.options.cutline: cut.geojson: no such file"
+    (tmp_path / "cut.geojson").write_text("{}")
+    chart = load(path, NAMES).charts["m"]
+    assert chart.args() == ["--cell-size", "1", "--cutline", str(tmp_path / "cut.geojson")]
+    assert chart.args(lambda p: p.name.upper()) == ["--cell-size", "1", "--cutline",
+                                                    "CUT.GEOJSON"]  # fmt: skip
+    # without the stages' names (the Make fragment): as written, relative to the root
+    assert load(path).charts["m"].args() == ["--cell-size", "1", "--cutline", "cut.geojson"]
+
+
 def test_without_names_any_algorithm_reads(tmp_path):
     data = edit(minimal(), "routes.a.algorithms", ["zzz"])
     assert load(write(tmp_path, data)).routes["a"].algorithms == ("zzz",)

@@ -28,8 +28,8 @@ import math
 import re
 import shlex
 import sys
-from collections.abc import Collection
-from dataclasses import dataclass
+from collections.abc import Callable, Collection, Mapping
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from usvtool.errors import UsvError
@@ -41,9 +41,10 @@ BUNDLED = Path(__file__).resolve().parent.parent / "pipelines" / "report.yaml"
 #: Where the Make fragment puts the grids and routes (relative to the project root).
 GRIDS_DIR = "build/grids"
 PATHS_DIR = "build/paths"
-#: ``usvtool plan`` options a route matrix sets itself (or the batch does).
+#: ``usvtool plan`` options a route matrix sets itself (or the batch does). Options naming an
+#: output file are refused for every command (:class:`FileOptions`).
 RESERVED_PLAN_OPTIONS = {"seed", "attempts", "algo", "start", "goal", "start-lonlat",
-                         "goal-lonlat", "output", "summary", "timing", "no-timing"}  # fmt: skip
+                         "goal-lonlat", "timing", "no-timing"}  # fmt: skip
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
 _OPTION = re.compile(r"^[a-z][a-z0-9-]*$")
@@ -55,11 +56,15 @@ def _arg(value: object) -> str:
     return repr(value) if isinstance(value, float) else str(value)
 
 
-def option_args(options: Options) -> list[str]:
-    """``(("cell-size", 1), ("no-swell", True))`` -> ``["--cell-size", "1", "--no-swell"]``."""
+def option_args(options: Options, file: Callable[[Path], str] = str) -> list[str]:
+    """``(("cell-size", 1), ("no-swell", True))`` -> ``["--cell-size", "1", "--no-swell"]``;
+    a file (a :class:`Path`) as ``file(path)`` gives it (its path by default)."""
     out: list[str] = []
     for key, value in options:
-        out += [f"--{key}"] if value is True else [f"--{key}", _arg(value)]
+        if value is True:
+            out.append(f"--{key}")
+        else:
+            out += [f"--{key}", file(value) if isinstance(value, Path) else _arg(value)]
     return out
 
 
@@ -88,23 +93,35 @@ class Chart:
     name: str
     source: str  # relative to the pipeline's root, as written
     inputs: tuple[str, ...] = ()  # globs of further files the grid depends on
-    options: Options = ()  # usvtool preprocess options
+    options: Options = ()  # usvtool preprocess options; a file it reads: its absolute Path
     ends: Ends | None = None
 
-    def args(self) -> list[str]:
-        return option_args(self.options)
+    def args(self, file: Callable[[Path], str] = str) -> list[str]:
+        """The ``usvtool preprocess`` options (a file as :func:`option_args` gives it)."""
+        return option_args(self.options, file)
+
+
+@dataclass(frozen=True)
+class FileOptions:
+    """The options of one command that name files (long names without ``--``): the files it
+    reads and those it writes."""
+
+    reads: frozenset[str] = frozenset()
+    writes: frozenset[str] = frozenset()
 
 
 @dataclass(frozen=True)
 class Names:
     """The names the stages know, for :func:`load` to check a pipeline's entries against:
     optimizers, exact planners (deterministic: their routes take no seed), controllers and
-    benchmark functions."""
+    benchmark functions; and ``files``, the file options of the commands a pipeline gives
+    options to (``preprocess``, ``plan``), as the commands declare them."""
 
     optimizers: Collection[str]
     exact: Collection[str]
     controllers: Collection[str]
     functions: Collection[str]
+    files: Mapping[str, FileOptions] = field(default_factory=dict)
 
     def is_exact(self, algorithm: str) -> bool:
         """``anyangle``, ``astar+s``: an exact planner, with or without shortening."""
@@ -143,10 +160,13 @@ class RouteJob:
     attempts: int
     options: Options  # the matrix's plan options
 
-    def args(self) -> list[str]:
+    def args(self, file: Callable[[Path], str] = str) -> list[str]:
+        """The ``usvtool plan`` arguments but the grid (a file as :func:`option_args` gives
+        it)."""
         seeded = [] if self.seed is None else ["--seed", str(self.seed), "--attempts",
                                                str(self.attempts)]  # fmt: skip
-        return [*self.ends.args(), "--algo", self.algorithm, *seeded, *option_args(self.options)]
+        return [*self.ends.args(), "--algo", self.algorithm, *seeded,
+                *option_args(self.options, file)]  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -264,17 +284,28 @@ class _Reader:
             self.fail(field, f"named twice: {', '.join(map(str, dup))}")
         return tuple(value)
 
-    def options(self, value, field: str) -> Options:
+    def options(self, value, field: str, root: Path, files: FileOptions) -> Options:
+        """A command's options; one naming a file it reads must name a file (relative to
+        ``root``) and becomes its absolute :class:`Path`; one naming a file it writes is
+        refused (``usvtool batch`` names a job's outputs, in the job's directory)."""
         if value is None:
             return ()
         if not isinstance(value, dict):
             self.fail(field, f"expected a mapping of option: value, got {_show(value)}")
+        options: list[tuple[str, object]] = []
         for key, v in value.items():
+            where = f"{field}.{key}"
             if not isinstance(key, str) or not _OPTION.match(key):
-                self.fail(f"{field}.{key}", "not an option name (lower case, e.g. cell-size)")
+                self.fail(where, "not an option name (lower case, e.g. cell-size)")
             if v is False or v is None or isinstance(v, (list, dict)):
-                self.fail(f"{field}.{key}", f"expected a number, a word or true, got {_show(v)}")
-        return tuple(value.items())
+                self.fail(where, f"expected a number, a word or true, got {_show(v)}")
+            if key in files.writes:
+                self.fail(where, "names an output file: usvtool batch writes every output of a "
+                          "job in the job's directory under -o DIR")  # fmt: skip
+            if key in files.reads:
+                v = root / self.files(root, [v], where, glob_ok=False)[0]
+            options.append((key, v))
+        return tuple(options)
 
     def point(self, value, field: str, frame: str) -> tuple[float, float]:
         ok = isinstance(value, list) and len(value) == 2
@@ -330,7 +361,7 @@ def _load(path: Path, names: Names | None, including: tuple[Path, ...]) -> Pipel
         for name, entry in data["charts"].items():
             if name in charts:
                 r.fail(f"charts.{name}", f"named twice (also in {data['include']})")
-            charts[name] = _chart(r, root, name, entry)
+            charts[name] = _chart(r, root, name, entry, names)
 
     routes: dict[str, RouteMatrix] = {}
     if data.get("routes") is not None:
@@ -338,7 +369,7 @@ def _load(path: Path, names: Names | None, including: tuple[Path, ...]) -> Pipel
             r.fail("routes", f"expected a mapping of route matrix names, got "
                    f"{_show(data['routes'])}")  # fmt: skip
         for name, entry in data["routes"].items():
-            routes[name] = _route_matrix(r, name, entry, charts, names)
+            routes[name] = _route_matrix(r, root, name, entry, charts, names)
     simulation = None
     if data.get("simulation") is not None:
         simulation = _simulation(r, root, data["simulation"], names)
@@ -365,7 +396,12 @@ def _included_charts(r: _Reader, value, root: Path, names, including) -> dict[st
     return included.charts
 
 
-def _chart(r: _Reader, root: Path, name, entry) -> Chart:
+def _files(names: Names | None, command: str) -> FileOptions:
+    """The file options of ``command`` (none known without the stages' names)."""
+    return FileOptions() if names is None else names.files.get(command, FileOptions())
+
+
+def _chart(r: _Reader, root: Path, name, entry, names: Names | None) -> Chart:
     field = f"charts.{name}"
     if not isinstance(name, str) or not _NAME.match(name):
         r.fail(field, "not a valid chart name (letters, digits, _ . + -)")
@@ -375,7 +411,7 @@ def _chart(r: _Reader, root: Path, name, entry) -> Chart:
     if not isinstance(inputs, list):
         r.fail(f"{field}.inputs", f"expected a list of paths or globs, got {_show(inputs)}")
     r.files(root, inputs, f"{field}.inputs", glob_ok=True)
-    options = r.options(entry.get("options"), f"{field}.options")
+    options = r.options(entry.get("options"), f"{field}.options", root, _files(names, "preprocess"))
     ends = None
     if "start" in entry or "goal" in entry or "frame" in entry:
         for key in ("start", "goal"):
@@ -406,7 +442,8 @@ def _known(names: Names | None, kind: str):
     return (lambda a: a in pool, ", ".join(pool))
 
 
-def _route_matrix(r: _Reader, name, entry, charts: dict[str, Chart], names) -> RouteMatrix:
+def _route_matrix(r: _Reader, root: Path, name, entry, charts: dict[str, Chart],
+                  names) -> RouteMatrix:  # fmt: skip
     field = f"routes.{name}"
     if not isinstance(name, str) or not _NAME.match(name):
         r.fail(field, "not a valid matrix name (letters, digits, _ . + -)")
@@ -425,7 +462,7 @@ def _route_matrix(r: _Reader, name, entry, charts: dict[str, Chart], names) -> R
                          _known(names, "route"))  # fmt: skip
     matrix_seeds = r.seeds(entry["seeds"], f"{field}.seeds")
     attempts = r.integer(entry.get("attempts", 1), f"{field}.attempts", 1)
-    plan_options = r.options(entry.get("options"), f"{field}.options")
+    plan_options = r.options(entry.get("options"), f"{field}.options", root, _files(names, "plan"))
     for key, _ in plan_options:
         if key in RESERVED_PLAN_OPTIONS:
             r.fail(f"{field}.options.{key}", "set by the matrix itself, not an option")

@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from usvtool.batch import table
-from usvtool.batch.jobs import PRIORITY, Job, expand
+from usvtool.batch.jobs import PRIORITY, Job, ScenarioFiles, expand
 from usvtool.batch.progress import Bar, Lines
 from usvtool.batch.worker import TMP_PREFIX, Command, Outcome, execute, record_failure
 from usvtool.errors import UsvError
@@ -37,7 +37,9 @@ class BatchOptions:
     processes (None: the number of cores); ``scheduler``: a Dask scheduler's address instead;
     ``out``: the results' directory; ``progress``: a progress bar (None: when stderr is a
     terminal) rather than plain lines; ``timeout``: the seconds a job may run on the local pool
-    (None: no limit), after which it is stopped and fails."""
+    (None: no limit), after which it is stopped and fails; ``scenario_files``: the files a
+    scenario names, for the runs' keys (:data:`~usvtool.batch.jobs.ScenarioFiles`; ``usvtool
+    batch`` gives the simulation's reader)."""
 
     command: Command
     names: Names
@@ -46,6 +48,7 @@ class BatchOptions:
     out: str = "build/batch"
     progress: bool | None = None
     timeout: float | None = None
+    scenario_files: ScenarioFiles | None = None
 
 
 @dataclass
@@ -182,7 +185,7 @@ def run_batch(pipeline_path, options: BatchOptions) -> BatchResult:
     cannot be made; failed jobs are in the result."""
     started = time.monotonic()
     pipeline = load(pipeline_path, options.names)
-    jobs = expand(pipeline, options.names)
+    jobs = expand(pipeline, options.names, options.scenario_files)
     out = Path(options.out).resolve()
     executor = _executor(options)
     try:

@@ -4,9 +4,11 @@ A job is one ``usvtool`` command (``preprocess`` a chart, ``plan`` a route, ``si
 scenario, one run of ``functions``) run in its own directory ``DIR/<kind>/<key>/``. Its
 arguments name its outputs relative to that directory (``route.geojson``), its grid as
 ``../../grids/<key>/grid.tif`` and its input files by absolute path. Its key is a short hash of
-its whole configuration: the input file's content (and a chart's extra inputs, and the files a
-scenario names: its map, route, target tracks and wind field), the options, the algorithm or
-controller, the seed, and the code of the stage that runs it (the stage's
+its whole configuration, every byte the job reads included: the content of its input files
+(a chart's source and extra inputs, the files its options name, a scenario and the files it
+names: its map, route, target tracks and wind field), each with its companions (GDAL's
+sidecars of a raster, an S-57 cell's update files: :mod:`usvtool.companions`); the options,
+the algorithm or controller, the seed, and the code of the stage that runs it (the stage's
 package, its command module, the CLI basics and the contract modules), so that a change of any
 of them gives new keys and the jobs run again.
 """
@@ -15,13 +17,15 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
 
+from usvtool.companions import companions
 from usvtool.errors import UsvError
 from usvtool.pipeline import Names, Pipeline
-from usvtool.yamlfile import read_yaml
 
 PACKAGE = Path(__file__).resolve().parent.parent
 #: The stage and the command of each kind of job.
@@ -56,37 +60,36 @@ class Job:
                 "seed": self.seed, "args": list(self.args), **self.info}  # fmt: skip
 
 
-def _file_hash(path: Path) -> str:
-    return hashlib.sha256(path.read_bytes()).hexdigest()
+#: ``scenario_files(path)``: the files the scenario ``path`` names (its map, route, targets'
+#: tracks and wind field) as the simulation resolves them; a :class:`UsvError` for a scenario
+#: that does not read (``usvtool batch`` gives :func:`usvtool.cli.batch.scenario_files`).
+ScenarioFiles = Callable[[Path], list[Path]]
 
 
-def scenario_hashes(path: Path) -> dict[str, str]:
-    """The hashes of a scenario file and of every file it names: each string value of its
-    YAML, at any depth, that is the path of a file relative to the scenario's folder (the
-    scenario schema's map grid, route, target tracks and wind field, read without the
-    simulation stage). A file that is not valid YAML names none (the run then fails on it).
+def sha256(path: Path) -> str:
+    """The SHA-256 of a file's bytes (hex)."""
+    digest = hashlib.sha256()
+    with open(path, "rb") as f:
+        while chunk := f.read(1 << 20):
+            digest.update(chunk)
+    return digest.hexdigest()
 
-    >>> import tempfile
-    >>> d = Path(tempfile.mkdtemp())
-    >>> _ = (d / "w.tif").write_bytes(b"wind"), (d / "s.yaml").write_text("weather: {field: w.tif}")
-    >>> sorted(scenario_hashes(d / "s.yaml"))
-    ['s.yaml', 'w.tif']
-    """
-    hashes = {path.name: _file_hash(path)}
-    try:
-        data = read_yaml(path)
-    except UsvError:
-        return hashes
-    stack = [data]
-    while stack:
-        value = stack.pop()
-        if isinstance(value, dict):
-            stack.extend(value.values())
-        elif isinstance(value, list):
-            stack.extend(value)
-        elif isinstance(value, str) and value and (path.parent / value).is_file():
-            hashes[value] = _file_hash(path.parent / value)
-    return hashes
+
+class _Contents:
+    """The content of input files for keys, each file read once."""
+
+    def __init__(self) -> None:
+        self._known: dict[Path, str] = {}
+
+    def __call__(self, path: Path) -> str:
+        """A digest of the bytes of ``path`` and of its companions (their names relative to
+        its folder, and their bytes)."""
+        path = Path(os.path.abspath(path))
+        if path not in self._known:
+            files = {os.path.relpath(p, path.parent): sha256(p) for p in companions(path)}
+            text = json.dumps({"sha256": sha256(path), "with": files}, sort_keys=True)
+            self._known[path] = hashlib.sha256(text.encode()).hexdigest()
+        return self._known[path]
 
 
 @cache
@@ -107,11 +110,15 @@ def _key(config: dict) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
-def expand(pipeline: Pipeline, names: Names) -> list[Job]:
+def expand(pipeline: Pipeline, names: Names,
+           scenario_files: ScenarioFiles | None = None) -> list[Job]:  # fmt: skip
     """Every job of a pipeline: the grids of the charts that have routes, the routes, the runs
     and the function runs. A job named by two matrices is one job; two different jobs of the
-    same case, method and seed are refused."""
+    same case, method and seed are refused. ``scenario_files`` tells the files each scenario
+    names (None: none); a scenario that does not read is keyed by its own bytes (its run
+    fails alone)."""
     root = pipeline.root
+    content = _Contents()
     jobs: dict[str, Job] = {}
     grid_keys: dict[str, str] = {}
     for chart in dict.fromkeys(j.chart for j in pipeline.route_jobs()):
@@ -119,9 +126,9 @@ def expand(pipeline: Pipeline, names: Names) -> list[Job]:
         inputs = sorted(str(p.relative_to(root)) for pattern in c.inputs
                         for p in root.glob(pattern) if p.is_file())  # fmt: skip
         key = grid_keys[chart] = _key({
-            "kind": "grids", "source": _file_hash(root / c.source),
+            "kind": "grids", "source": content(root / c.source),
             "suffix": Path(c.source).suffix.lower(),
-            "inputs": {p: _file_hash(root / p) for p in inputs}, "options": c.args(),
+            "inputs": {p: content(root / p) for p in inputs}, "options": c.args(content),
         })  # fmt: skip
         args = ("preprocess", str(root / c.source), *c.args(), "-o", GRID,
                 "--preview", "preview.png")  # fmt: skip
@@ -130,7 +137,7 @@ def expand(pipeline: Pipeline, names: Names) -> list[Job]:
     owners: dict[tuple, tuple[str, str]] = {}  # (kind, case, method, seed) -> (key, where)
     for r in pipeline.route_jobs(names):
         grid = grid_keys[r.chart]
-        key = _key({"kind": "routes", "grid": grid, "args": r.args()})
+        key = _key({"kind": "routes", "grid": grid, "args": r.args(content)})
         # a faithful run's colliding route is a result to count (its collision_free is false),
         # not a failed job: plan exits 0 for it with --allow-collision, not 3
         args = ("plan", f"../../grids/{grid}/{GRID}", *r.args(), "--allow-collision",
@@ -140,9 +147,12 @@ def expand(pipeline: Pipeline, names: Names) -> list[Job]:
         _claim(pipeline, owners, ("routes", r.chart, r.algorithm, r.seed), key,
                f"routes.{r.matrix}")  # fmt: skip
         jobs.setdefault(key, Job("routes", key, r.chart, r.algorithm, r.seed, args, grid, info))
+    scenarios: dict[str, dict] = {}
     for scenario, controller, seed in pipeline.simulation_jobs():
         path = root / scenario
-        key = _key({"kind": "runs", "scenario": scenario_hashes(path), "controller": controller,
+        if scenario not in scenarios:
+            scenarios[scenario] = _scenario_content(path, scenario_files, content)
+        key = _key({"kind": "runs", "scenario": scenarios[scenario], "controller": controller,
                     "seed": seed})  # fmt: skip
         args = ("simulate", str(path), "--controller", controller, "--seed", str(seed),
                 "-o", "trace.csv", "--events", "trace.events.json")  # fmt: skip
@@ -157,6 +167,17 @@ def expand(pipeline: Pipeline, names: Names) -> list[Job]:
                 "--seed", str(seed), *(w for k, v in sizes.items() for w in (f"--{k}", str(v))))
         jobs.setdefault(key, Job("functions", key, function, algorithm, seed, args, info=sizes))
     return list(jobs.values())
+
+
+def _scenario_content(path: Path, scenario_files: ScenarioFiles | None, content) -> dict:
+    """The content of a scenario file and of the files it names (by their names relative to
+    its folder); only its own for a scenario that does not read."""
+    try:
+        named = scenario_files(path) if scenario_files is not None else []
+    except UsvError:
+        named = []
+    files = {os.path.relpath(p, path.parent): content(p) for p in named}
+    return {"file": content(path), "names": files}
 
 
 def _claim(pipeline: Pipeline, owners: dict, identity: tuple, key: str, where: str) -> None:

@@ -1,10 +1,11 @@
 """``usvtool batch``: run a pipeline's jobs on a local pool or a Dask cluster, resumable
 (docs/batch.md, docs/cluster.md).
 
-The engine (:mod:`usvtool.batch`) imports no stage; this module gives it the two things it
-needs from them: :func:`run_command`, which its workers call to run one ``usvtool`` command
-line in-process, and :func:`stage_names`, the algorithms, controllers and functions the
-stages know, to check the pipeline against before anything runs.
+The engine (:mod:`usvtool.batch`) imports no stage; this module gives it what it needs from
+them: :func:`run_command`, which its workers call to run one ``usvtool`` command line
+in-process; :func:`stage_names`, the algorithms, controllers and functions the stages know and
+the file options of the commands (:func:`file_options`), to check the pipeline against before
+anything runs; and :func:`scenario_files`, the files a scenario names, for the runs' keys.
 """
 
 from __future__ import annotations
@@ -15,8 +16,8 @@ from pathlib import Path
 
 import click
 
-from usvtool.cli.options import emit, write_summary
-from usvtool.pipeline import Names
+from usvtool.cli.options import OutputPath, emit, write_summary
+from usvtool.pipeline import FileOptions, Names
 
 
 def run_command(args: list[str]) -> tuple[int, str, str]:
@@ -37,14 +38,42 @@ def run_command(args: list[str]) -> tuple[int, str, str]:
     return status, stdout.getvalue(), stderr.getvalue()
 
 
+def file_options(command: click.Command) -> FileOptions:
+    """The long options of ``command`` that name a file (their type a ``click.Path``), as it
+    declares them: those it writes (:class:`~usvtool.cli.options.OutputPath`), those it
+    reads (any other)."""
+    reads: set[str] = set()
+    writes: set[str] = set()
+    for param in command.params:
+        if isinstance(param, click.Option) and isinstance(param.type, click.Path):
+            long = {o[2:] for o in (*param.opts, *param.secondary_opts) if o.startswith("--")}
+            (writes if isinstance(param.type, OutputPath) else reads).update(long)
+    return FileOptions(frozenset(reads), frozenset(writes))
+
+
 def stage_names() -> Names:
-    """The optimizers, exact planners, controllers and benchmark functions of the stages."""
+    """The optimizers, exact planners, controllers and benchmark functions of the stages, and
+    the file options of the commands a pipeline gives options to."""
+    from usvtool.cli.plan import plan
+    from usvtool.cli.preprocess import preprocess
     from usvtool.plan.functions import FUNCTIONS
     from usvtool.plan.optimizers import OPTIMIZERS
     from usvtool.plan.planner import EXACT
     from usvtool.sim.controllers import CONTROLLERS
 
-    return Names(tuple(OPTIMIZERS), EXACT, tuple(CONTROLLERS), tuple(FUNCTIONS))
+    files = {"preprocess": file_options(preprocess), "plan": file_options(plan)}
+    return Names(tuple(OPTIMIZERS), EXACT, tuple(CONTROLLERS), tuple(FUNCTIONS), files)
+
+
+def scenario_files(path: Path) -> list[Path]:
+    """The files the scenario at ``path`` names, as :func:`usvtool.sim.scenario.read_scenario`
+    resolves them: its map, route, targets' tracks and wind field (a :class:`UsvError` for a
+    scenario that does not read)."""
+    from usvtool.sim.scenario import read_scenario
+
+    s = read_scenario(path)
+    field = s.weather.field if s.weather is not None else None
+    return [p for p in (s.map, s.route, *(t.track for t in s.targets), field) if p is not None]
 
 
 @click.command()
@@ -74,7 +103,7 @@ def batch(pipeline_path, workers, scheduler, out_dir, timeout, summary_path) -> 
     if summary_path is not None and Path(summary_path).parent.resolve() != Path(out_dir).resolve():
         check_output_path(summary_path, "--summary")  # (DIR itself is made by the batch)
     options = BatchOptions(run_command, stage_names(), workers, scheduler, out_dir,
-                           timeout=timeout)  # fmt: skip
+                           timeout=timeout, scenario_files=scenario_files)  # fmt: skip
     result = run_batch(pipeline_path, options)
     if summary_path is not None:
         write_summary(summary_path, result.summary())
