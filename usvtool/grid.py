@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import os
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
 
@@ -113,8 +114,13 @@ class Grid:
         return left <= x < right and bottom < y <= top
 
 
-def read_grid(path: str | os.PathLike) -> Grid:
-    """Read a grid GeoTIFF written by :func:`write_grid` (or any single-band uint8 raster)."""
+def read_grid(
+    path: str | os.PathLike, check_size: Callable[[int, int], None] | None = None
+) -> Grid:
+    """Read a grid GeoTIFF written by :func:`write_grid` (or any single-band uint8 raster).
+
+    ``check_size(width, height)``, when given, is called with the grid's size from its header
+    before its cells are read (a memory guard raises there: :mod:`usvtool.budget`)."""
     import warnings
 
     import rasterio
@@ -127,6 +133,8 @@ def read_grid(path: str | os.PathLike) -> Grid:
             with rasterio.open(path) as ds:
                 if ds.count != 1:
                     raise UsvError(f"{path}: a grid has one band, this raster has {ds.count}")
+                if check_size is not None:
+                    check_size(ds.width, ds.height)
                 cells = ds.read(1)
                 transform, crs, tags = ds.transform, ds.crs, ds.tags()
     except RasterioIOError as exc:
