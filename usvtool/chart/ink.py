@@ -53,8 +53,21 @@ keep touching symbols of different inks apart and tell black structures from mag
 - hazards are these, with the solids and the structures grown back by half a stroke inside the
   ink (the opening rounds corners off). Everything else in water (strokes of ordinary width,
   bold labels, dashes) is clutter and becomes water.
+- *light ink*: with colour layers given, a structure (from the shore or free) is of dark ink,
+  and a solid of light ink neither tapers nor reaches the shore band (a light's magenta flare,
+  the piece of a magenta dash that a narrow channel leaves).
+- *lines crossing water* are clutter however long, straight or thick (graticule, river-mile,
+  leader, cable and pipeline lines, limits, ranges, bridges): the hazards are grouped (pixels
+  within ``2 w + 1`` of each other); a group grown by the shore band and by the ink in water
+  within another ``w + 1`` of it (a line's thin tips) that cuts a 4-connected piece of the water
+  of its box, grown by ``10 w`` (:data:`LINE_MARGIN`), into two or more pieces reaching the
+  box's edge is a line. A pier is attached at one end and ends in water: the water flows round
+  it. A line becomes water with its ends at the banks (the ink within ``w + 3/2`` of it, which
+  the nearest-pixel rule gave to the land and which would block a narrow channel's bank cells).
 
-Modes: ``auto`` (the rule above), ``clutter`` (every ink pixel takes the class of its nearest
+Modes: ``auto`` (the rule above; bridges are passable), ``auto+bridges`` (the same, but the
+groups of dark ink that cross water stay hazards: bridges, and black graticule or mile lines
+with them), ``clutter`` (every ink pixel takes the class of its nearest
 non-ink pixel: the first version's rule) and ``obstacle`` (every ink pixel in water is a hazard:
 the conservative choice).
 

@@ -11,6 +11,7 @@ from usvtool.cli.options import (
     POSITIVE,
     OutputPath,
     emit,
+    max_memory_option,
     output_option,
     seed_option,
     summary_option,
@@ -64,11 +65,12 @@ class Colour(click.ParamType):
               help="Fixed threshold 0..255 instead of Otsu's (the paper: 100).")
 @click.option("--min-area", type=click.IntRange(1), default=16, show_default=True,
               help="Land specks and water holes smaller than this many pixels are clutter.")
-@click.option("--ink", type=click.Choice(["auto", "clutter", "obstacle"]), default="auto",
-              show_default=True,
+@click.option("--ink", type=click.Choice(["auto", "auto+bridges", "clutter", "obstacle"]),
+              default="auto", show_default=True,
               help="Ink in water: auto (by shape: solid and ring symbols, thick strokes from the "
-              "shore, free dark bars and dock networks are hazards; text and lines are clutter), "
-              "clutter (all becomes water) or obstacle (all blocks, the conservative choice).")
+              "shore, free dark bars and dock networks are hazards; text and lines, and lines "
+              "and bridges crossing water, are clutter), auto+bridges (dark ink crossing water "
+              "blocks), clutter (all becomes water) or obstacle (all blocks).")
 @click.option("--occupancy", type=click.FloatRange(0, 1, max_open=True), default=0.0,
               show_default=True, help="Obstacle share of a cell above which it blocks.")
 @click.option("--min-depth", type=float,
@@ -77,10 +79,11 @@ class Colour(click.ParamType):
 @click.option("--hazard-radius", type=NON_NEGATIVE,
               help="S-57: buffer (m) around rocks, wrecks and obstructions [default: 10].")
 @seed_option
+@max_memory_option
 @summary_option
 def preprocess(chart, output, preview, ship_length, cell_size, margin, swell, resolution, bounds,
                clusters, land_colours, channel, threshold, min_area, occupancy, min_depth,
-               hazard_radius, seed, preview_resolution, ink, cutline, summary_path):
+               hazard_radius, seed, preview_resolution, ink, cutline, max_memory, summary_path):
     """Turn CHART (image, GeoTIFF, BSB/KAP, S-57 cell or GeoJSON) into a navigation grid.
 
     Fuzzy C-means colour clustering, Otsu binarisation, clutter removal, gridding at
@@ -101,7 +104,7 @@ def preprocess(chart, output, preview, ship_length, cell_size, margin, swell, re
         bounds=tuple(bounds) if bounds else None, clusters=clusters,
         land_colours=list(land_colours), channel=channel, threshold=threshold,
         min_area=min_area, ink=ink, occupancy=occupancy, min_depth=min_depth,
-        hazard_radius=hazard_radius, seed=seed,
+        hazard_radius=hazard_radius, seed=seed, max_memory=max_memory,
     )
     if preview and chart_kind(chart) == "s57":
         from usvtool.chart.preview import check_s57_preview
