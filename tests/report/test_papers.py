@@ -11,6 +11,7 @@ read them are skipped when they are not there.
 
 from __future__ import annotations
 
+import ast
 import math
 import os
 import re
@@ -297,6 +298,40 @@ def test_claims_are_well_formed_and_name_what_exists():
             table = TABLES[claim.table]
             assert table.paper == claim.paper and table.kind == claim.kind
             assert set(claim.cases) <= {r.case for r in table.rows}, claim.id
+
+
+def test_each_paper_is_one_module_holding_its_own_tables_and_claims():
+    """The lookups gather the papers' modules (docs/papers.md) in the papers' order, and no
+    module holds a table or a claim of another paper."""
+    names = [m.__name__ for m in papers.PAPER_MODULES]
+    assert names == [f"usvtool.report.papers.{n}" for n in ("iwso_dwa", "issa", "udwa")]
+    for module in papers.PAPER_MODULES:
+        paper = module.PAPER.id
+        assert module.__name__.endswith("." + paper.replace("-", "_"))
+        assert {t.paper for t in module.TABLES} == {c.paper for c in module.CLAIMS} == {paper}
+    assert list(PAPERS) == ["iwso-dwa", "issa", "udwa"]
+    assert list(TABLES) == [t.id for m in papers.PAPER_MODULES for t in m.TABLES]
+    assert CLAIMS == tuple(c for m in papers.PAPER_MODULES for c in m.CLAIMS)
+    assert len(TABLES) == 7 and len(CLAIMS) == 21
+
+
+def test_the_papers_data_imports_nothing_but_itself():
+    """Any stage may read the papers' data: it imports no other module of usvtool and no
+    third-party package."""
+    allowed = {"__future__", "dataclasses"}
+    paths = sorted((ROOT / "usvtool" / "report" / "papers").glob("*.py"))
+    assert {p.stem for p in paths} == {"__init__", "schema", "iwso_dwa", "issa", "udwa"}
+    for path in paths:
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                modules = [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom):
+                modules = [node.module]
+            else:
+                continue
+            for module in modules:
+                assert module in allowed or module.startswith("usvtool.report.papers"), (
+                    path.name, module)
 
 
 def test_the_claims_the_brief_asks_for_are_there():

@@ -1,0 +1,134 @@
+"""What the papers' data is made of (docs/papers.md): a paper, its published tables (columns and
+one row per method and case) and its claims, quoted.
+
+The data itself is one module per paper (:mod:`usvtool.report.papers`); :func:`printed_row`
+builds a row from its cells as the paper prints them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+#: How a figure summarises runs: the paper's one figure (one run, or it does not say), the
+#: lowest / highest / mean / sample variance / sample standard deviation over the runs, the
+#: median (our summary where the paper gives one figure), the figure of the run whose fitness is
+#: lowest, or every run (absolute claims).
+STATISTICS = ("value", "min", "max", "mean", "variance", "std", "median", "of-best", "every")
+BETTER = ("lower", "higher")
+
+
+@dataclass(frozen=True)
+class Paper:
+    """One paper: its short id, the converted text's file name (in the project's papers
+    directory, /work/shared/papers) and its citation."""
+
+    id: str
+    file: str
+    citation: str
+
+
+@dataclass(frozen=True)
+class Column:
+    """A column of a published table.
+
+    ``heading`` and ``unit`` are the paper's (unit None: the paper gives none); ``metric`` is
+    our counterpart (a column of ``usvtool metrics``, or ``final_cost``; None: we have none);
+    ``statistic`` how the paper's figure summarises its runs (:data:`STATISTICS`); ``scale``
+    converts ours to the paper's units: paper figure = ours x scale (100 for a per cent of our
+    fraction, 1/60 for minutes of our seconds).
+    """
+
+    name: str
+    heading: str
+    unit: str | None
+    metric: str | None
+    statistic: str
+    scale: float = 1.0
+
+
+@dataclass(frozen=True)
+class Row:
+    """One method in one case: the paper's names beside ours, and one cell per column."""
+
+    method: str
+    paper_method: str
+    case: str
+    paper_case: str
+    values: tuple[float | None, ...]
+    printed: tuple[str | None, ...]
+    comparable: bool = True
+
+
+@dataclass(frozen=True)
+class PaperTable:
+    """A published table (``label``: "Table 2"), or the figures a section gives in its text
+    (``label``: "Section 5.3"); ``kind`` is the results table's kind of its cases."""
+
+    id: str
+    paper: str
+    label: str
+    section: str
+    caption: str
+    kind: str
+    columns: tuple[Column, ...]
+    rows: tuple[Row, ...]
+    setup: str
+    notes: tuple[str, ...] = ()
+
+    def column(self, name: str) -> Column:
+        """The column called ``name``; KeyError when the table has none."""
+        for c in self.columns:
+            if c.name == name:
+                return c
+        raise KeyError(f"{self.id}: no column {name!r}")
+
+    def row(self, method: str, case: str) -> Row | None:
+        """The paper's row for ``method`` in ``case``; None when the paper has none."""
+        return next((r for r in self.rows if r.method == method and r.case == case), None)
+
+    def value(self, method: str, case: str, column: str) -> float | None:
+        """The paper's figure, in its units; None when the paper gives none."""
+        index = self.columns.index(self.column(column))
+        row = self.row(method, case)
+        return None if row is None else row.values[index]
+
+
+@dataclass(frozen=True)
+class Quote:
+    """A passage of a paper, exact but for whitespace, and its section ("5.2", "Abstract")."""
+
+    section: str
+    text: str
+
+
+@dataclass(frozen=True)
+class Claim:
+    """A claim of a paper (:mod:`usvtool.report.papers` says when one holds). ``paper_change``:
+    per case, the relative change of the method against the (first) rival that the paper states,
+    in per cent as printed (a decrease for ``better == "lower"``, an increase for ``"higher"``),
+    None where it states none; empty when it states none at all. ``table``: the id of the
+    paper's table of these cases, if any (it may have no column of the claim's metric: the text
+    states the claim alone)."""
+
+    id: str
+    paper: str
+    quotes: tuple[Quote, ...]
+    kind: str
+    metric: str
+    statistic: str
+    better: str
+    method: str
+    rivals: tuple[str, ...]
+    cases: tuple[str, ...]
+    table: str | None = None
+    paper_change: tuple[str | None, ...] = ()
+    target: float | str | None = None
+    note: str = ""
+
+
+
+def printed_row(method: str, paper_method: str, case: str, paper_case: str,
+                *printed: str | None, comparable: bool = True) -> Row:  # fmt: skip
+    """A row whose cells are numbers as printed (E notation for Table 1's "m x 10^e")."""
+    values = tuple(None if p is None else float(p) for p in printed)
+    return Row(method, paper_method, case, paper_case, values, tuple(printed), comparable)
