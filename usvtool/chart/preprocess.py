@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from usvtool.chart import gridding, sources
+from usvtool.chart import gridding, memory, sources
 from usvtool.chart.segment import Segmentation, segment
 from usvtool.errors import UsvError
 from usvtool.grid import MARGIN, OBSTACLE, Grid
@@ -44,6 +44,7 @@ class Options:
     min_depth: float | None = None  # S-57: default s57.DEFAULT_MIN_DEPTH
     hazard_radius: float | None = None  # S-57: default s57.DEFAULT_HAZARD_RADIUS
     seed: int = 0
+    max_memory: int | None = None  # bytes (chart.memory); None: usvtool.budget's default
 
     @property
     def cell(self) -> float:
@@ -81,7 +82,7 @@ def preprocess(path, options: Options | None = None) -> Result:
     chart = seg = None
     extra: dict = {}
     if kind in ("raster", "kap"):
-        chart = sources.read_raster(path, opts.resolution, opts.cutline)
+        chart = sources.read_raster(path, opts.resolution, opts.cutline, opts.max_memory)
         timings["read"] = time.perf_counter() - t
         seg = _named(path, segment)(
             (chart.index, chart.palette),
@@ -97,6 +98,8 @@ def preprocess(path, options: Options | None = None) -> Result:
         timings.update({f"segment_{k}": v for k, v in seg.timings.items()})
         t = time.perf_counter()
         frame = gridding.grid_frame(chart.frame.bounds, opts.cell, chart.frame.crs)
+        memory.check_cells(path, frame.width, frame.height, chart.index.size, False,
+                           opts.max_memory)  # fmt: skip
         fraction = gridding.occupancy_fraction(seg.blocked, chart.frame, frame)
         obstacle = gridding.obstacles_from_fraction(fraction, opts.occupancy)
         crs = chart.frame.crs
@@ -128,6 +131,8 @@ def preprocess(path, options: Options | None = None) -> Result:
         timings["read"] = time.perf_counter() - t
         t = time.perf_counter()
         frame = gridding.grid_frame(vec.extent.bounds, opts.cell, vec.crs)
+        memory.check_cells(path, frame.width, frame.height, 0, opts.occupancy > 0,
+                           opts.max_memory)  # fmt: skip
         obstacle = _rasterise(vec, frame, opts.occupancy)
         crs = vec.crs
     timings["grid"] = time.perf_counter() - t

@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+from usvtool.chart import memory
 from usvtool.chart.colours import colour_index, index_dtype, index_packed, pack
 from usvtool.chart.georef import Frame, scale_error
 from usvtool.errors import UsvError, check_input_file
@@ -94,12 +95,15 @@ def read_raster(
     path: str | os.PathLike,
     resolution: float | None = None,
     cutline: str | os.PathLike | None = None,
+    max_memory: int | None = None,
 ) -> RasterChart:
     """Read an image, GeoTIFF or KAP chart (see the module docstring).
 
     ``resolution`` (metres per pixel) is for plain images and refused for a georeferenced
     source; ``cutline`` is a GeoJSON polygon file (:func:`read_cutline`): pixels outside it are
-    outside the chart (for a KAP: outside both it and the chart's own cutline).
+    outside the chart (for a KAP: outside both it and the chart's own cutline). A chart whose
+    preprocessing would need more than ``max_memory`` bytes (None: the default budget) is
+    refused from its header, before its pixels are read (:mod:`usvtool.chart.memory`).
     """
     import rasterio
     from rasterio.errors import NotGeoreferencedWarning, RasterioIOError
@@ -127,6 +131,8 @@ def read_raster(
                         f"{path}: the chart is georeferenced; --resolution is for plain images "
                         "only (drop it)"
                     )
+                itemsize = np.dtype(ds.dtypes[0]).itemsize
+                memory.check_pixels(path, ds.width, ds.height, ds.count, itemsize, max_memory)
                 index, palette, valid = _read_pixels(ds, path)
     except RasterioIOError as exc:
         raise UsvError(f"{path}: not a readable chart image ({_first_line(exc)})") from None
@@ -291,7 +297,8 @@ def _read_pixels(ds, path) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """
     bits = int(ds.tags(1, ns="IMAGE_STRUCTURE").get("NBITS", 0)) or None
     if ds.driver in ("PNG", "JPEG"):
-        (colour, alpha), table, valid = _decode_with_opencv(path, ds.driver), None, None
+        decoded = _decode_with_opencv(path, ds.driver, ds.width * ds.height)
+        (colour, alpha), table, valid = decoded, None, None
     else:
         colour, alpha, table, valid = _read_bands(ds, path)
     if table is not None and alpha is not None:  # a palette with an alpha band: colour it
@@ -336,11 +343,24 @@ def _read_bands(ds, path):
     return list(ds.read(bands)), (ds.read(a) if a else None), table, valid
 
 
-def _decode_with_opencv(path, driver: str) -> tuple[list[np.ndarray], np.ndarray | None]:
-    """The colour channels (R, G, B or grey) and alpha channel of a PNG or JPEG."""
+def _decode_with_opencv(
+    path, driver: str, pixels: int
+) -> tuple[list[np.ndarray], np.ndarray | None]:
+    """The colour channels (R, G, B or grey) and alpha channel of a PNG or JPEG of ``pixels``
+    pixels. OpenCV decodes at most ``OPENCV_IO_MAX_IMAGE_PIXELS`` pixels (an environment
+    variable, 2^30 without it): a larger image is refused in one line naming the limit."""
     import cv2
 
-    data = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
+    text = os.environ.get("OPENCV_IO_MAX_IMAGE_PIXELS", "")
+    limit = int(text) if text.isdigit() else 1 << 30
+    if pixels > limit:
+        raise UsvError(f"{path}: {pixels} pixels, more than OpenCV decodes ({limit}: "
+                       "OPENCV_IO_MAX_IMAGE_PIXELS); convert it to a GeoTIFF")  # fmt: skip
+    try:
+        data = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
+    except cv2.error as exc:
+        raise UsvError(f"{path}: OpenCV cannot decode this {driver} image "
+                       f"({_first_line(exc)})") from None  # fmt: skip
     if data is None:
         raise UsvError(f"{path}: truncated or corrupt {driver} image")
     _check_depth(data.dtype, path)

@@ -58,8 +58,32 @@ class NonNegativeFloat(click.ParamType):
         return x
 
 
+class MemorySize(click.ParamType):
+    """A size in bytes: ``4G``, ``512M``, ``2.5GiB`` or plain bytes
+    (:func:`usvtool.budget.parse_size`)."""
+
+    name = "size"
+
+    def convert(self, value, param, ctx):
+        from usvtool.budget import parse_size
+
+        try:
+            return parse_size(value)
+        except ValueError as exc:
+            self.fail(str(exc), param, ctx)
+
+
 POSITIVE = PositiveFloat()
 NON_NEGATIVE = NonNegativeFloat()
+
+
+def max_memory_option(f):
+    """``--max-memory SIZE``: the memory budget a job's estimated need must stay within."""
+    return click.option(
+        "--max-memory", type=MemorySize(), metavar="SIZE",
+        help="Refuse a job whose estimated memory exceeds SIZE (4G, 512M, 2.5GiB or bytes) "
+        "before allocating [default: half the machine's memory].",
+    )(f)  # fmt: skip
 
 
 def _name_values(ctx, param, values: tuple[str, ...]) -> dict:

@@ -9,6 +9,7 @@ import click
 from usvtool.cli.options import (
     NON_NEGATIVE,
     emit,
+    max_memory_option,
     output_option,
     param_option,
     seed_option,
@@ -117,6 +118,7 @@ def _waypoints(ctx, param, value: str | None) -> int | str | None:
     "collision_free false): for studies of the faithful algorithms' failures.",
 )
 @output_option("Path GeoJSON to write.")
+@max_memory_option
 @summary_option
 def plan(
     grid_path: str,
@@ -136,6 +138,7 @@ def plan(
     timing: bool,
     allow_collision: bool,
     output: str,
+    max_memory: int | None,
     summary_path: str | None,
 ) -> None:
     """Plan a route from --start to --goal on GRID.tif and write it to -o as GeoJSON.
@@ -151,11 +154,13 @@ def plan(
     from usvtool.atomic import check_outputs, staged
     from usvtool.errors import UsvError
     from usvtool.grid import read_grid
+    from usvtool.plan.memory import check_grid
     from usvtool.plan.planner import PlanOptions, check_ends, plan_route
     from usvtool.route import write_path_geojson
 
     check_outputs([("-o", output), ("--summary", summary_path)])
-    grid = read_grid(grid_path)
+    grid = read_grid(grid_path, lambda width, height: check_grid(grid_path, width, height,
+                                                                 max_memory))  # fmt: skip
     start = _point(grid, grid_path, "start", start, start_lonlat)
     goal = _point(grid, grid_path, "goal", goal, goal_lonlat)
     try:

@@ -12,6 +12,7 @@ import click
 
 from usvtool.cli.options import (
     emit,
+    max_memory_option,
     output_option,
     param_option,
     seed_option,
@@ -35,9 +36,10 @@ log = logging.getLogger(__name__)
 @output_option("Trace CSV to write.")
 @click.option("--events", type=click.Path(dir_okay=False), help="Also write the events JSON.")
 @click.option("--tracks", type=click.Path(dir_okay=False), help="Also write the tracks GeoJSON.")
+@max_memory_option
 @summary_option
 def simulate(scenario_path: str, controller: str | None, params: dict, seed: int, output: str,
-             events: str | None, tracks: str | None,
+             events: str | None, tracks: str | None, max_memory: int | None,
              summary_path: str | None) -> None:  # fmt: skip
     """Run SCENARIO.yaml (own ship, targets, weather, controller) and write its trace to -o.
 
@@ -69,7 +71,8 @@ def simulate(scenario_path: str, controller: str | None, params: dict, seed: int
                  scenario_path, controller, scenario.controller["name"])  # fmt: skip
     log.info("%s: running %s for %g s in steps of %g s", scenario_path, name,
              scenario.sim.duration, scenario.sim.dt)  # fmt: skip
-    result = run(scenario, Options(controller=controller, params=params, seed=seed))
+    result = run(scenario, Options(controller=controller, params=params, seed=seed,
+                                   max_memory=max_memory))  # fmt: skip
     summary = result.summary()
     extra = {"output": output, "scenario_file": scenario_path}
     if events:

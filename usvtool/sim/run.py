@@ -39,7 +39,7 @@ import numpy as np
 
 from usvtool import geodesy, metrics
 from usvtool.errors import UsvError
-from usvtool.sim import colregs
+from usvtool.sim import colregs, memory
 from usvtool.sim import targets as target_motion
 from usvtool.sim import vessel as vessel_model
 from usvtool.sim.controllers import Encounter, Own, Targets, World, make_controller
@@ -49,11 +49,13 @@ from usvtool.trace import Trace
 
 @dataclass(frozen=True)
 class Options:
-    """What the command line adds to a scenario: another controller, parameters, the seed."""
+    """What the command line adds to a scenario: another controller, parameters, the seed, the
+    memory budget (bytes; None: :func:`usvtool.budget.default_budget`)."""
 
     controller: str | None = None
     params: dict = field(default_factory=dict)
     seed: int = 0
+    max_memory: int | None = None
 
 
 @dataclass
@@ -73,7 +75,6 @@ class Result:
 def simulate(scenario: Scenario, options: Options | None = None) -> Result:
     """Run ``scenario`` (see the module docstring)."""
     opts = options or Options()
-    setup = _Setup(scenario)
     name = opts.controller or scenario.controller["name"]
     params = {k: v for k, v in scenario.controller.items() if k != "name"}
     if opts.controller and opts.controller != scenario.controller["name"]:
@@ -82,6 +83,10 @@ def simulate(scenario: Scenario, options: Options | None = None) -> Result:
         controller = make_controller(name, **{**params, **opts.params})
     sim = scenario.sim
     n_steps = int(round(sim.duration / sim.dt))
+    ships = len(scenario.targets) + 1
+    memory.check_run(scenario.path, controller, n_steps, ships, opts.max_memory)
+    setup = _Setup(scenario, lambda width, height: memory.check_run(
+        None, controller, n_steps, ships, opts.max_memory, (width, height)))  # fmt: skip
     times = sim.dt * np.arange(n_steps + 1)
     rng = np.random.default_rng(opts.seed)
     # one step beyond the end, for the targets' velocities at the last step
@@ -140,7 +145,9 @@ def simulate(scenario: Scenario, options: Options | None = None) -> Result:
 class _Setup:
     """The scenario's files read and its points in map metres, with errors naming the field."""
 
-    def __init__(self, scenario: Scenario):
+    def __init__(self, scenario: Scenario, check_map=None):
+        """``check_map(width, height)`` is called with the map's size before its cells are
+        read (:func:`usvtool.sim.memory.check_run`)."""
         from usvtool.sim import weather as weather_model
 
         path = self.path = scenario.path
@@ -151,7 +158,7 @@ class _Setup:
             from usvtool.grid import read_grid
 
             with _naming(path, "map"):
-                self.grid = read_grid(scenario.map)
+                self.grid = read_grid(scenario.map, check_map)
             self.clearance = Clearance(self.grid)
             crs = self.grid.crs
         self.crs = crs

@@ -1,0 +1,53 @@
+"""The memory ``simulate`` needs, estimated before the run allocates (:mod:`usvtool.budget`).
+
+:data:`PROCESS` plus three parts:
+
+- the controller's rollouts, :data:`ROLLOUT_BYTES` per point: (v_samples + 1) x (omega_samples
+  + 2) samples (the window's grid, the current speed and yaw rate and straight on) x horizon
+  steps; the positions, the clearance gaps, contacts and one target's distances at a time, so
+  the number of targets does not count (measured: 2 and 6 targets, the same peak);
+- the run, per step :data:`STEP_BYTES` and per ship and step :data:`SHIP_STEP_BYTES`: the
+  targets' predicted tracks, the own ship's states, the trace's columns and their CSV text, the
+  COLREGs evaluation's tables, for a run that lasts its whole ``sim.duration``;
+- the map, :data:`MAP_CELL_BYTES` per cell: the grid and its clearance field.
+
+Measured peaks (``/usr/bin/time -v``; docs/simulate.md): 75-105 bytes per rollout point (dwa to
+udwa+, 201^2-401^2 samples, horizons of 50 and 100 steps), 1012 bytes per step alone and 455-555
+more per target, 21-22 per map cell, over a process of 47 MB (130 MB with a map). Every estimate
+lies 3-30 % above the measured peak.
+"""
+
+from __future__ import annotations
+
+from usvtool.budget import MiB, require
+
+PROCESS = 128 * MiB  # Python, NumPy (and with a map GDAL and OpenCV)
+ROLLOUT_BYTES = 112
+STEP_BYTES = 450
+SHIP_STEP_BYTES = 600
+MAP_CELL_BYTES = 24
+
+
+def check_run(path, controller, steps: int, ships: int, budget: int | None = None,
+              map_size: tuple[int, int] | None = None) -> None:  # fmt: skip
+    """Refuse a run of ``steps`` steps of ``ships`` ships (the own ship and the targets) under
+    ``controller`` (and on a map of ``map_size`` (width, height) cells) that would need more
+    than ``budget`` bytes (None: the default budget). The line names the scenario's ``path``
+    (None: nothing, for a caller that names it), the largest part and what lowers it."""
+    params = controller.params
+    n_v, n_omega = int(params["v_samples"]) + 1, int(params["omega_samples"]) + 2
+    horizon = controller.times.size
+    parts = [
+        (n_v * n_omega * horizon * ROLLOUT_BYTES,
+         f"its rollouts: {n_v} x {n_omega} samples x {horizon} horizon steps",
+         "lower v_samples and omega_samples (--param) or the horizon"),
+        (steps * (STEP_BYTES + ships * SHIP_STEP_BYTES),
+         f"its trace: {steps} steps x {ships} ships", "shorten sim.duration or lengthen sim.dt"),
+    ]  # fmt: skip
+    if map_size is not None:
+        width, height = map_size
+        parts.append((width * height * MAP_CELL_BYTES, f"its map: {width} x {height} cells",
+                      "give a map of larger cells (usvtool preprocess --cell-size)"))  # fmt: skip
+    _, what, remedy = max(parts, key=lambda part: part[0])
+    prefix = f"{path}: " if path is not None else ""
+    require(PROCESS + sum(part[0] for part in parts), f"{prefix}the run ({what})", remedy, budget)
