@@ -32,8 +32,8 @@ def run_limited(*args) -> subprocess.CompletedProcess:
     def limit():
         resource.setrlimit(resource.RLIMIT_AS, (ADDRESS_SPACE, resource.RLIM_INFINITY))
 
-    return subprocess.run([sys.executable, "-m", "usvtool.cli", *map(str, args)],
-                          capture_output=True, text=True, timeout=120, preexec_fn=limit)  # fmt: skip
+    command = [sys.executable, "-m", "usvtool.cli", *map(str, args)]
+    return subprocess.run(command, capture_output=True, text=True, timeout=120, preexec_fn=limit)
 
 
 def assert_refused(r: subprocess.CompletedProcess, *words: str) -> None:
