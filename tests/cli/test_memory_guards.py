@@ -136,7 +136,7 @@ def test_max_memory_sets_the_budget(tmp_path, usv, size, budget):
     assert r.exit_code == 0, r.stderr
 
 
-@pytest.mark.parametrize("command", ["preprocess", "plan", "simulate"])
+@pytest.mark.parametrize("command", ["preprocess", "plan", "simulate", "batch"])
 def test_a_bad_max_memory_is_a_usage_error(tmp_path, usv, command):
     r = usv(command, tmp_path / "x", "--max-memory", "lots")
     assert r.exit_code == 2 and "--max-memory" in r.stderr and "is not a size" in r.stderr

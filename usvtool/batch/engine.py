@@ -20,12 +20,14 @@ import time
 from collections import defaultdict
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
 
 from usvtool.batch import table
 from usvtool.batch.jobs import PRIORITY, Job, ScenarioFiles, expand
 from usvtool.batch.progress import Bar, Lines
-from usvtool.batch.worker import TMP_PREFIX, Command, Outcome, execute, record_failure
+from usvtool.batch.worker import TMP_PREFIX, Command, Outcome, execute, record_failure, with_memory
+from usvtool.budget import default_budget
 from usvtool.errors import UsvError
 from usvtool.pipeline import Names, load
 
@@ -48,6 +50,10 @@ class BatchOptions:
     out: str = "build/batch"
     progress: bool | None = None
     timeout: float | None = None
+    #: the memory budget (bytes) the jobs running at once share: each is given its share with
+    #: ``--max-memory`` (None: :func:`usvtool.budget.default_budget`; with a scheduler, each
+    #: job keeps the default of the machine it runs on)
+    max_memory: int | None = None
     scenario_files: ScenarioFiles | None = None
 
 
@@ -178,6 +184,15 @@ def _measure(executor, pipeline, out: Path, jobs: list[Job], command: Command) -
         raise UsvError(f"usvtool metrics: {executor.failure(exc)}") from None
 
 
+def _job_command(options: BatchOptions, capacity: int) -> Command:
+    """The command the jobs run: each given the memory budget divided by the executor's
+    capacity (the jobs that run at once; :func:`~usvtool.batch.worker.with_memory`)."""
+    if options.max_memory is None and options.scheduler is not None:
+        return options.command
+    budget = options.max_memory or default_budget()
+    return partial(with_memory, options.command, max(1, budget // capacity))
+
+
 def run_batch(pipeline_path, options: BatchOptions) -> BatchResult:
     """Run every job of the pipeline not done yet in ``options.out``, then write
     ``metrics.csv``, ``timings.csv`` (and ``metrics.parquet``) there. Raises
@@ -200,7 +215,7 @@ def run_batch(pipeline_path, options: BatchOptions) -> BatchResult:
             progress = (Bar if bar else Lines)(len(jobs), len(skipped), executor.name)
             run = _Run(todo, {j.key for j in skipped if j.kind == "grids"}, progress)
             try:
-                _run_jobs(executor, run, out, options.command)
+                _run_jobs(executor, run, out, _job_command(options, executor.capacity))
             finally:
                 progress.close()
             table_started = time.monotonic()

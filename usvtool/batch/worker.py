@@ -33,6 +33,8 @@ Command = Callable[[list[str]], tuple[int, str, str]]
 INTERRUPTED = {128 + signal.SIGINT, 128 + signal.SIGTERM}
 TMP_PREFIX = ".tmp-"
 _CWD = threading.Lock()
+#: The commands given a job's share of the batch's memory budget (``--max-memory``).
+BUDGETED = ("preprocess", "plan", "simulate")
 
 
 @dataclass(frozen=True)
@@ -47,6 +49,15 @@ def one_line(text: str) -> str:
     """The last non-empty line of a command's stderr (its error line)."""
     lines = [line.strip() for line in text.splitlines() if line.strip()]
     return lines[-1] if lines else "failed without a message"
+
+
+def with_memory(command: Command, max_memory: int, args: list[str]) -> tuple[int, str, str]:
+    """``command(args)``, with ``--max-memory MAX_MEMORY`` (bytes) added for the commands that
+    take it (:data:`BUDGETED`): the job's share of the batch's memory budget, given when it
+    runs, so that neither its ``args`` (its ``job.json``) nor its key hold it."""
+    if args and args[0] in BUDGETED:
+        args = [*args, "--max-memory", str(max_memory)]
+    return command(args)
 
 
 def in_directory(directory: Path, command: Command, args: list[str]) -> tuple[int, str, str, float]:

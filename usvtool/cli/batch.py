@@ -16,7 +16,7 @@ from pathlib import Path
 
 import click
 
-from usvtool.cli.options import OutputPath, emit, write_summary
+from usvtool.cli.options import MEMORY_SIZE, OutputPath, emit, write_summary
 from usvtool.pipeline import FileOptions, Names
 
 
@@ -90,7 +90,11 @@ def scenario_files(path: Path) -> list[Path]:
 @click.option("--summary", "summary_path", type=click.Path(dir_okay=False), metavar="FILE.json",
               help="Also write the summary JSON printed on stdout to this file (atomically, "
               "once the tables are written; failed jobs too).")  # fmt: skip
-def batch(pipeline_path, workers, scheduler, out_dir, timeout, summary_path) -> None:
+@click.option("--max-memory", type=MEMORY_SIZE, metavar="SIZE",
+              help="The memory budget of the jobs that run at once (4G, 512M, 2.5GiB or bytes): "
+              "each job gets SIZE / workers as its --max-memory [default: half the machine's "
+              "memory; with --scheduler, each job its own machine's default].")  # fmt: skip
+def batch(pipeline_path, workers, scheduler, out_dir, timeout, summary_path, max_memory) -> None:
     """Run every job of PIPELINE.yaml (grids, routes, runs, function runs); rerun to resume."""
     from usvtool.atomic import check_output_path
     from usvtool.batch import BatchOptions, run_batch
@@ -103,7 +107,8 @@ def batch(pipeline_path, workers, scheduler, out_dir, timeout, summary_path) -> 
     if summary_path is not None and Path(summary_path).parent.resolve() != Path(out_dir).resolve():
         check_output_path(summary_path, "--summary")  # (DIR itself is made by the batch)
     options = BatchOptions(run_command, stage_names(), workers, scheduler, out_dir,
-                           timeout=timeout, scenario_files=scenario_files)  # fmt: skip
+                           timeout=timeout, scenario_files=scenario_files,
+                           max_memory=max_memory)  # fmt: skip
     result = run_batch(pipeline_path, options)
     if summary_path is not None:
         write_summary(summary_path, result.summary())

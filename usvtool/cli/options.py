@@ -75,12 +75,13 @@ class MemorySize(click.ParamType):
 
 POSITIVE = PositiveFloat()
 NON_NEGATIVE = NonNegativeFloat()
+MEMORY_SIZE = MemorySize()
 
 
 def max_memory_option(f):
     """``--max-memory SIZE``: the memory budget a job's estimated need must stay within."""
     return click.option(
-        "--max-memory", type=MemorySize(), metavar="SIZE",
+        "--max-memory", type=MEMORY_SIZE, metavar="SIZE",
         help="Refuse a job whose estimated memory exceeds SIZE (4G, 512M, 2.5GiB or bytes) "
         "before allocating [default: half the machine's memory].",
     )(f)  # fmt: skip
