@@ -2,10 +2,13 @@
 
 The order: read and check the pipeline (names checked against the stages' :class:`Names`),
 expand it into jobs and refuse a clash, connect the executor (a local pool, or a Dask
-scheduler), lock ``DIR`` (one batch at a time), remove the temporaries of a killed batch and
-the directories of failed jobs (they run again), skip the jobs done, run the others as they
-become ready (a route once its grid is done; a route whose grid failed fails too), keeping the
-executor's capacity twice over in flight, then measure and write the tables.
+scheduler), lock ``DIR`` (one batch at a time), remove the temporaries of a killed batch, the
+directories of failed jobs and those of damaged ones (files that are not the ones their
+``job.json`` records: each named on one line; all of them run again), skip the jobs done, run
+the others as they become ready (a route once its grid is done; a route whose grid failed
+fails too), keeping the executor's capacity twice over in flight, then measure and write the
+tables. A failure the batch cannot record (a full disk) stops it: no job starts after it, and
+the batch ends with one line saying why and where.
 """
 
 from __future__ import annotations
@@ -26,6 +29,7 @@ from pathlib import Path
 from usvtool.batch import table
 from usvtool.batch.jobs import PRIORITY, Job, ScenarioFiles, expand
 from usvtool.batch.progress import Bar, Lines
+from usvtool.batch.record import damage
 from usvtool.batch.worker import TMP_PREFIX, Command, Outcome, execute, record_failure, with_memory
 from usvtool.budget import default_budget
 from usvtool.errors import UsvError
@@ -108,6 +112,21 @@ def _state(job: Job, out: Path) -> bool | None:
     return not (d / "error.txt").is_file()
 
 
+def _clear(jobs: list[Job], out: Path) -> list[tuple[Job, str]]:
+    """Remove the directories of the jobs that failed before and of the damaged ones (their
+    files are not those their ``job.json`` records), so that they run again: the damaged jobs,
+    each with what is wrong."""
+    damaged = []
+    for job in jobs:
+        state = _state(job, out)
+        problem = damage(out / job.kind / job.key, job.key) if state else None
+        if state is False or problem is not None:
+            shutil.rmtree(out / job.kind / job.key)
+        if problem is not None:
+            damaged.append((job, problem))
+    return damaged
+
+
 class _Run:
     """The jobs to run, their dependencies, and what became of them."""
 
@@ -117,6 +136,8 @@ class _Run:
         self.waiting: dict[str, list[Job]] = defaultdict(list)
         self.failed: list[Job] = []
         self.errors: dict[str, str] = {}
+        self.stopped: str | None = None  # why no job starts any more
+        self.not_run = 0
         self.stage_time: dict[str, float] = defaultdict(float)
         for i, job in enumerate(todo):
             if job.needs is None or job.needs in done_grids:
@@ -137,6 +158,14 @@ class _Run:
                 heapq.heappush(self.ready, (PRIORITY[route.kind], self.count, route))
             else:
                 self.finish(route, f"its grid ({job.label}, {job.key}) failed")
+
+    def stop(self, job: Job, reason: str) -> None:
+        """Start no more jobs: the failure of ``job`` could not be recorded (``reason``)."""
+        if self.stopped is None:
+            self.stopped = f"cannot record the failure of {job.label} ({reason})"
+        self.not_run += len(self.ready) + sum(map(len, self.waiting.values()))
+        self.ready.clear()
+        self.waiting.clear()
 
 
 def _run_jobs(executor, run: _Run, out: Path, command: Command) -> None:
@@ -161,11 +190,10 @@ def _run_jobs(executor, run: _Run, out: Path, command: Command) -> None:
             try:
                 outcome: Outcome = future.result()
             except Exception as exc:  # the task itself failed: its worker died, ...
-                error = executor.failure(exc)
-                record_failure(job, str(out), error)
-                run.finish(job, error)
-            else:
-                run.finish(job, outcome.error, outcome.wall_time_s)
+                outcome = record_failure(job, str(out), executor.failure(exc))
+            run.finish(job, outcome.error, outcome.wall_time_s)
+            if outcome.unrecorded is not None:
+                run.stop(job, outcome.unrecorded)
     except BaseException:  # Ctrl-C, SIGTERM: stop the workers, keep what is complete
         executor.close(pending=list(in_flight))
         raise
@@ -206,18 +234,24 @@ def run_batch(pipeline_path, options: BatchOptions) -> BatchResult:
     try:
         with _locked(out):
             _remove_temporaries(out)
-            for job in jobs:  # a failed job runs again; a finished one is skipped
-                if _state(job, out) is False:
-                    shutil.rmtree(out / job.kind / job.key)
-            skipped = [j for j in jobs if _state(j, out)]
+            damaged = _clear(jobs, out)  # a failed or damaged job runs again
+            skipped = [j for j in jobs if _state(j, out)]  # a finished one is skipped
             todo = [j for j in jobs if not _state(j, out)]
             bar = options.progress if options.progress is not None else sys.stderr.isatty()
             progress = (Bar if bar else Lines)(len(jobs), len(skipped), executor.name)
+            for job, problem in damaged:
+                progress.say(f"batch: damaged, runs again: {job.label} ({job.key}): {problem}")
             run = _Run(todo, {j.key for j in skipped if j.kind == "grids"}, progress)
             try:
                 _run_jobs(executor, run, out, _job_command(options, executor.capacity))
             finally:
                 progress.close()
+            if run.stopped is not None:
+                _remove_temporaries(out)
+                n = run.not_run
+                raise UsvError(f"-o {out}: stopped: {run.stopped}; {n} job{'s' * (n != 1)} not "
+                               "run (what is done is kept: run the batch again once it can "
+                               "write there)")  # fmt: skip
             table_started = time.monotonic()
             done = [j for j in jobs if _state(j, out)]
             measured = [j for j in done if j.kind in table.METHOD_COLUMN]

@@ -25,6 +25,7 @@ import shutil
 from pathlib import Path
 
 from usvtool.batch.jobs import Job
+from usvtool.batch.record import cannot_write
 from usvtool.batch.worker import Command, fresh_directory, in_directory, one_line
 from usvtool.errors import UsvError
 from usvtool.results import COLUMNS, FILES, KINDS, TIMING_METRICS, Row, timings_path, write_results
@@ -50,11 +51,15 @@ def measure(out: str, jobs: list[Job], command: Command, reference_controller: s
     try:
         for job in jobs:
             name = view / _view_name(job)
-            name.parent.mkdir(exist_ok=True)
             target = Path("..", "..", job.kind, job.key, FILES[job.kind])
-            name.symlink_to(target)
-            if job.kind == "runs":
-                name.with_suffix(".events.json").symlink_to(target.with_name("trace.events.json"))
+            try:
+                name.parent.mkdir(exist_ok=True)
+                name.symlink_to(target)
+                if job.kind == "runs":
+                    events = target.with_name("trace.events.json")
+                    name.with_suffix(".events.json").symlink_to(events)
+            except OSError as exc:
+                raise cannot_write(exc, name) from None
         args = ["metrics", *view_order(jobs), "-o", "metrics.csv"]
         if reference_controller is not None:
             args += ["--reference-controller", reference_controller]

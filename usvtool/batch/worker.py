@@ -7,14 +7,16 @@ returning (exit status, stdout, stderr); the engine itself imports no stage. A j
 hidden ``DIR/<kind>/.tmp-<key>-<random>/`` as its current directory, so that every path it
 writes is relative to it; the directory is renamed onto ``DIR/<kind>/<key>/`` when complete, so
 a result appears whole or not at all. It holds the command's outputs, its stdout as
-``summary.json`` and ``job.json``; a failed job holds ``error.txt`` (its one-line error) and
-``job.json`` only. Jobs of one process run one at a time (the current directory is the
-process's).
+``summary.json`` and ``job.json`` (with the size and SHA-256 of every other file:
+:mod:`usvtool.batch.record`); a failed job holds ``error.txt`` (its one-line error) and
+``job.json`` only. A job whose files the batch cannot write (a full disk) fails, the error
+naming the file; when even its failure cannot be written, its outcome says why
+(:attr:`Outcome.unrecorded`). Jobs of one process run one at a time (the current directory is
+the process's).
 """
 
 from __future__ import annotations
 
-import json
 import os
 import secrets
 import shutil
@@ -26,6 +28,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from usvtool.batch.jobs import Job
+from usvtool.batch.record import CannotWrite, cannot_write, write_record, write_text
 
 #: ``command(args) -> (exit status, stdout, stderr)``: runs one ``usvtool`` command line.
 Command = Callable[[list[str]], tuple[int, str, str]]
@@ -39,10 +42,13 @@ BUDGETED = ("preprocess", "plan", "simulate")
 
 @dataclass(frozen=True)
 class Outcome:
-    """What became of a job: its one-line error (None when it succeeded) and its wall time."""
+    """What became of a job: its one-line error (None when it succeeded), its wall time, and
+    why its failure could not be recorded in its directory (None when it was, or it
+    succeeded)."""
 
     error: str | None
     wall_time_s: float
+    unrecorded: str | None = None
 
 
 def one_line(text: str) -> str:
@@ -75,8 +81,12 @@ def in_directory(directory: Path, command: Command, args: list[str]) -> tuple[in
 
 
 def fresh_directory(parent: Path, name: str) -> Path:
-    """A new hidden directory ``parent/.tmp-<name>-<random>`` (mode 0777 less the umask)."""
-    parent.mkdir(parents=True, exist_ok=True)
+    """A new hidden directory ``parent/.tmp-<name>-<random>`` (mode 0777 less the umask);
+    :class:`CannotWrite` when the system refuses."""
+    try:
+        parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise cannot_write(exc, parent) from None
     while True:
         path = parent / f"{TMP_PREFIX}{name}-{secrets.token_hex(4)}"
         try:
@@ -84,47 +94,57 @@ def fresh_directory(parent: Path, name: str) -> Path:
             return path
         except FileExistsError:
             continue
+        except OSError as exc:
+            raise cannot_write(exc, path) from None
 
 
 def execute(job: Job, out: str, command: Command) -> Outcome:
     """Run ``job`` into ``out/<kind>/<key>/``. An interrupted command (SIGINT, SIGTERM) leaves
-    no directory, so the job runs again on the next batch."""
+    no directory, so the job runs again on the next batch; a job whose files cannot be written
+    fails with the reason."""
     kind_dir = Path(out) / job.kind
-    tmp = fresh_directory(kind_dir, job.key)
+    wall = 0.0
     try:
-        status, stdout, stderr, wall = in_directory(tmp, command, list(job.args))
-        wall = round(wall, 3)
-        if status in INTERRUPTED:
-            return Outcome(one_line(stderr), wall)
-        error = None if status == 0 else one_line(stderr)
-        if error is None:
-            (tmp / "summary.json").write_text(stdout, encoding="utf-8")
-            _finish(job, tmp, kind_dir, wall, None)
-        else:
-            record_failure(job, out, error, wall)
-        return Outcome(error, wall)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+        tmp = fresh_directory(kind_dir, job.key)
+        try:
+            status, stdout, stderr, wall = in_directory(tmp, command, list(job.args))
+            wall = round(wall, 3)
+            if status in INTERRUPTED:
+                return Outcome(one_line(stderr), wall)
+            if status == 0:
+                write_text(tmp / "summary.json", stdout)
+                _finish(job, tmp, kind_dir, wall, None)
+                return Outcome(None, wall)
+            error = one_line(stderr)
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
+    except CannotWrite as exc:
+        error = str(exc)
+    return record_failure(job, out, error, wall)
 
 
-def record_failure(job: Job, out: str, error: str, wall: float = 0.0) -> None:
+def record_failure(job: Job, out: str, error: str, wall: float = 0.0) -> Outcome:
     """Leave ``out/<kind>/<key>/`` with the job's ``error.txt`` and ``job.json`` only (a failed
-    job runs again on the next batch)."""
+    job runs again on the next batch): the job's outcome, ``unrecorded`` when the system
+    refused them (a full disk; the directory is then absent, and the job runs again too)."""
     kind_dir = Path(out) / job.kind
-    tmp = fresh_directory(kind_dir, job.key)
     try:
-        (tmp / "error.txt").write_text(error + "\n", encoding="utf-8")
-        _finish(job, tmp, kind_dir, wall, error)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+        tmp = fresh_directory(kind_dir, job.key)
+        try:
+            write_text(tmp / "error.txt", error + "\n")
+            _finish(job, tmp, kind_dir, wall, error)
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
+    except CannotWrite as exc:
+        return Outcome(error, wall, str(exc))
+    return Outcome(error, wall)
 
 
 def _finish(job: Job, tmp: Path, kind_dir: Path, wall: float, error: str | None) -> None:
     """Write ``job.json`` into ``tmp`` and rename it onto ``kind_dir/<key>``."""
-    record = {**job.record(), "wall_time_s": wall, **({"error": error} if error else {})}
-    (tmp / "job.json").write_text(json.dumps(record, indent=1) + "\n", encoding="utf-8")
+    write_record(tmp, {**job.record(), "wall_time_s": wall, **({"error": error} if error else {})})
     try:
         os.rename(tmp, kind_dir / job.key)  # the result appears complete, or not at all
-    except OSError:
+    except OSError as exc:
         if not (kind_dir / job.key).is_dir():  # else another batch has just done it
-            raise
+            raise cannot_write(exc, kind_dir / job.key) from None
