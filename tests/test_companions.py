@@ -73,6 +73,8 @@ def test_the_update_files_of_an_s57_cell(tmp_path):
                                                                     "US1.010"]  # fmt: skip
     assert [p.name for p in companions(tmp_path / "US1.000")] == ["US1.001", "US1.002", "US1.010"]
     assert s57_updates(tmp_path / "US3.000") == []
+    # an update file read as a cell (a chart's inputs list them): the others, not itself
+    assert [p.name for p in companions(tmp_path / "US1.002")] == ["US1.001", "US1.010"]
 
 
 def test_update_files_in_a_cd_layout_are_found_where_gdal_looks(tmp_path):

@@ -72,4 +72,5 @@ def companions(path: str | os.PathLike) -> list[Path]:
     (a file with a three-digit extension, as ``usvtool preprocess`` tells one)."""
     suffix = Path(path).suffix
     s57 = len(suffix) == 4 and suffix[1:].isdigit()
-    return sidecars(path) + (s57_updates(path) if s57 else [])
+    updates = [p for p in s57_updates(path) if p.name != Path(path).name] if s57 else []
+    return sidecars(path) + updates
