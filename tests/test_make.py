@@ -109,7 +109,8 @@ def test_a_second_make_report_does_nothing(report_tree):
 
 
 @pytest.mark.parametrize("changed", ["templates/report.html.j2", "templates/style.css",
-                                     "usvtool/report/planning.py", "usvtool/cli/report.py"])
+                                     "usvtool/report/sections/planning.py",
+                                     "usvtool/cli/report.py"])
 def test_a_template_or_report_change_renders_only_the_report(report_tree, changed):
     r = make_report(report_tree, "-n", "-W", changed)
     assert r.returncode == 0, r.stderr

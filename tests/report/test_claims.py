@@ -1,5 +1,6 @@
-"""Claims and published tables (usvtool/report/claims.py, published.py) on hand-made results
-tables: verdicts, ties, missing runs, absolute claims, statistics and the optimisation rate."""
+"""Claims and published tables (usvtool/report/sections/claims.py, published.py) on hand-made
+results tables: verdicts, ties, missing runs, absolute claims, statistics and the optimisation
+rate."""
 
 from __future__ import annotations
 
@@ -7,9 +8,9 @@ from dataclasses import replace
 
 import pytest
 
-from usvtool.report import claims, published
 from usvtool.report.data import load, statistic
 from usvtool.report.papers import UDWA_TABLE_1, Claim, Quote
+from usvtool.report.sections import claims, published
 from usvtool.results import Row, write_results
 
 

@@ -1,4 +1,4 @@
-"""The report's encounter data (usvtool/report/encounters.py): every ship's length, the map
+"""The report's encounter data (usvtool/report/sections/encounters.py): every ship's length, the map
 and the wind field come from the events' ``run`` object as the simulator resolved them, never
 from the scenario YAML."""
 
@@ -15,7 +15,7 @@ from affine import Affine
 from usvtool.errors import UsvError
 from usvtool.grid import Grid, write_grid
 from usvtool.report.data import Job, Results
-from usvtool.report.encounters import lengths, run_file, run_files, scenario_section
+from usvtool.report.sections.encounters import lengths, run_file, run_files, scenario_section
 from usvtool.trace import read_trace
 
 #: Open water, 15 s: the own ship north, an unnamed 40 m target head-on (the simulator names

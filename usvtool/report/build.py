@@ -16,11 +16,18 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from usvtool.errors import UsvError
-from usvtool.report import claims, encounters, functions, methods, planning, preprocessing
 from usvtool.report.data import load
 from usvtool.report.document import Section
 from usvtool.report.output import write_together
 from usvtool.report.render import PdfUnavailable, html, pdf
+from usvtool.report.sections import (
+    claims,
+    encounters,
+    functions,
+    methods,
+    planning,
+    preprocessing,
+)
 
 TITLE = "usvtool: path planning and collision avoidance, compared with the papers"
 

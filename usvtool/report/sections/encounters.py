@@ -21,9 +21,10 @@ import numpy as np
 
 from usvtool.errors import UsvError
 from usvtool.grid import read_grid
-from usvtool.report import figures, published
+from usvtool.report import figures
 from usvtool.report.data import Job, Results, stats
 from usvtool.report.document import Cell, Figure, Section, Table, number
+from usvtool.report.sections import published
 from usvtool.trace import Trace, read_events, read_trace
 from usvtool.wind import read_wind_field
 

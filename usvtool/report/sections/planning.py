@@ -13,9 +13,10 @@ from pathlib import Path
 import numpy as np
 
 from usvtool.grid import read_grid
-from usvtool.report import figures, published
+from usvtool.report import figures
 from usvtool.report.data import Job, Results, seed_text, stats
 from usvtool.report.document import Cell, Figure, Section, Table, number
+from usvtool.report.sections import published
 from usvtool.route import read_path_geojson
 
 #: The box-plot panels: (metric, label).

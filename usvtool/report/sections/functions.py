@@ -4,9 +4,9 @@ the same statistics for every optimizer we ran, those the paper has not included
 
 from __future__ import annotations
 
-from usvtool.report import published
 from usvtool.report.data import Results, stats
 from usvtool.report.document import Cell, Section, Table, number
+from usvtool.report.sections import published
 
 STATS = ("best", "worst", "mean", "std")
 
