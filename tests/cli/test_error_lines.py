@@ -20,7 +20,7 @@ def failing(monkeypatch, runner):
         def boom(*args, **kwargs):
             raise exc
 
-        monkeypatch.setattr("usvtool.report.compare.compare", boom)
+        monkeypatch.setattr("usvtool.report.regression.compare.compare", boom)
         return runner.invoke(cli, ["compare", "a.csv", "b.csv"], catch_exceptions=False)
 
     return run

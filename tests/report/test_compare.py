@@ -16,12 +16,9 @@ from pathlib import Path
 import pytest
 
 from usvtool.errors import UsvError
-from usvtool.report.compare import (
-    MARKDOWN_ROWS,
-    RULES,
-    CompareOptions,
-    compare,
-)
+from usvtool.report.regression.compare import CompareOptions, compare
+from usvtool.report.regression.presentation import MARKDOWN_ROWS
+from usvtool.report.regression.tolerances import RULES
 from usvtool.results import Row, write_results
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -25,8 +25,8 @@ def compare(baseline, current, out_dir, tolerances) -> None:
 
     The summary JSON goes to stdout, the Markdown summary (summary.md) to stderr too.
     """
-    from usvtool.report.compare import CompareOptions
-    from usvtool.report.compare import compare as run_compare
+    from usvtool.report.regression.compare import CompareOptions
+    from usvtool.report.regression.compare import compare as run_compare
 
     result = run_compare(CompareOptions(baseline, current, tolerances, out_dir))
     if logging.getLogger("usvtool").isEnabledFor(logging.WARNING):  # not with -q

@@ -1,2 +1,10 @@
 """The report stage: comparison reports (:mod:`usvtool.report.build`, docs/report.md) and
-regression reports (:mod:`usvtool.report.compare`, docs/compare.md) from results tables."""
+regression reports (:mod:`usvtool.report.regression`, docs/compare.md) from results tables.
+
+The comparison report is put together from its sections (:mod:`.sections`), which set the
+papers' data (:mod:`.papers`) beside ours. Both reports use the pieces at this level: the value
+kinds of a results table (:mod:`.values`), the all-or-nothing output writer (:mod:`.output`) and
+the templates (:mod:`.templating`); the comparison report also the document model
+(:mod:`.document`), its loaded results (:mod:`.data`), its page and PDF (:mod:`.render`) and its
+figures (:mod:`.figures`).
+"""

@@ -1,0 +1,60 @@
+"""The report stage's layout (usvtool/report/__init__.py): the comparison report's sections in
+``usvtool.report.sections``, the regression report in ``usvtool.report.regression``, neither
+importing the other, and the shared pieces at the top importing neither."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+from usvtool.report import build
+from usvtool.report.regression.compare import compare
+
+REPORT = Path(__file__).resolve().parents[2] / "usvtool" / "report"
+#: The pieces at the top of the stage that the regression report may use.
+SHARED_BY_BOTH = {"values", "output", "templating"}
+
+
+def report_imports(path: Path) -> set[str]:
+    """The ``usvtool.report.X`` packages and modules ``path`` imports (X only), in functions
+    too."""
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom) and node.module:
+            names = [f"{node.module}.{a.name}" for a in node.names]
+        else:
+            continue
+        found |= {n.split(".")[2] for n in names if n.startswith("usvtool.report.")}
+    return found
+
+
+def modules(*parts: str) -> list[Path]:
+    found = sorted(REPORT.joinpath(*parts).glob("*.py"))
+    assert found, parts
+    return found
+
+
+def test_every_section_builder_is_a_module_of_the_sections_package():
+    assert len(build.BUILDERS) == 6
+    for builder in build.BUILDERS:
+        assert builder.__module__.startswith("usvtool.report.sections."), builder.__module__
+    assert not [p.name for p in modules() if "def section(" in p.read_text(encoding="utf-8")]
+
+
+def test_the_regression_report_is_a_package_using_only_the_shared_pieces():
+    assert compare.__module__ == "usvtool.report.regression.compare"
+    for path in modules("regression"):
+        assert report_imports(path) <= SHARED_BY_BOTH | {"regression"}, path.name
+
+
+def test_the_sections_do_not_import_the_regression_report():
+    for path in modules("sections"):
+        assert "regression" not in report_imports(path), path.name
+
+
+def test_the_shared_pieces_import_neither_report():
+    for path in [*modules(), *modules("figures"), *modules("papers")]:
+        if path.name != "build.py":
+            assert not report_imports(path) & {"sections", "regression", "build"}, path
