@@ -31,22 +31,30 @@ CELL_VECTOR_FINE = 120  # the same with occupancy > 0
 MAX_BANDS = 4  # colour and alpha: the bands a raster source reads at most
 
 
+def pixels_need(width: int, height: int, bands: int, itemsize: int) -> int:
+    """Bytes to read and segment a ``width`` x ``height`` raster of ``bands`` bands of
+    ``itemsize`` bytes."""
+    return PROCESS + width * height * (min(bands, MAX_BANDS) * itemsize + PIXEL_WORK)
+
+
+def cells_need(width: int, height: int, pixels: int, fine: bool) -> int:
+    """Bytes to grid ``width`` x ``height`` cells from a raster of ``pixels`` pixels (0: a
+    vector chart, ``fine`` with occupancy > 0)."""
+    if pixels:
+        return PROCESS + pixels * PIXEL_HELD + width * height * CELL_RASTER
+    return PROCESS + width * height * (CELL_VECTOR_FINE if fine else CELL_VECTOR)
+
+
 def check_pixels(path, width: int, height: int, bands: int, itemsize: int, budget=None) -> None:
-    """Refuse reading a ``width`` x ``height`` raster of ``bands`` bands of ``itemsize`` bytes
-    that would need more than ``budget`` bytes (None: the default budget)."""
-    per_pixel = min(bands, MAX_BANDS) * itemsize + PIXEL_WORK
-    require(PROCESS + width * height * per_pixel, f"{path}: reading {width} x {height} pixels",
+    """Refuse reading a raster that would need more than ``budget`` bytes (None: the default
+    budget): :func:`pixels_need`."""
+    require(pixels_need(width, height, bands, itemsize),
+            f"{path}: reading {width} x {height} pixels",
             "give a smaller chart image (e.g. gdal_translate -outsize or -srcwin)",
             budget)  # fmt: skip
 
 
 def check_cells(path, width: int, height: int, pixels: int, fine: bool, budget=None) -> None:
-    """Refuse gridding ``width`` x ``height`` cells from a raster of ``pixels`` pixels (0: a
-    vector chart, ``fine`` with occupancy > 0) past ``budget``."""
-    if pixels:
-        per_cell, held = CELL_RASTER, pixels * PIXEL_HELD
-    else:
-        per_cell, held = (CELL_VECTOR_FINE if fine else CELL_VECTOR), 0
-    require(PROCESS + held + width * height * per_cell,
-            f"{path}: gridding {width} x {height} cells", "give a larger --cell-size",
-            budget)  # fmt: skip
+    """Refuse gridding that would need more than ``budget`` bytes: :func:`cells_need`."""
+    require(cells_need(width, height, pixels, fine), f"{path}: gridding {width} x {height} cells",
+            "give a larger --cell-size", budget)  # fmt: skip

@@ -17,9 +17,13 @@ PROCESS = 272 * MiB  # Python, NumPy, SciPy, OpenCV, GDAL and numba's kernels
 CELL_BYTES = 80
 
 
+def grid_need(width: int, height: int) -> int:
+    """Bytes to plan on a ``width`` x ``height`` grid."""
+    return PROCESS + width * height * CELL_BYTES
+
+
 def check_grid(path, width: int, height: int, budget: int | None = None) -> None:
-    """Refuse planning on a ``width`` x ``height`` grid that would need more than ``budget``
-    bytes (None: the default budget)."""
-    require(PROCESS + width * height * CELL_BYTES,
-            f"{path}: planning on {width} x {height} cells",
+    """Refuse planning on a grid that would need more than ``budget`` bytes (None: the default
+    budget): :func:`grid_need`."""
+    require(grid_need(width, height), f"{path}: planning on {width} x {height} cells",
             "preprocess the chart with a larger --cell-size", budget)  # fmt: skip

@@ -11,10 +11,11 @@
   COLREGs evaluation's tables, for a run that lasts its whole ``sim.duration``;
 - the map, :data:`MAP_CELL_BYTES` per cell: the grid and its clearance field.
 
-Measured peaks (``/usr/bin/time -v``; docs/simulate.md): 75-105 bytes per rollout point (dwa to
-udwa+, 201^2-401^2 samples, horizons of 50 and 100 steps), 1012 bytes per step alone and 455-555
-more per target, 21-22 per map cell, over a process of 47 MB (130 MB with a map). Every estimate
-lies 3-30 % above the measured peak.
+Measured peaks (``/usr/bin/time -v``; docs/simulate.md): 75-114 bytes per rollout point (dwa to
+udwa+, 201^2-401^2 samples, horizons of 20-100 steps; the most with steps of 0.34 s or more,
+where the domain is checked at every point), 1012 bytes per step alone and 455-555 more per
+target, 21-22 per map cell, over a process of 47 MB (130 MB with a map). Every estimate lies
+3-40 % above the measured peak.
 """
 
 from __future__ import annotations
@@ -22,18 +23,16 @@ from __future__ import annotations
 from usvtool.budget import MiB, require
 
 PROCESS = 128 * MiB  # Python, NumPy (and with a map GDAL and OpenCV)
-ROLLOUT_BYTES = 112
+ROLLOUT_BYTES = 128
 STEP_BYTES = 450
 SHIP_STEP_BYTES = 600
 MAP_CELL_BYTES = 24
 
 
-def check_run(path, controller, steps: int, ships: int, budget: int | None = None,
-              map_size: tuple[int, int] | None = None) -> None:  # fmt: skip
-    """Refuse a run of ``steps`` steps of ``ships`` ships (the own ship and the targets) under
-    ``controller`` (and on a map of ``map_size`` (width, height) cells) that would need more
-    than ``budget`` bytes (None: the default budget). The line names the scenario's ``path``
-    (None: nothing, for a caller that names it), the largest part and what lowers it."""
+def run_parts(controller, steps: int, ships: int, map_size: tuple[int, int] | None = None):
+    """(bytes, what, remedy) of each part of a run of ``steps`` steps of ``ships`` ships (the own
+    ship and the targets) under ``controller``, on a map of ``map_size`` (width, height) cells
+    or none; the run needs :data:`PROCESS` more than their sum."""
     params = controller.params
     n_v, n_omega = int(params["v_samples"]) + 1, int(params["omega_samples"]) + 2
     horizon = controller.times.size
@@ -48,6 +47,15 @@ def check_run(path, controller, steps: int, ships: int, budget: int | None = Non
         width, height = map_size
         parts.append((width * height * MAP_CELL_BYTES, f"its map: {width} x {height} cells",
                       "give a map of larger cells (usvtool preprocess --cell-size)"))  # fmt: skip
+    return parts
+
+
+def check_run(path, controller, steps: int, ships: int, budget: int | None = None,
+              map_size: tuple[int, int] | None = None) -> None:  # fmt: skip
+    """Refuse a run (:func:`run_parts`) that would need more than ``budget`` bytes (None: the
+    default budget), in a line naming the scenario's ``path`` (None: nothing, for a caller that
+    names it), the largest part and what lowers it."""
+    parts = run_parts(controller, steps, ships, map_size)
     _, what, remedy = max(parts, key=lambda part: part[0])
     prefix = f"{path}: " if path is not None else ""
     require(PROCESS + sum(part[0] for part in parts), f"{prefix}the run ({what})", remedy, budget)
