@@ -281,3 +281,15 @@ def test_a_full_disk_inside_the_block_names_the_output_and_leaves_nothing(tmp_pa
     with pytest.raises(FileNotFoundError):
         with atomic_path(tmp_path / "c.txt"):
             open(tmp_path / "missing" / "x")
+
+
+def test_a_full_disk_in_a_nested_staging_names_the_real_output(tmp_path):
+    """A writer staging a path its caller's staging handed out names the caller's target."""
+    import errno
+
+    with pytest.raises(UsvError) as info:
+        with staged(tmp_path / "trace.csv") as (outer,):
+            with atomic_path(outer):  # write_trace given the staged temporary
+                raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+    assert str(info.value).startswith(f"{tmp_path / 'trace.csv'}: cannot write it: No space")
+    assert listing(tmp_path) == []

@@ -51,7 +51,8 @@ SIGNALS = (signal.SIGINT, signal.SIGTERM)  # installed in this order, restored i
 _CRITICAL: set[CodeType] = set()  # code during which a signal is held (see _on_signal)
 _saved: list[dict] = []  # the handlers each active catch_signals replaced, outermost first
 _pending: int | None = None  # the first signal held
-_handed_out: set[str] = set()  # absolute paths of the temporaries of active stagings
+#: The temporaries of active stagings (absolute paths), each with its target.
+_handed_out: dict[str, Path] = {}
 
 
 class Interrupted(KeyboardInterrupt):
@@ -163,7 +164,7 @@ class staged(catch_signals):
             for t in self._targets:
                 if t is not None and os.path.abspath(t) not in _handed_out:
                     self._temps[Path(t)] = tmp = _new_temporary(Path(t))
-                    _handed_out.add(os.path.abspath(tmp))
+                    _handed_out[os.path.abspath(tmp)] = Path(t)
             if self._previous is not None and _pending is not None:
                 raise Interrupted(_pending)  # held while creating: the block does not start
         except BaseException as exc:
@@ -178,17 +179,18 @@ class staged(catch_signals):
             if exc_type is None and (self._previous is None or _pending is None):
                 for target, tmp in reversed(list(self._temps.items())):  # the first one last
                     _rename(tmp, target)
-                    _handed_out.discard(os.path.abspath(tmp))
+                    _handed_out.pop(os.path.abspath(tmp), None)
                     del self._temps[target]
         finally:
             for tmp in self._temps.values():
                 with contextlib.suppress(FileNotFoundError):
                     tmp.unlink()
-                _handed_out.discard(os.path.abspath(tmp))
+                _handed_out.pop(os.path.abspath(tmp), None)
             self._temps.clear()
             super().__exit__(exc_type, exc, tb)  # a signal held: raised now
         if isinstance(exc, OSError) and exc.filename is None:  # a write's error names no file
             target = next(t for t in self._targets if t is not None)
+            target = _handed_out.get(os.path.abspath(target), target)  # a nested staging's
             raise UsvError(f"{target}: cannot write it: {exc.strerror or exc}") from None
 
 
