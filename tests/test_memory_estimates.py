@@ -2,13 +2,10 @@
 uses, and not by far (docs/preprocess.md, planning.md, simulate.md have the full tables).
 
 Planning and preprocessing are measured as the peak resident size of a ``usvtool`` subprocess
-(``os.wait4``'s ``ru_maxrss`` of that child alone); the rollouts as the peak of NumPy's
+(``VmHWM``: benchmarks/bench_memory.py's ``measure``); the rollouts as the peak of NumPy's
 allocations during one control step (``tracemalloc``).
 """
 
-import os
-import subprocess
-import sys
 import tracemalloc
 
 import cv2
@@ -26,27 +23,18 @@ from usvtool.sim import vessel
 from usvtool.sim.controllers import Own, Targets, World, make_controller
 
 
-def peak_rss(*args) -> int:
-    """The peak resident bytes of ``usvtool ARGS`` run in a subprocess (which must succeed)."""
-    proc = subprocess.Popen([sys.executable, "-m", "usvtool.cli", "-q", *map(str, args)],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)  # fmt: skip
-    _, status, usage = os.wait4(proc.pid, 0)
-    assert os.waitstatus_to_exitcode(status) == 0, proc.stderr.read()
-    proc.stderr.close()
-    return usage.ru_maxrss * 1024  # kilobytes on Linux
-
-
-def test_planning_on_a_million_cells(charts, tmp_path):
+def test_planning_on_a_million_cells(charts, tmp_path, benchmark):
     env1 = read_grid(charts / "env1.tif")  # 500 x 500 cells of 1 m, scaled to 1000 x 1000
     cells = env1.cells.repeat(2, 0).repeat(2, 1)
     write_grid(tmp_path / "g.tif", Grid(cells, env1.transform @ Affine.scale(0.5), env1.crs))
-    used = peak_rss("plan", tmp_path / "g.tif", "--start", 10, 10, "--goal", 490, 490,
-                    "--algo", "anyangle", "-o", tmp_path / "r.geojson")  # fmt: skip
+    used, _ = benchmark("bench_memory").measure("plan", tmp_path / "g.tif", "--start", 10, 10,
+                                                "--goal", 490, 490, "--algo", "anyangle", "-o",
+                                                tmp_path / "r.geojson")  # fmt: skip
     need = plan_memory.grid_need(1000, 1000)  # 348 MiB; measured 306-326 MiB (docs/planning.md)
     assert used < need < 1.5 * used, (used, need)
 
 
-def test_preprocessing_a_four_megapixel_chart(tmp_path):
+def test_preprocessing_a_four_megapixel_chart(tmp_path, benchmark):
     rgb = np.empty((2000, 2000, 3), np.uint8)
     rgb[:] = (212, 234, 238)  # S-52 deep water
     cv2.circle(rgb, (1000, 1000), 600, (201, 185, 122), -1)  # an island of land
@@ -55,7 +43,8 @@ def test_preprocessing_a_four_megapixel_chart(tmp_path):
                        dtype="uint8", crs="EPSG:32619",
                        transform=Affine(1, 0, 330_000, 0, -1, 4_690_000)) as ds:  # fmt: skip
         ds.write(np.moveaxis(rgb, -1, 0))
-    used = peak_rss("preprocess", tmp_path / "c.tif", "-o", tmp_path / "g.tif")
+    used, _ = benchmark("bench_memory").measure("preprocess", tmp_path / "c.tif", "-o",
+                                                tmp_path / "g.tif")  # fmt: skip
     grid = 534  # cells a side: 2000 m in cells of 3.75 m
     need = max(chart_memory.pixels_need(2000, 2000, 3, 1),
                chart_memory.cells_need(grid, grid, 2000 * 2000, False))  # fmt: skip

@@ -11,11 +11,11 @@ Two phases peak, each checked before it starts:
   still held, or for a vector chart :data:`CELL_VECTOR` (:data:`CELL_VECTOR_FINE` with
   ``occupancy`` > 0: the 8 x 8 finer raster and its mean).
 
-The figures are peak resident sizes measured with ``/usr/bin/time -v`` (docs/preprocess.md
-has the table): 18.1-18.6 bytes per pixel for RGB GeoTIFFs of 14-191 megapixels, 23.5 for a
-16-bit RGBA one, 18.3 for the palette KAP SanDiego_2 (warped), 11-12 bytes per cell for S-57
-and GeoJSON grids, 110-126 with ``occupancy``; the process itself (Python, NumPy, GDAL,
-OpenCV, scikit-fuzzy) is 130-230 MB. Every estimate lies 1-35 % above the measured peak.
+The figures come from measured peaks (benchmarks/bench_memory.py; docs/preprocess.md has the
+table): 18.1-18.6 bytes per pixel for RGB GeoTIFFs of 14-191 megapixels, 23.5 for a 16-bit
+RGBA one, 18.3 for the palette KAP SanDiego_2 (warped), 11-12 bytes per cell for S-57 and
+GeoJSON grids, 110-126 with ``occupancy``; the process itself (Python, NumPy, GDAL, OpenCV,
+scikit-fuzzy) takes 130-230 MB. Every estimate lies 5-40 % above the measured peak.
 """
 
 from __future__ import annotations

@@ -4,9 +4,10 @@
 :data:`PROCESS` plus :data:`CELL_BYTES` per cell: the grid and its blocked masks, the region
 labels (int32), the collision check's clearance table (float64) and column counts (int32), and
 an exact search's cost, parent and state per cell (A*'s are untouched until reached). Measured
-peaks (``/usr/bin/time -v``, env1 scaled to 0.25-36 M cells; docs/planning.md): 24-95 bytes per
-cell over a 256 MiB process, the largest, 78 at 4 M cells (astar), 75 at 16 M (anyangle and
-iwso+g); every estimate lies 1-16 % above the measured peak.
+peaks (benchmarks/bench_memory.py: env1 scaled to 0.25-36 M cells, astar, anyangle, iwso and
+iwso+g; docs/planning.md): up to 76 bytes per cell (astar on 4 M cells) over a process of
+246-263 MiB; every estimate lies 8-45 % above the measured peak (anyangle on 36 M cells, whose
+search reached few of them, 2.2 times).
 """
 
 from __future__ import annotations

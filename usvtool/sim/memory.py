@@ -11,11 +11,12 @@
   COLREGs evaluation's tables, for a run that lasts its whole ``sim.duration``;
 - the map, :data:`MAP_CELL_BYTES` per cell: the grid and its clearance field.
 
-Measured peaks (``/usr/bin/time -v``; docs/simulate.md): 75-114 bytes per rollout point (dwa to
-udwa+, 201^2-401^2 samples, horizons of 20-100 steps; the most with steps of 0.34 s or more,
-where the domain is checked at every point), 1012 bytes per step alone and 455-555 more per
-target, 21-22 per map cell, over a process of 47 MB (130 MB with a map). Every estimate lies
-3-40 % above the measured peak.
+Measured peaks (benchmarks/bench_memory.py; docs/simulate.md): 75-114 bytes per rollout point
+(dwa to udwa+, 201^2-401^2 samples, horizons of 20-100 steps; the most with steps of 0.34 s or
+more, where the domain is checked at every point), 1012 bytes per step alone and 455-555 more
+per target, 21-22 per map cell, over a process of 47 MB (130 MB with a map or a wind field).
+Every estimate lies above its measured peak: those over 500 MiB by 11-52 %, smaller ones by up
+to 2.4 times (the process's 128 MiB are counted for an open-water run's 47 MB).
 """
 
 from __future__ import annotations
