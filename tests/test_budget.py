@@ -19,7 +19,7 @@ def test_sizes(text, size):
 
 
 @pytest.mark.parametrize("text", ["", "G", "lots", "4X", "-1G", "0", "0.4", "1e9", "4 G B",
-                                  "nan", "inf", "4GG"])  # fmt: skip
+                                  "nan", "inf", "4GG", "1000iB", "4 iB"])  # fmt: skip
 def test_not_sizes(text):
     with pytest.raises(ValueError, match="is not a size|under one byte"):
         parse_size(text)

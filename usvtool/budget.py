@@ -35,7 +35,7 @@ DEFAULT_FRACTION = 0.5
 MiB = 1 << 20
 GiB = 1 << 30
 _UNITS = {"": 1, "k": 1 << 10, "m": MiB, "g": GiB, "t": 1 << 40}
-_SIZE = re.compile(r"\s*(\d+(?:\.\d*)?|\.\d+)\s*([kmgt]?)(?:i?b)?\s*", re.IGNORECASE)
+_SIZE = re.compile(r"\s*(\d+(?:\.\d*)?|\.\d+)\s*(?:([kmgt])(?:i?b)?|b)?\s*", re.IGNORECASE)
 
 
 def parse_size(text: str) -> int:
@@ -50,7 +50,7 @@ def parse_size(text: str) -> int:
     if match is None:
         raise ValueError(f"{text!r} is not a size (e.g. 4G, 512M, 2.5GiB or bytes)")
     number, unit = match.groups()
-    size = int(float(number) * _UNITS[unit.lower()])
+    size = int(float(number) * _UNITS[(unit or "").lower()])
     if size < 1:
         raise ValueError(f"{text!r} is under one byte")
     return size
