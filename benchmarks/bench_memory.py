@@ -172,7 +172,7 @@ def simulate_cases(d: Path, full: bool) -> None:
         args = [a for k, v in params.items() for a in ("--param", f"{k}={v}")]
         used, _ = measure("simulate", path, "--controller", controller, *args, "-o", d / "t.csv")
         c = make_controller(controller, **params)
-        need = sim_memory.PROCESS + sum(p[0] for p in sim_memory.run_parts(c, 30, 3))
+        need = sim_memory.run_need(sim_memory.run_parts(c, 30, 3))
         row(f"crossing {controller} {extra or ''}", f"{n}^2 samples x {c.times.size}", need, used)
     for k in (0, 2, 6):
         for duration in (2000, 10000) if full else (2000,):
@@ -186,7 +186,7 @@ def simulate_cases(d: Path, full: bool) -> None:
             used, _ = measure("simulate", scenario(d, data, "long"), "-o", d / "t.csv")
             c = make_controller("dwa", v_samples=2, omega_samples=2, horizon=0.4)
             steps = duration * 10
-            need = sim_memory.PROCESS + sum(p[0] for p in sim_memory.run_parts(c, steps, k + 1))
+            need = sim_memory.run_need(sim_memory.run_parts(c, steps, k + 1))
             row(f"open water, {k} targets", f"{steps} steps", need, used)
     static = yaml.safe_load((CHARTS / "scenarios" / "env1-static.yaml").read_text())
     static["sim"]["duration"] = 3
@@ -200,9 +200,8 @@ def simulate_cases(d: Path, full: bool) -> None:
                           d / "t.csv")  # fmt: skip
         c = make_controller("gdwa")
         h, w = cells.shape
-        parts = sim_memory.run_parts(c, 30, 1, (w, h))
-        row(f"env1-static, map x{k}", f"{w * h / 1e6:.0f} M cells", sim_memory.PROCESS
-            + sum(p[0] for p in parts), used)  # fmt: skip
+        need = sim_memory.run_need(sim_memory.run_parts(c, 30, 1, (w, h)))
+        row(f"env1-static, map x{k}", f"{w * h / 1e6:.0f} M cells", need, used)
 
 
 def main() -> None:

@@ -33,7 +33,7 @@ MAP_CELL_BYTES = 24
 def run_parts(controller, steps: int, ships: int, map_size: tuple[int, int] | None = None):
     """(bytes, what, remedy) of each part of a run of ``steps`` steps of ``ships`` ships (the own
     ship and the targets) under ``controller``, on a map of ``map_size`` (width, height) cells
-    or none; the run needs :data:`PROCESS` more than their sum."""
+    or none (:func:`run_need` adds them up)."""
     params = controller.params
     n_v, n_omega = int(params["v_samples"]) + 1, int(params["omega_samples"]) + 2
     horizon = controller.times.size
@@ -51,6 +51,11 @@ def run_parts(controller, steps: int, ships: int, map_size: tuple[int, int] | No
     return parts
 
 
+def run_need(parts) -> int:
+    """Bytes a run of these :func:`run_parts` needs."""
+    return PROCESS + sum(part[0] for part in parts)
+
+
 def check_run(path, controller, steps: int, ships: int, budget: int | None = None,
               map_size: tuple[int, int] | None = None) -> None:  # fmt: skip
     """Refuse a run (:func:`run_parts`) that would need more than ``budget`` bytes (None: the
@@ -59,4 +64,4 @@ def check_run(path, controller, steps: int, ships: int, budget: int | None = Non
     parts = run_parts(controller, steps, ships, map_size)
     _, what, remedy = max(parts, key=lambda part: part[0])
     prefix = f"{path}: " if path is not None else ""
-    require(PROCESS + sum(part[0] for part in parts), f"{prefix}the run ({what})", remedy, budget)
+    require(run_need(parts), f"{prefix}the run ({what})", remedy, budget)
