@@ -7,7 +7,7 @@ STAMP := $(VENV)/.installed
 USV := $(BIN)/usvtool
 BUILD := build
 
-.PHONY: test report regression baseline charts routes lint bench clean
+.PHONY: test test-fast report regression baseline charts routes lint bench clean
 # a recipe that fails removes the target it was making (no half-written file looks up to date)
 .DELETE_ON_ERROR:
 
@@ -33,6 +33,11 @@ $(SYSTEM_STAMP):
 
 test: $(STAMP) $(SYSTEM_STAMP)
 	$(BIN)/python -m pytest -q
+
+# the suite without the tests marked slow (whole pipelines, full-size charts, every scenario):
+# under a minute, for the edit-test loop; `make test` (CI's) runs everything
+test-fast: $(STAMP) $(SYSTEM_STAMP)
+	$(BIN)/python -m pytest -q -m "not slow"
 
 lint: $(STAMP)
 	$(BIN)/ruff check .

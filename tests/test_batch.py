@@ -25,6 +25,8 @@ from usvtool.cli.batch import scenario_files, stage_names
 from usvtool.pipeline import load
 from usvtool.results import TIMING_METRICS, read_results
 
+pytestmark = pytest.mark.slow  # whole pipelines through usvtool batch
+
 ROOT = Path(__file__).resolve().parent.parent
 TINY = ROOT / "tests" / "batch" / "tiny.yaml"
 SCENARIO = ROOT / "tests" / "batch" / "scenarios" / "open-head-on.yaml"

@@ -24,6 +24,8 @@ from usvtool.chart.preprocess import Options, preprocess
 from usvtool.geodesy import transformer
 from usvtool.grid import NAVIGABLE, OBSTACLE
 
+pytestmark = pytest.mark.slow  # the bundled raster charts preprocessed
+
 POINTS = Path(__file__).parent / "data" / "labelled_points.csv"
 CHARTS = ("12205_2.KAP", "SanDiego_2.KAP")
 EXPECT = {"obstacle": OBSTACLE, "navigable": NAVIGABLE}

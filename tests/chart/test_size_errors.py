@@ -13,6 +13,8 @@ from usvtool.chart.preview import check_s57_preview
 from usvtool.errors import UsvError
 from usvtool.geodesy import WGS84, reproject_geometries
 
+pytestmark = pytest.mark.slow  # large real cells gridded
+
 NOAA = Path(__file__).resolve().parents[2] / "charts" / "noaa"
 BIG = NOAA / "US4MD81M" / "US4MD81M.000"
 BOSTON = NOAA / "US5MA12M.000"

@@ -12,6 +12,8 @@ from usvtool.pipeline import load
 from usvtool.plan.optimizers import OPTIMIZERS
 from usvtool.plan.planner import PlanOptions, plan_route
 
+pytestmark = pytest.mark.slow  # routes at the papers' budget on real charts
+
 # the routes of `make report` (pipelines/report.yaml): the seed and runs of its route matrix
 MATRIX = load().routes["report"]
 SEED, ATTEMPTS = MATRIX.seed, MATRIX.attempts

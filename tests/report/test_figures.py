@@ -26,6 +26,9 @@ from usvtool.report.figures.encounters import SHIP_COLOURS, draw_ship
 from usvtool.report.figures.raster import display_rgb
 from usvtool.trace import Trace, format_events
 
+pytestmark = pytest.mark.slow  # every figure drawn
+
+
 OBSTACLE_RGB, MARGIN_RGB = (64, 64, 64), (200, 200, 200)
 
 

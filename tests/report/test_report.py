@@ -18,6 +18,8 @@ import pytest
 from usvtool.report import build, render
 from usvtool.report.papers import TABLES
 
+pytestmark = pytest.mark.slow  # the report built from a batch, with its PDF
+
 ROOT = Path(__file__).resolve().parents[2]
 PIPELINE = ROOT / "tests" / "report" / "pipeline.yaml"
 

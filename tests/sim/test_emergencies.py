@@ -14,6 +14,8 @@ from usvtool.sim.scenario import parse
 
 from . import emergencies
 
+pytestmark = pytest.mark.slow  # seeded emergency families
+
 #: the first six head-on scenes of the generator (every third seed), not a selection
 SEEDS = tuple(range(0, 18, 3))
 LENGTH = 15.0

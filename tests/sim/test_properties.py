@@ -4,12 +4,15 @@ on the trace by an independent computation in the test."""
 import math
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from usvtool.sim.run import Options, simulate
 from usvtool.sim.scenario import parse
 from usvtool.trace import format_trace
+
+pytestmark = pytest.mark.slow  # hypothesis runs of whole encounters
 
 GOAL = (0.0, 160.0)
 TOLERANCE = 5.0

@@ -34,6 +34,8 @@ from usvtool.sim.run import Options, simulate
 from usvtool.sim.scenario import read_scenario
 from usvtool.sim.vessel import vessel_from
 
+pytestmark = pytest.mark.slow  # every bundled scenario with every controller
+
 SCENARIOS = Path(__file__).resolve().parents[2] / "charts" / "scenarios"
 CONTROLLERS = ("dwa", "gdwa", "ccdwa", "udwa", "udwa+")
 PAPER = [
