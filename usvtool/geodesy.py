@@ -1,14 +1,12 @@
-"""Geodesy and compass angles: CRSs, reprojection, geodesic lengths, compass <-> radians.
+"""Geodesy: CRSs, reprojection, geodesic lengths.
 
-A contract below the stages: every stage that turns map metres into lon/lat (or back), measures
-a length on the ellipsoid or converts an angle does it here, with the same conventions.
+A contract below the stages: every stage that turns map metres into lon/lat (or back) or
+measures a length on the ellipsoid does it here, with the same conventions.
 
 - Coordinates: ``(x, y)`` = (east, north) in map metres of a projected CRS, and ``(lon, lat)``
   in degrees of WGS84 (:data:`WGS84`), always in that order (pyproj's ``always_xy``). A CRS is
   anything pyproj accepts (a rasterio ``CRS``, ``"EPSG:32619"``, a WKT or PROJ string).
-- Angles: files and the command line use compass degrees (0 = north, 90 = east, clockwise; the
-  maritime convention); code may use mathematical radians (counter-clockwise from +x = east).
-  :func:`compass_to_math` and :func:`math_to_compass` are the one place where they meet.
+- Angles (compass degrees, mathematical radians) are converted in :mod:`usvtool.angles`.
 
 Thin glue over pyproj; nothing here re-implements projection maths.
 """
@@ -91,56 +89,6 @@ def pyproj_crs(crs):
     if crs is None:
         raise ValueError("no CRS")
     return crs.to_wkt() if hasattr(crs, "to_wkt") else crs
-
-
-# --- compass angles ------------------------------------------------------------------------
-
-
-def wrap_deg(a):
-    """Degrees wrapped to (-180, 180] (scalar in, float out; arrays element-wise).
-
-    >>> wrap_deg(190.0), wrap_deg(-180.0), wrap_deg(180.0), wrap_deg(-190.0), wrap_deg(720.0)
-    (-170.0, 180.0, 180.0, 170.0, 0.0)
-    """
-    a = np.asarray(a, float)
-    out = 180.0 - np.mod(180.0 - a, 360.0)
-    out = np.where(out <= -180.0, out + 360.0, out)  # mod may round up to 360
-    return _out(out + 0.0)
-
-
-def compass_to_math(deg):
-    """Compass degrees (0 = north, clockwise) to mathematical radians in (-pi, pi] (counter-
-    clockwise from +x = east). North is pi/2, east 0, south -pi/2 and west pi (not -pi).
-
-    Computed as ``radians(wrap_deg(90 - deg))``: whole degrees give exact multiples of pi/180.
-
-    >>> import math
-    >>> [compass_to_math(d) / math.pi for d in (0.0, 90.0, 180.0, 270.0, 360.0, 45.0)]
-    [0.5, 0.0, -0.5, 1.0, 0.5, 0.25]
-    >>> compass_to_math(np.array([0.0, 90.0, 180.0, 270.0])).tolist() == [
-    ...     math.pi / 2, 0.0, -math.pi / 2, math.pi]
-    True
-    """
-    return _out(np.radians(wrap_deg(90.0 - np.asarray(deg, float))))
-
-
-def math_to_compass(rad):
-    """Mathematical radians (counter-clockwise from east) to compass degrees in [0, 360).
-
-    >>> import math
-    >>> [math_to_compass(r) for r in (math.pi / 2, 0.0, -math.pi / 2, math.pi, -math.pi)]
-    [0.0, 90.0, 180.0, 270.0, 270.0]
-    >>> math_to_compass(np.array([3 * math.pi / 2, 2 * math.pi + 1e-12, math.pi / 4])).round(9)
-    array([180.,  90.,  45.])
-    """
-    deg = np.mod(90.0 - np.degrees(np.asarray(rad, float)), 360.0)
-    deg = np.where(deg >= 360.0, 0.0, deg)  # mod of a tiny negative rounds to 360
-    return _out(deg + 0.0)
-
-
-def _out(a: np.ndarray):
-    """A 0-d result as a Python float, anything else as the array."""
-    return float(a) if np.ndim(a) == 0 else a
 
 
 def _pair(xy):

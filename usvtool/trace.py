@@ -58,6 +58,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from usvtool.angles import wrap360
 from usvtool.errors import UsvError, check_input_file
 
 HEADER = ("t", "ship", "x", "y", "heading", "speed", "yaw_rate")
@@ -141,7 +142,7 @@ def format_trace(trace: Trace) -> str:
             f"trace: steps {i - 1} and {i} both write t {t[i]}: steps must be at least "
             f"{10 ** -DECIMALS['t']:g} s apart"
         )
-    heading = np.mod(trace.heading, 360.0)
+    heading = wrap360(trace.heading)
     columns = []
     for name, values in zip(STATE, (trace.x, trace.y, heading, trace.speed, trace.yaw_rate),
                             strict=True):  # fmt: skip

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from usvtool.angles import compass_to_math
 from usvtool.errors import UsvError, check_input_file
 
 ROLES = ("wind_speed", "wind_from", "u", "v", "wave_height", "wave_from")
@@ -30,13 +31,6 @@ ALIASES = {
     "wave_from": ("wave_from", "mwd", "sea_surface_wave_from_direction"),
 }
 _ROLE_OF = {alias: role for role, names in ALIASES.items() for alias in names}
-
-
-def compass_to_math(deg):
-    """Compass degrees (0 = north, clockwise) to mathematical radians (0 = east, CCW), not
-    wrapped (:func:`usvtool.geodesy.compass_to_math` wraps; the weather keeps this exact form,
-    so that its runs keep their bytes)."""
-    return np.pi / 2 - np.radians(deg)
 
 
 @dataclass(frozen=True, eq=False)

@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from usvtool import geodesy
+from usvtool import angles, geodesy
 from usvtool.grid import NAVIGABLE, read_grid
 from usvtool.sim.run import Options, simulate
 from usvtool.sim.scenario import read_scenario
@@ -293,4 +293,4 @@ def test_wind_fields_are_the_generators():
         strong, weak = (0, 1) if southeast else (1, 0)
         assert c.wind_speed[strong] == pytest.approx(7.0) and c.wind_speed[weak] == pytest.approx(1)
         assert c.wind_speed[2] == pytest.approx(4.0)
-        np.testing.assert_allclose(geodesy.math_to_compass(c.wind_from), 225.0)
+        np.testing.assert_allclose(angles.math_to_compass(c.wind_from), 225.0)

@@ -101,6 +101,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from usvtool.angles import wrap360
+
 NONE, HEAD_ON, CROSSING_GIVE_WAY, CROSSING_STAND_ON, OVERTAKING, OVERTAKEN = range(6)
 CLASS_NAMES = (
     "none",
@@ -172,16 +174,6 @@ EXCUSABLE = frozenset({STARBOARD_TURN, PORT_TO_PORT, NOT_AHEAD, STAND_ON, NOT_PO
 
 
 # ----------------------------------------------------------------------------- geometry
-
-
-def wrap360(angle) -> np.ndarray:
-    """Angles (degrees) in ``[0, 360)``; exact for angles already there.
-
-    >>> wrap360([-90.0, 360.0, 725.0, -1e-20]).tolist()
-    [270.0, 0.0, 5.0, 0.0]
-    """
-    a = np.mod(np.asarray(angle, float), 360.0)
-    return np.where(a >= 360.0, a - 360.0, a)  # -1e-20 % 360 rounds to 360
 
 
 def velocity(heading, speed) -> np.ndarray:

@@ -37,7 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from usvtool import geodesy, metrics
+from usvtool import angles, geodesy, metrics
 from usvtool.errors import UsvError
 from usvtool.sim import colregs, memory
 from usvtool.sim import targets as target_motion
@@ -94,6 +94,7 @@ def simulate(scenario: Scenario, options: Options | None = None) -> Result:
     tracks = [target_motion.positions(c, times_ahead, rng) for c in setup.courses]
     ahead = np.stack(tracks, axis=1) if tracks else np.zeros((len(times_ahead), 0, 2))
     k = ahead.shape[1]
+    motion = _Motion.of(ahead, sim.dt)
     lengths = np.array([t.length for t in scenario.targets], float)
     vessel = setup.vessel
     world = World(vessel, setup.goal, setup.clearance, setup.route, setup.weather, sim.dt,
@@ -101,25 +102,24 @@ def simulate(scenario: Scenario, options: Options | None = None) -> Result:
     controller.reset(world)
 
     x, y = setup.start
-    psi = float(geodesy.compass_to_math(scenario.own.heading))
+    psi = float(angles.compass_to_math(scenario.own.heading))
     v = float(np.clip(scenario.own.speed, vessel.min_speed, vessel.max_speed))
     omega, made_good = 0.0, v
     tracker = colregs.EncounterTracker(k, risk_distance=colregs.onset_distance(vessel.length))
-    own_states = [(x, y, psi, made_good, omega)]
+    heading = angles.math_to_compass(psi)  # the own ship's in the trace's and tracker's unit
+    own_states = [(x, y, heading, made_good, omega)]
     controller_events: list[dict] = []
     collision, arrived, decide_time, steps = None, False, 0.0, 0
     for i in range(n_steps):
-        vel = (ahead[i + 1] - ahead[i]) / sim.dt
-        heading = geodesy.math_to_compass(np.arctan2(vel[:, 1], vel[:, 0]))
-        tracker.update(times[i], (x, y), geodesy.math_to_compass(psi), made_good, ahead[i],
-                       heading, np.hypot(vel[:, 0], vel[:, 1]))  # fmt: skip
+        tracker.update(times[i], (x, y), heading, made_good, ahead[i], motion.heading[i],
+                       motion.speed[i])  # fmt: skip
         urgent = tracker.most_urgent()
         encounter = None if urgent is None else Encounter(
             colregs.CLASS_NAMES[tracker.latched[urgent]], urgent
         )  # fmt: skip
         t0 = time.perf_counter()
-        decision = controller.decide(Own(x, y, psi, v, omega), Targets(ahead[i], vel, lengths),
-                                     encounter)  # fmt: skip
+        decision = controller.decide(Own(x, y, psi, v, omega), Targets(ahead[i], motion.vel[i],
+                                     lengths), encounter)  # fmt: skip
         decide_time += time.perf_counter() - t0
         controller_events += [{"t": round(float(times[i]), 3), **e} for e in decision.events]
         v, omega = decision.v, decision.omega
@@ -127,7 +127,8 @@ def simulate(scenario: Scenario, options: Options | None = None) -> Result:
             setup.weather.attainable_speed(v, psi, x, y, vessel.deadweight)
         )  # fmt: skip
         x, y, psi = (float(a) for a in vessel_model.step(x, y, psi, made_good, omega, sim.dt))
-        own_states.append((x, y, psi, made_good, omega))
+        heading = angles.math_to_compass(psi)
+        own_states.append((x, y, heading, made_good, omega))
         steps = i + 1
         collision = _collision(setup, (x, y), ahead[steps], vessel.length, lengths)
         if collision is not None:
@@ -138,8 +139,28 @@ def simulate(scenario: Scenario, options: Options | None = None) -> Result:
             arrived = True
             break
     return _result(scenario, setup, opts, controller, times[: steps + 1], np.array(own_states),
-                   ahead[: steps + 2], lengths, controller_events, collision, arrived,
+                   ahead, motion, lengths, controller_events, collision, arrived,
                    decide_time / max(steps, 1))  # fmt: skip
+
+
+@dataclass(frozen=True)
+class _Motion:
+    """The targets' motion over the run, derived once from their positions ``(n + 1, k, 2)``
+    (one step beyond the end): at each step the velocity ``(n, k, 2)`` to the next position,
+    its direction ``course`` (mathematical radians) and ``heading`` (compass degrees: the
+    tracker's and the trace's), and its ``speed``."""
+
+    vel: np.ndarray
+    course: np.ndarray
+    heading: np.ndarray
+    speed: np.ndarray
+
+    @classmethod
+    def of(cls, ahead: np.ndarray, dt: float) -> _Motion:
+        vel = np.diff(ahead, axis=0) / dt
+        course = np.arctan2(vel[..., 1], vel[..., 0])
+        return cls(vel, course, angles.math_to_compass(course),
+                   np.hypot(vel[..., 0], vel[..., 1]))  # fmt: skip
 
 
 class _Setup:
@@ -229,7 +250,7 @@ class _Setup:
             waypoints = np.array([self.point(p, f"{where}.waypoints") for p in t.waypoints])
         return target_motion.Course(
             start=np.array(self.point(t.start, f"{where}.start")) if t.start is not None else None,
-            heading=float(geodesy.compass_to_math(t.heading)),
+            heading=float(angles.compass_to_math(t.heading)),
             speed=t.speed,
             waypoints=waypoints,
             track=track,
@@ -270,18 +291,17 @@ def _name(scenario: Scenario, index: int) -> str:
     return "map" if index == -1 else scenario.targets[index].name
 
 
-def _result(scenario, setup, opts, controller, times, own, ahead, lengths, controller_events,
-            collision, arrived, step_time) -> Result:  # fmt: skip
-    """The trace (targets' headings, speeds and yaw rates from their positions), the COLREGs
-    evaluation and the figures."""
+def _result(scenario, setup, opts, controller, times, own, ahead, motion, lengths,
+            controller_events, collision, arrived, step_time) -> Result:  # fmt: skip
+    """The trace (the targets' yaw rates from their courses), the COLREGs evaluation and the
+    figures."""
     n, dt = len(times), scenario.sim.dt
-    step = np.diff(ahead, axis=0)  # (n, k, 2): each step's motion
-    course = np.arctan2(step[..., 1], step[..., 0])
-    turn = np.diff(np.unwrap(course, axis=0), axis=0, append=np.unwrap(course, axis=0)[-1:]) / dt
+    course = np.unwrap(motion.course[:n], axis=0)
+    turn = np.diff(course, axis=0, append=course[-1:]) / dt
     x = np.column_stack([own[:, 0], ahead[:n, :, 0]])
     y = np.column_stack([own[:, 1], ahead[:n, :, 1]])
-    heading = geodesy.math_to_compass(np.column_stack([own[:, 2], course]))
-    speed = np.column_stack([own[:, 3], np.hypot(step[..., 0], step[..., 1]) / dt])
+    heading = np.column_stack([own[:, 2], motion.heading[:n]])
+    speed = np.column_stack([own[:, 3], motion.speed[:n]])
     yaw = -np.degrees(np.column_stack([own[:, 4], turn]))  # compass sense: + to starboard
     names = ["own", *[t.name for t in scenario.targets]]
     trace = Trace(times, names, x, y, heading, speed, yaw)

@@ -19,6 +19,7 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from usvtool.angles import wrap360
 from usvtool.errors import UsvError
 from usvtool.sim.vessel import PRESETS, USER_UNITS
 from usvtool.yamlfile import read_yaml, show
@@ -307,7 +308,7 @@ class _Fields:
         return value
 
     def angle(self, value, where: str) -> float:
-        return self.number(value, where) % 360.0
+        return float(wrap360(self.number(value, where)))
 
     def point(self, value, where: str):
         if isinstance(value, dict):

@@ -27,6 +27,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from usvtool.angles import wrap_pi
 from usvtool.errors import UsvError
 
 # The vessel's fields in user units, as presets and scenario overrides give them.
@@ -174,15 +175,6 @@ def _check(values: dict, where: str) -> None:
 # -- kinematics (eq. 16) ----------------------------------------------------------------------
 
 
-def wrap(angle):
-    """An angle (radians) brought into ``[-π, π)``.
-
-    >>> round(float(wrap(3 * math.pi / 2)), 12) == round(-math.pi / 2, 12)
-    True
-    """
-    return (np.asarray(angle, float) + np.pi) % (2 * np.pi) - np.pi
-
-
 def step(x, y, psi, v, omega, dt):
     """The pose after one period ``dt`` at constant ``(v, omega)``: eq. 16 integrated exactly.
 
@@ -198,7 +190,7 @@ def step(x, y, psi, v, omega, dt):
     chord = v * dt * np.sinc(turn / (2 * np.pi))  # np.sinc(t) = sin(πt) / (πt)
     mid = psi + turn / 2
     x, y, psi = np.broadcast_arrays(x + chord * np.cos(mid), y + chord * np.sin(mid), psi + turn)
-    return x, y, wrap(psi)
+    return x, y, wrap_pi(psi)
 
 
 class Fan(NamedTuple):

@@ -27,8 +27,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from usvtool.angles import compass_to_math, wrap_pi
 from usvtool.errors import UsvError
-from usvtool.wind import compass_to_math as _compass_to_math
 from usvtool.wind import read_wind_field
 
 KNOT = 1852.0 / 3600.0  # m/s
@@ -71,8 +71,7 @@ _table_wave_height = wave_height  # for the functions whose wave_height argument
 def off_bow(direction_from, heading) -> np.ndarray:
     """The angle (radians, in ``[0, π]``) between where something comes from and the heading:
     0 dead ahead (head wind, head sea), π dead astern (following)."""
-    d = np.asarray(direction_from, float) - np.asarray(heading, float)
-    return np.abs((d + np.pi) % (2 * np.pi) - np.pi)
+    return np.abs(wrap_pi(np.asarray(direction_from, float) - np.asarray(heading, float)))
 
 
 def attainable_speed(
@@ -170,9 +169,9 @@ def uniform(
     _number(where, "wave_from", wave_from)
     return UniformWeather(
         float(wind_speed),
-        float(_compass_to_math(wind_from)),
+        compass_to_math(wind_from),
         float(wave_height),
-        float(_compass_to_math(wave_from)),
+        compass_to_math(wave_from),
     )
 
 

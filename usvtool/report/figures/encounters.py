@@ -13,8 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from usvtool.angles import compass_to_math, wrap360
 from usvtool.errors import UsvError
-from usvtool.geodesy import compass_to_math
 from usvtool.grid import Grid
 from usvtool.report.figures.canvas import Plot, csv_text, figure, finite_array, fixed, png
 from usvtool.report.figures.maps import GOAL, START
@@ -123,7 +123,7 @@ def encounter_snapshots(trace: Trace, times: dict[str, float], lengths: dict[str
                 draw_ship(ax, x[-1], y[-1], h, size[ship], colour,
                           max(size[ship], HULL_MIN * (view[2] - view[0])))
                 rows.append((state, *fixed([trace.t[i]], 3), ship,
-                             *fixed([x[-1], y[-1], np.mod(h, 360.0)], 3),
+                             *fixed([x[-1], y[-1], wrap360(h)], 3),
                              *fixed(np.array(DOMAIN_LENGTHS) * size[ship], 3)))  # fmt: skip
             if goal is not None:
                 ax.plot(*goal, label="goal", **GOAL, zorder=5)

@@ -49,6 +49,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from usvtool.angles import wrap_pi
 from usvtool.errors import UsvError
 from usvtool.sim import colregs
 from usvtool.sim import sides as side_rules
@@ -345,11 +346,11 @@ class Controller(ABC):
         if ramped:  # the heading turned while the yaw rate ramps toward the sample's
             yaw = vessel.max_yaw_accel
             psi_end = own.psi + vessel_model.travelled(own.omega, omega, yaw, yaw, self.times[-1])
-            psi_end = vessel_model.wrap(psi_end)
+            psi_end = wrap_pi(psi_end)
             psi_near = own.psi + vessel_model.travelled(own.omega, omega, yaw, yaw,
                                                         self.times[closest])  # fmt: skip
         else:
-            psi_end = vessel_model.wrap(own.psi + omega * self.times[-1])
+            psi_end = wrap_pi(own.psi + omega * self.times[-1])
             psi_near = own.psi + omega * self.times[closest]
         end = x[-1] + 1j * y[-1]
         return Rollouts(v, omega, end, psi_end, contact, static_first, clearance, intrudes, x, y,
@@ -395,7 +396,7 @@ class Controller(ABC):
         """The heading term: pi less the angle between the rollout's final heading and
         ``bearing`` (rad); pi for a rollout that reaches the goal (its end may lie beyond it,
         looking away)."""
-        return np.where(r.reached, np.pi, np.pi - np.abs(vessel_model.wrap(bearing - r.psi_end)))
+        return np.where(r.reached, np.pi, np.pi - np.abs(wrap_pi(bearing - r.psi_end)))
 
     def toward_goal(self, r: Rollouts) -> np.ndarray:
         """Fox et al.'s heading term toward the goal, taken where the rollout comes closest to
@@ -404,7 +405,7 @@ class Controller(ABC):
         goal. Taken at the end, the rollouts of a ship near the goal end beyond it looking away,
         and the best score goes to turning back: with a 10 s horizon the ship circled the goal."""
         goal = self.world.goal[0] + 1j * self.world.goal[1]
-        off = vessel_model.wrap(np.angle(goal - r.near) - r.psi_near)
+        off = wrap_pi(np.angle(goal - r.near) - r.psi_near)
         return np.where(r.reached, np.pi, np.pi - np.abs(off))
 
     # -- when no sample is free ------------------------------------------------------------
