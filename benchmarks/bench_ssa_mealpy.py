@@ -13,9 +13,9 @@ Budgets: usvtool's SSA evaluates ``pop + round(0.15 pop)`` = 58 routes per itera
 usvtool for 491 iterations (mealpy's 28 550 evaluations), and with ``--mealpy-matched`` mealpy
 for 183 (usvtool's 17 450; slow).
 
-``--ablation`` switches mealpy's departures on one at a time in a copy of usvtool's SSA
-(:class:`Switched`, vectorised like usvtool's), then all but one, and runs ISSA with the same
-bounds rule. Findings: docs/optimizers.md ("SSA against mealpy").
+``--ablation`` switches mealpy's departures on one at a time in usvtool's SSA (:class:`Switched`,
+a subclass overriding the parts of the phases a switch changes), then all but one, and runs
+ISSA with the same bounds rule. Findings: docs/optimizers.md ("SSA against mealpy").
 
 mealpy is a benchmark-only comparison, not a dependency: without it the mealpy rows are skipped
 with a message. Its 3.0.3 wheel pins ``numpy<=1.26.0`` but runs with numpy 2; install it
@@ -52,7 +52,8 @@ SWITCHES = ("redraw", "sign", "all_scouts", "scalar_beta", "flyoff")
 
 
 class Switched(SSA):
-    """usvtool's SSA with mealpy 3.0.3 OriginalSSA's departures as switches (all off: ``ssa``).
+    """usvtool's SSA with mealpy 3.0.3 OriginalSSA's departures as switches (all off: ``ssa``):
+    :class:`SSA` itself, overriding only the parts of its phases that a switch changes.
 
     ``redraw``: out-of-box coordinates redrawn uniformly in the box (:class:`SSARedraw`), not
     clipped; ``sign``: producers ``x exp(+i / (alpha iter_max))``, an exponent above 5 replaced
@@ -66,52 +67,31 @@ class Switched(SSA):
     name = "ssa-switched"
     defaults = {**SSA.defaults, **dict.fromkeys((*SWITCHES, "alarm_product"), False)}
 
-    def _step(self, X, F, t):
-        p, rng = self.params, self.rng
-        n, d = X.shape
-        order = np.argsort(F, kind="stable")
-        X, F = X[order], F[order]
-        rank = np.arange(1, n + 1, dtype=float)[:, None]
-        x_worst, f_worst = X[-1].copy(), F[-1]
-        n_p = min(n, max(1, round(p["producers"] * n)))
+    def _safe_move(self, X, rank):
+        if not self.params["sign"]:
+            return super()._safe_move(X, rank)
+        alpha = 1.0 - self.rng.random((X.shape[0], 1))
+        des = rank / (alpha * self.iters)
+        return X * np.exp(np.where(des > 5, self.rng.random((X.shape[0], 1)), des))
 
-        prod = slice(0, n_p)
-        if rng.random() < p["safety"]:
-            alpha = 1.0 - rng.random((n_p, 1))
-            if p["sign"]:
-                des = rank[prod] / (alpha * self.iters)
-                cand = X[prod] * np.exp(np.where(des > 5, rng.random((n_p, 1)), des))
-            else:
-                cand = X[prod] * np.exp(-rank[prod] / (alpha * self.iters))
-        elif p["alarm_product"]:
-            cand = X[prod] * rng.standard_normal((n_p, 1))
-        else:
-            cand = X[prod] + rng.standard_normal((n_p, 1))
-        self._greedy(X, F, np.arange(n_p), cand)
+    def _alarm_move(self, X):
+        if not self.params["alarm_product"]:
+            return super()._alarm_move(X)
+        return X * self.rng.standard_normal((X.shape[0], 1))
 
-        if n_p < n:
-            fol = np.arange(n_p, n)
-            x_p = X[np.argmin(F)]
-            Q = rng.standard_normal((fol.size, 1))
-            with np.errstate(over="ignore"):
-                away = Q * np.exp((x_worst - X[fol]) / rank[fol] ** 2)
-            A = rng.choice([-1.0, 1.0], (fol.size, d))
-            join = x_p + (np.abs(X[fol] - x_p) * A).sum(axis=1, keepdims=True) / d
-            far = rank[fol] > n / 2 + (1 if p["flyoff"] else 0)
-            self._greedy(X, F, fol, np.where(far, away, join))
+    def _flies_off(self, rank, n):
+        return rank > n / 2 + (1 if self.params["flyoff"] else 0)
 
-        if p["all_scouts"]:
-            sc = np.argsort(F, kind="stable")[int(0.1 * n) :]
-        else:
-            sc = rng.choice(n, min(n, max(1, round(p["scouts"] * n))), replace=False)
-        edge = (F[sc] > self.best_f)[:, None] | p["all_scouts"]
-        beta = rng.standard_normal((sc.size, 1) if p["scalar_beta"] else (sc.size, d))
-        K = rng.uniform(-1.0, 1.0, (sc.size, 1))
-        to_best = self.best_x + beta * np.abs(X[sc] - self.best_x)
-        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-            escape = X[sc] + K * np.abs(X[sc] - x_worst) / ((F[sc] - f_worst)[:, None] + p["zeta"])
-        self._greedy(X, F, sc, np.where(edge, to_best, escape))
-        return X, F
+    def _scouts_of(self, F):
+        if not self.params["all_scouts"]:
+            return super()._scouts_of(F)
+        return np.argsort(F, kind="stable")[int(0.1 * F.size) :]
+
+    def _to_best(self, f):
+        return super()._to_best(f) | self.params["all_scouts"]
+
+    def _beta(self, n, d):
+        return self.rng.standard_normal((n, 1) if self.params["scalar_beta"] else (n, d))
 
     def clip(self, X):
         return SSARedraw.clip(self, X) if self.params["redraw"] else super().clip(X)

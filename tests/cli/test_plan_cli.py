@@ -162,7 +162,22 @@ BAD = [  # arguments, exit status, words of the message (exit 1: the grid's name
     (["--start", 3, 3, "--start-lonlat", 1, 2, "--goal", 59, 39], 2, "exactly one of --start"),
     (["--start-lonlat", -71, 42, "--goal", 59, 39], 1, "--start-lonlat: "),
     (["--start", 3, 3, "--goal", 59, 39, "--param", "nope"], 2, "NAME=VALUE"),
-    (["--start", 3, 3, "--goal", 59, 39, "--param", "bogus=1"], 1, "iwso: unknown parameter"),
+    (["--start", 3, 3, "--goal", 59, 39, "--param", "bogus=1"], 1,
+     "Error: --param bogus is not a parameter of iwso (known: f_min, f_max, tau,"),
+    # a value of the wrong type, or outside the range the algorithm's equations need (was:
+    # internal error: UFuncTypeError for a string)
+    (["--start", 3, 3, "--goal", 59, 39, "--algo", "pso", "--param", "c1=abc"], 1,
+     "Error: --param c1 must be a finite number, not 'abc'\n"),
+    (["--start", 3, 3, "--goal", 59, 39, "--algo", "pso+s", "--param", "c1=true"], 1,
+     "Error: --param c1 must be a finite number, not True\n"),
+    (["--start", 3, 3, "--goal", 59, 39, "--algo", "gwo", "--param", "a_start=NaN"], 1,
+     "Error: --param a_start must be a finite number, not nan\n"),
+    (["--start", 3, 3, "--goal", 59, 39, "--algo", "boa", "--param", "p=1.5"], 1,
+     "Error: --param p must be in [0, 1] for boa, not 1.5\n"),
+    (["--start", 3, 3, "--goal", 59, 39, "--algo", "iwso+g", "--param", "chi=1"], 1,
+     "Error: --param chi must be > 1 for iwso, not 1\n"),
+    (["--start", 3, 3, "--goal", 59, 39, "--algo", "ssa", "--param", "zeta=0"], 1,
+     "Error: --param zeta must be > 0 for ssa, not 0\n"),
     # start equal to goal, or within one cell (2 m) of it: the same point; the same cell
     # [2, 4] x [2, 4] with the points hypot(1.9, 1.9) = 2.69 m apart; neighbouring cells 0.6 m
     # apart

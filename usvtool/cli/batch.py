@@ -58,11 +58,11 @@ def stage_names() -> Names:
     from usvtool.cli.preprocess import preprocess
     from usvtool.plan.functions import FUNCTIONS
     from usvtool.plan.optimizers import OPTIMIZERS
-    from usvtool.plan.planner import EXACT
+    from usvtool.plan.planners import EXACT
     from usvtool.sim.controllers import CONTROLLERS
 
     files = {"preprocess": file_options(preprocess), "plan": file_options(plan)}
-    return Names(tuple(OPTIMIZERS), EXACT, tuple(CONTROLLERS), tuple(FUNCTIONS), files)
+    return Names(tuple(OPTIMIZERS), tuple(EXACT), tuple(CONTROLLERS), tuple(FUNCTIONS), files)
 
 
 def scenario_files(path: Path) -> list[Path]:

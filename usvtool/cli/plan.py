@@ -16,8 +16,8 @@ from usvtool.cli.options import (
     summary_option,
     write_summary,
 )
+from usvtool.plan import planners
 from usvtool.plan.guided import AUTO
-from usvtool.plan.planner import VARIANTS, algorithm_names, split_algorithm
 from usvtool.plan.problem import ENCODINGS
 
 log = logging.getLogger(__name__)
@@ -30,11 +30,13 @@ class RouteCollides(click.ClickException):
 
 
 def _algo(ctx, param, value: str) -> str:
-    names = algorithm_names()
-    if split_algorithm(value)[0] not in names:
+    """A name of the planner registry (a usage error); a variant its base has not got is the
+    planner's to refuse (exit 1)."""
+    names = planners.names()
+    if planners.split_algorithm(value)[0] not in names:
         raise click.BadParameter(
             f"{value!r} is not one of {', '.join(names)} (each also with the suffix "
-            f"{' or '.join(VARIANTS)})"
+            f"{' or '.join(planners.VARIANTS)})"
         )
     return value
 
@@ -67,7 +69,7 @@ def _waypoints(ctx, param, value: str | None) -> int | str | None:
     default="iwso",
     show_default=True,
     callback=_algo,
-    help=f"One of {', '.join(algorithm_names())}; add +s for route shortening, +g (optimizers) "
+    help=f"One of {', '.join(planners.names())}; add +s for route shortening, +g (optimizers) "
     "for the route-guided variant.",
 )
 @click.option("--pop", type=click.IntRange(min=2), default=50, show_default=True, help="Agents.")
@@ -170,7 +172,7 @@ def plan(
     options = PlanOptions(
         algo=algo, pop=pop, iters=iters, seed=seed, waypoints=waypoints, encoding=encoding,
         params=params, turn_weight=turn_weight, attempts=attempts, timing=timing,
-    )
+    )  # fmt: skip
     result = plan_route(grid, start, goal, options)
     summary = {"output": output, "grid": grid_path, **result.summary()}
     with staged(output, summary_path) as (path_tmp, summary_tmp):  # the route renamed last

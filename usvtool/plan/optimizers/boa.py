@@ -21,12 +21,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.plan.optimizers.base import Optimizer
+from usvtool.plan.optimizers.base import NON_NEGATIVE, POSITIVE, PROBABILITY, Optimizer
 
 
 class BOA(Optimizer):
     name = "boa"
     defaults = {"c": 0.01, "a": 0.1, "p": 0.8, "c_growth": 0.025}
+    # c divides the growth step and stays > 0 as it grows; p is a switch probability
+    ranges = {"c": POSITIVE, "p": PROBABILITY, "c_growth": NON_NEGATIVE}
 
     def _run(self) -> None:
         rng, prm = self.rng, self.params

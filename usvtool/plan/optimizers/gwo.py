@@ -13,12 +13,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.plan.optimizers.base import Optimizer
+from usvtool.plan.optimizers.base import NON_NEGATIVE, Optimizer
 
 
 class GWO(Optimizer):
     name = "gwo"
     defaults = {"a_start": 2.0}
+    ranges = {"a_start": NON_NEGATIVE}  # a decreases from a_start to 0 (eq. 3.3)
 
     def _run(self) -> None:
         X = self.uniform()

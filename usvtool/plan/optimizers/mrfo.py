@@ -19,12 +19,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.plan.optimizers.base import Optimizer
+from usvtool.plan.optimizers.base import POSITIVE, Optimizer
 
 
 class MRFO(Optimizer):
     name = "mrfo"
     defaults = {"somersault": 2.0}
+    ranges = {"somersault": POSITIVE}  # the somersault factor S of eq. 8
 
     def _run(self) -> None:
         rng = self.rng

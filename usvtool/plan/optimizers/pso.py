@@ -15,12 +15,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.plan.optimizers.base import Optimizer
+from usvtool.plan.optimizers.base import NON_NEGATIVE, POSITIVE, Optimizer
 
 
 class PSO(Optimizer):
     name = "pso"
     defaults = {"w_start": 0.9, "w_end": 0.4, "c1": 2.0, "c2": 2.0, "vmax": 0.2}
+    # acceleration weights of the pulls (r1, r2 >= 0); vmax a share of the box's span
+    ranges = {"c1": NON_NEGATIVE, "c2": NON_NEGATIVE, "vmax": POSITIVE}
 
     def _run(self) -> None:
         p = self.params

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.plan.optimizers.base import Optimizer
+from usvtool.plan.optimizers.base import NON_NEGATIVE, POSITIVE, Optimizer, Range
 
 
 def constants(p: dict) -> tuple[float, float]:
@@ -56,6 +56,11 @@ class WSO(Optimizer):
         "a1": 100.0,
         "a2": 0.0005,
     }
+    # f_min, f_max > 0 keep the wavy frequency f > 0 (eq. 4 divides by it); tau >= 4 keeps
+    # mu's square root real (Clerc's constriction); a0 >= 0 keeps mv's divisor > 0 and a1
+    # divides; a2 >= 0 keeps s_s in [0, 1)
+    ranges = {"f_min": POSITIVE, "f_max": POSITIVE, "tau": Range(4.0), "a0": NON_NEGATIVE,
+              "a1": POSITIVE, "a2": NON_NEGATIVE}  # fmt: skip
 
     def _run(self) -> None:
         n, K = self.pop, self.iters
