@@ -30,6 +30,7 @@ import pytest
 
 from usvtool import angles, geodesy
 from usvtool.grid import NAVIGABLE, read_grid
+from usvtool.sim import controllers as registry
 from usvtool.sim.run import Options, simulate
 from usvtool.sim.scenario import read_scenario
 from usvtool.sim.vessel import vessel_from
@@ -37,7 +38,7 @@ from usvtool.sim.vessel import vessel_from
 pytestmark = pytest.mark.slow  # every bundled scenario with every controller
 
 SCENARIOS = Path(__file__).resolve().parents[2] / "charts" / "scenarios"
-CONTROLLERS = ("dwa", "gdwa", "ccdwa", "udwa", "udwa+")
+CONTROLLERS = tuple(registry.CONTROLLERS)  # every registered controller
 PAPER = [
     f"{env}-{kind}"
     for env in ("env1", "env2")

@@ -26,10 +26,19 @@ def report(tables, output, pdf, summary_path) -> None:
     from usvtool.report.build import ReportOptions, make_report
 
     check_outputs([("--summary", summary_path)])
-    result = make_report(ReportOptions(tuple(tables), output, pdf))
+    result = make_report(ReportOptions(tuple(tables), output, pdf, order=stage_methods()))
     summary = result.summary()
     if result.hint:
         click.echo(f"Warning: {result.hint}", err=True)
     if summary_path:
         write_summary(summary_path, summary)
     emit(summary)
+
+
+def stage_methods() -> tuple[str, ...]:
+    """The methods the stages' registries know, in the order the report shows them: the
+    planners (:func:`usvtool.plan.planners.names`), then the controllers."""
+    from usvtool.plan.planners import names
+    from usvtool.sim.controllers import CONTROLLERS
+
+    return (*names(), *CONTROLLERS)

@@ -36,12 +36,14 @@ TITLE = "usvtool: path planning and collision avoidance, compared with the paper
 class ReportOptions:
     """``tables``: results tables (``usvtool batch``'s ``metrics.csv``); ``out``: the report's
     directory; ``pdf``: also write ``report.pdf``; ``workers``: processes building the
-    sections (None: the cores, at most 4)."""
+    sections (None: the cores, at most 4); ``order``: the methods in the order the stages'
+    registries list them (``usvtool report`` gives it; :func:`usvtool.report.data.load`)."""
 
     tables: tuple[str, ...]
     out: str = "build/report"
     pdf: bool = True
     workers: int | None = None
+    order: tuple[str, ...] = ()
 
 
 @dataclass
@@ -97,7 +99,7 @@ def make_report(options: ReportOptions) -> ReportResult:
         raise UsvError(f"-o {out}: is a file, not a directory")
     if not out.parent.is_dir():
         raise UsvError(f"-o {out}: directory {out.parent} does not exist")
-    results = load(options.tables)
+    results = load(options.tables, options.order)
     parts = sections(results, options.workers or min(os.cpu_count() or 1, 4))
     subtitle = (f"{len(results.jobs)} jobs from {len(results.tables)} results table(s): "
                 "every optimizer on every chart, every controller in every encounter, beside "

@@ -7,11 +7,16 @@ the batch engine ran: the grid of a route, the scenario of a run) and its timing
 batches); a key found in two of them is refused, as the report could not tell which is meant.
 A table (or its timings) holding a value that is not of its metric's kind (``nan`` where a
 number is expected: :mod:`usvtool.report.values`) is refused, naming how many and which.
+
+Methods are shown in the order the caller gives (:func:`load`'s ``order``): the report imports
+no other stage, so ``usvtool report`` hands it the registries' (the planners, then the
+controllers); a method not in it comes after, alphabetically.
 """
 
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -21,16 +26,17 @@ from usvtool.errors import UsvError
 from usvtool.report import values
 from usvtool.results import Row, job_dir, read_results, timings_path
 
-#: The order methods are shown in: the papers' algorithms, then the project's variants, then
-#: the exact planners; the controllers (a name not listed comes after, alphabetically).
-ORDER = ("wso", "iwso", "ssa", "issa", "pso", "pso-issa", "gwo", "woa", "mrfo", "boa",
-         "anyangle", "astar", "dwa", "gdwa", "ccdwa", "udwa")  # fmt: skip
 
+def method_order(name: str, order: Sequence[str] = ()) -> tuple:
+    """Sort key of a method: its base name's place in ``order`` (a name not there comes after,
+    alphabetically), then its variant suffix.
 
-def method_order(name: str) -> tuple:
-    """Sort key of a method: its base name's place in :data:`ORDER`, then its variant suffix."""
+    >>> order = ("iwso", "astar", "udwa")
+    >>> sorted(["udwa", "b", "astar", "iwso+g", "a", "iwso"], key=lambda m: method_order(m, order))
+    ['iwso', 'iwso+g', 'astar', 'udwa', 'a', 'b']
+    """
     base, plus, variant = name.partition("+")
-    place = ORDER.index(base) if base in ORDER else len(ORDER)
+    place = order.index(base) if base in order else len(order)
     return (place, base, plus + variant)
 
 
@@ -69,10 +75,13 @@ class Job:
 
 @dataclass
 class Results:
-    """Every job of the tables given, in key order."""
+    """Every job of the tables given, in key order; ``order`` is the order the stages list
+    their methods in (``usvtool report`` gives the registries': the planners, then the
+    controllers), which :meth:`methods` keeps."""
 
     jobs: list[Job]
     tables: list[Path]
+    order: tuple[str, ...] = ()
 
     def select(self, kind: str, case: str | None = None, method: str | None = None) -> list[Job]:
         return [j for j in self.jobs if j.kind == kind and case in (None, j.case)
@@ -82,7 +91,8 @@ class Results:
         return sorted({j.case for j in self.jobs if j.kind == kind})
 
     def methods(self, kind: str, case: str | None = None) -> list[str]:
-        return sorted({j.method for j in self.select(kind, case)}, key=method_order)
+        found = {j.method for j in self.select(kind, case)}
+        return sorted(found, key=lambda m: method_order(m, self.order))
 
     def values(self, kind: str, case: str, method: str, metric: str) -> list[float]:
         """The metric's numbers over the seeds of (kind, case, method), in seed order."""
@@ -90,8 +100,9 @@ class Results:
         return [v for v in (j.number(metric) for j in jobs) if v is not None]
 
 
-def load(tables) -> Results:
-    """Read the tables, their timings and every job's ``job.json``."""
+def load(tables, order: Sequence[str] = ()) -> Results:
+    """Read the tables, their timings and every job's ``job.json``; ``order``: the methods'
+    (:attr:`Results.order`)."""
     if not tables:
         raise UsvError("no results table given")
     jobs: dict[str, Job] = {}
@@ -119,7 +130,7 @@ def load(tables) -> Results:
             if row.key in mine and row.number is not None:
                 mine[row.key].timings[row.metric] = row.number
         jobs.update(mine)
-    return Results([jobs[k] for k in sorted(jobs)], [Path(t) for t in tables])
+    return Results([jobs[k] for k in sorted(jobs)], [Path(t) for t in tables], tuple(order))
 
 
 def _read(path: Path) -> list[Row]:

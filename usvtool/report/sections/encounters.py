@@ -24,13 +24,11 @@ from usvtool.grid import read_grid
 from usvtool.report import figures
 from usvtool.report.data import Job, Results, stats
 from usvtool.report.document import Cell, Figure, Section, Table, number
+from usvtool.report.papers import CLAIMS
 from usvtool.report.sections import published
 from usvtool.trace import Trace, read_events, read_trace
 from usvtool.wind import read_wind_field
 
-#: The controller whose snapshots are shown, by the scenario's family (its name's first word):
-#: the one its paper runs there.
-PRIMARY = {"env1": "gdwa", "env2": "gdwa", "emergency": "udwa", "wind": "udwa"}
 #: The run table: (metric, column, decimals).
 COLUMNS = (("arrival_time_s", "arrival (s)", 1), ("closest_distance_m", "closest (m)", 1),
            ("average_distance_m", "average (m)", 1), ("domain_intrusion_s", "in domain (s)", 1),
@@ -113,7 +111,15 @@ def run_file(events: dict, key: str, where: Path | str) -> Path | None:
 
 
 def primary(scenario: str, controllers: list[str]) -> str:
-    want = PRIMARY.get(scenario.split("-")[0], "gdwa")
+    """The controller whose snapshots a scenario shows: the one its paper runs there, i.e. that
+    the papers' claims (:data:`usvtool.report.papers.CLAIMS`) test on the scenario's family
+    (its name's first word: env1 gdwa, emergency udwa); for a family no claim tests, the first
+    controller a claim tests (gdwa); the first of ``controllers`` when that one did not run.
+    No controller's name is written here: a new controller is shown where it ran alone."""
+    family = scenario.split("-")[0]
+    runs = [c for c in CLAIMS if c.kind == "runs"]
+    here = [c.method for c in runs if any(case.split("-")[0] == family for case in c.cases)]
+    want = (here or [c.method for c in runs] or controllers)[0]
     return want if want in controllers else controllers[0]
 
 

@@ -15,6 +15,20 @@ CONTROLLERS: dict[str, type[Controller]] = {
 }
 
 
+def register(cls: type[Controller]) -> type[Controller]:
+    """Add ``cls`` to :data:`CONTROLLERS` under its ``name``, which must be new; returns
+    ``cls``, so it also serves as a class decorator (docs/extending.md)."""
+    if not cls.name or cls.name in CONTROLLERS:
+        raise ValueError(f"controller name {cls.name!r}: empty or already registered")
+    CONTROLLERS[cls.name] = cls
+    return cls
+
+
+def unregister(name: str) -> None:
+    """Remove the controller registered as ``name`` (KeyError when there is none)."""
+    del CONTROLLERS[name]
+
+
 def make_controller(name: str, **params) -> Controller:
     """The controller registered as ``name``; :class:`UsvError` for an unknown name."""
     try:
@@ -27,5 +41,5 @@ def make_controller(name: str, **params) -> Controller:
 
 __all__ = [
     "CONTROLLERS", "Controller", "Decision", "Encounter", "Own", "Targets", "World",
-    "make_controller",
+    "make_controller", "register", "unregister",
 ]  # fmt: skip
