@@ -50,12 +50,9 @@ Latching (:class:`EncounterTracker`, :func:`latch_series`)
     ``clear_distance`` (default ``risk_distance``: not released while still that close), or the
     range beyond ``release_distance`` (default infinite). The releasing step reports ``none``;
     a new encounter with the same target can start from the next step.
-Ship domain (:func:`in_domain`, UDWA paper section 4.1)
-    An ellipse centred on the own ship, its major axis ``7 L`` along her heading and its minor
-    axis ``3 L`` across (semi-axes 3.5 L and 1.5 L, ``L`` her length). A target (its reference
-    point) is inside when ``(a / 3.5 L)² + (c / 1.5 L)² ≤ 1`` (closed), ``a`` and ``c`` its
-    along- and across-heading offsets. *Domain intrusion* is the time during which some target
-    is inside (:func:`intrusion_time`, trapezoidal on the samples).
+Ship domain (:func:`usvtool.encounter.in_domain`, UDWA paper section 4.1)
+    The 7 L x 3 L ellipse of :mod:`usvtool.encounter`. *Domain intrusion* is the time during
+    which some target is inside (:func:`intrusion_time`, trapezoidal on the samples).
 Manoeuvre (on the sampled own track, :func:`evaluate`)
     A manoeuvre is detected at the first sample ``i`` (from the encounter's onset) from which
     the heading changes by at least ``MANOEUVRE_COURSE_DEG`` (5°), or the speed by at least
@@ -102,6 +99,12 @@ from typing import NamedTuple
 import numpy as np
 
 from usvtool.angles import wrap360
+from usvtool.encounter import (
+    DOMAIN_LENGTH_FACTOR,
+    DOMAIN_WIDTH_FACTOR,
+    domain_semi_axes,
+    in_domain,
+)
 
 NONE, HEAD_ON, CROSSING_GIVE_WAY, CROSSING_STAND_ON, OVERTAKING, OVERTAKEN = range(6)
 CLASS_NAMES = (
@@ -118,9 +121,6 @@ CLASSES = CLASS_NAMES  # alias: the name usvtool.sim.sides refers to
 STERN_SECTOR_DEG = (112.5, 247.5)
 #: Rule 14: both relative bearings within this of dead ahead (MOOS-IvP BHV_AvdColregsV17: 12).
 HEAD_ON_BEARING_DEG = 12.0
-#: UDWA section 4.1: the domain's axes, in ship lengths ("seven times ... thrice ...").
-DOMAIN_LENGTH_FACTOR = 7.0
-DOMAIN_WIDTH_FACTOR = 3.0
 #: Latching: a risk must be within this time to CPA (our choice; scenarios close at ≤ 10 m/s).
 RISK_HORIZON_S = 120.0
 #: Relative speeds below this (m/s) are zero in :func:`cpa`.
@@ -428,32 +428,7 @@ def _next_true(mask: np.ndarray) -> np.ndarray:
 
 def onset_distance(length: float) -> float:
     """The DCPA below which an encounter begins: the domain's semi-major axis, ``3.5 L``."""
-    return 0.5 * DOMAIN_LENGTH_FACTOR * length
-
-
-def domain_radius(own_xy, own_heading, target_xy, length) -> np.ndarray:
-    """The target's normalised elliptic distance in the own ship's domain (≤ 1 inside).
-
-    >>> domain_radius((0, 0), 0.0, [(0, 35), (15, 0), (0, -70)], 10.0).tolist()
-    [1.0, 1.0, 2.0]
-    """
-    d = np.asarray(target_xy, float) - np.asarray(own_xy, float)
-    h = np.radians(np.asarray(own_heading, float))
-    along = d[..., 0] * np.sin(h) + d[..., 1] * np.cos(h)
-    across = d[..., 0] * np.cos(h) - d[..., 1] * np.sin(h)
-    length = np.asarray(length, float)
-    return np.hypot(
-        along / (0.5 * DOMAIN_LENGTH_FACTOR * length), across / (0.5 * DOMAIN_WIDTH_FACTOR * length)
-    )
-
-
-def in_domain(own_xy, own_heading, target_xy, length) -> np.ndarray:
-    """Whether each target is inside the own ship's (closed) 7 L × 3 L domain.
-
-    >>> in_domain((0, 0), 90.0, [(35, 0), (0, 15), (0, 15.01), (0, 35)], 10.0).tolist()
-    [True, True, False, False]
-    """
-    return domain_radius(own_xy, own_heading, target_xy, length) <= 1.0
+    return domain_semi_axes(length)[0]
 
 
 def intrusion_time(t, inside) -> float:

@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from usvtool.angles import compass_to_math, wrap360
+from usvtool.encounter import DOMAIN_LENGTH_FACTOR, DOMAIN_WIDTH_FACTOR
 from usvtool.errors import UsvError
 from usvtool.grid import Grid
 from usvtool.report.figures.canvas import Plot, csv_text, figure, finite_array, fixed, png
@@ -22,8 +23,8 @@ from usvtool.report.figures.raster import draw_grid, map_axes, square_view
 from usvtool.report.figures.runs import nearest_ship_distance
 from usvtool.trace import OWN, Trace
 
-#: The domain's full axes in ship lengths (docs/colregs.md).
-DOMAIN_LENGTHS = (7.0, 3.0)
+#: The domain's full axes in ship lengths (:mod:`usvtool.encounter`, docs/colregs.md).
+DOMAIN_LENGTHS = (DOMAIN_LENGTH_FACTOR, DOMAIN_WIDTH_FACTOR)
 #: Ship colours: the own ship blue and the obstacle ships red, as in IWSO-DWA section 5.3 ("the
 #: blue boat indicates the USV and the red boat indicates the obstacle ship"), then others.
 SHIP_COLOURS = ("#1f4fd8", "#d62728", "#000000", "#9467bd", "#8c564b", "#e377c2", "#17becf")

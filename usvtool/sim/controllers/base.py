@@ -50,8 +50,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from usvtool.angles import wrap_pi
+from usvtool.encounter import domain_ellipse, domain_semi_axes
 from usvtool.errors import UsvError
-from usvtool.sim import colregs
 from usvtool.sim import sides as side_rules
 from usvtool.sim import vessel as vessel_model
 
@@ -301,9 +301,7 @@ class Controller(ABC):
         # cache (fresh (k, T, N) arrays cost more in page faults than in arithmetic)
         ahead = targets.pos[:, None, :] + targets.vel[:, None, :] * self.times[:, None]
         intrudes = np.zeros(n, bool)
-        a = colregs.DOMAIN_LENGTH_FACTOR * vessel.length / 2  # the domain's semi-axes, a >= b
-        inv_a2 = 1 / np.square(a)
-        inv_b2 = 1 / np.square(colregs.DOMAIN_WIDTH_FACTOR * vessel.length / 2)
+        a = domain_semi_axes(vessel.length)[0]  # the domain's longer semi-axis
         # the domain, a soft rule, is looked at every DOMAIN_EVERY seconds of the horizon
         rows = slice(None, None, max(1, int(round(DOMAIN_EVERY / p["step"]))))
         ux = uy = None  # each period's direction per sample, made when a domain test needs it
@@ -324,11 +322,8 @@ class Controller(ABC):
                 if ux is None:  # (T', N)
                     u = np.tile(fan.u[rows], speeds.size)
                     ux, uy = np.ascontiguousarray(u.real), np.ascontiguousarray(u.imag)
-                # along^2 / a^2 + across^2 / b^2, with across^2 = d2 - along^2
-                ellipse = np.square(dx[rows] * ux + dy[rows] * uy)
-                ellipse *= inv_a2 - inv_b2
-                ellipse += d2[rows] * inv_b2
-                intrudes |= (ellipse <= 1).any(axis=0)
+                inside = domain_ellipse(dx[rows], dy[rows], ux, uy, vessel.length) <= 1
+                intrudes |= inside.any(axis=0)
         columns = np.arange(n)
         if hit is None:
             contact = np.full(n, np.inf)
