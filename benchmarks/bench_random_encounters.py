@@ -89,7 +89,7 @@ def one(job: tuple) -> tuple:
     family, seed, controller, params = job
     s = simulate(parse(scene(family, seed, controller), f"scene {seed}"),
                  Options(params=params)).summary()  # fmt: skip
-    return (controller, seed, s["collision"] is not None, s["arrived"], s["min_distance_m"],
+    return (controller, seed, s["collision"] is not None, s["arrived"], s["closest_distance_m"],
             s["time_s"])  # fmt: skip
 
 

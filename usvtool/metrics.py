@@ -205,8 +205,7 @@ def average_distance(own_x, own_y, target_x, target_y, steps=None):
     """Average distance (UDWA Table 1): the mean over the selected steps of the centre distance
     to the nearest target; ``steps`` a boolean mask ``(n,)`` (None: every step). For a run the
     steps are those of the collision-avoidance phase, the steps during which some encounter is
-    latched (:func:`encounter_steps`): the definition of the simulate summary's
-    ``mean_distance_m``. None without a target or a selected step.
+    latched (:func:`encounter_steps`). None without a target or a selected step.
 
     >>> tx, ty = [[30, 5], [20, 8], [0, 0]], [[0, 0], [10, 10], [0, 0]]
     >>> average_distance([0, 0, 0], [0, 10, 20], tx, ty)  # nearest: 5, 8, 20
@@ -221,6 +220,21 @@ def average_distance(own_x, own_y, target_x, target_y, steps=None):
     if steps is not None:
         nearest = nearest[np.asarray(steps, bool)]
     return float(nearest.mean()) if nearest.size else None
+
+
+def run_distances(own_x, own_y, target_x, target_y, steps) -> dict:
+    """A run's two distance figures under their one name (the simulate summary's, the metrics
+    table's and the report's): ``closest_distance_m`` (:func:`closest_distance`) and
+    ``average_distance_m`` (:func:`average_distance` over the boolean ``steps``, the
+    encounters' steps: the run's latched steps, or :func:`encounter_steps` of its events).
+
+    >>> run_distances([0, 0, 0], [0, 10, 20], [30, 20, 0], [0, 10, 5], [False, True, True])
+    {'closest_distance_m': 15.0, 'average_distance_m': 17.5}
+    """
+    return {
+        "closest_distance_m": closest_distance(own_x, own_y, target_x, target_y),
+        "average_distance_m": average_distance(own_x, own_y, target_x, target_y, steps),
+    }
 
 
 def encounter_steps(t, intervals) -> np.ndarray:

@@ -70,13 +70,24 @@ class Route:
 
 
 def route_length(grid: Grid, points) -> float:
-    """Length in metres: geodesic (WGS84) for a georeferenced grid, planar otherwise."""
+    """Length in metres of a route on ``grid``: :func:`length_in_metres` in its CRS."""
+    return length_in_metres(points, grid.crs)
+
+
+def length_in_metres(points, crs=None) -> float:
+    """Length in metres of a polyline ``(m, 2)`` in map coordinates: geodesic (WGS84) in
+    ``crs``, planar (:func:`usvtool.metrics.path_length`) without one. The one route length:
+    the plan's ``length_m`` and the metrics table's.
+
+    >>> length_in_metres([(0, 0), (3, 4), (3, 10)])
+    11.0
+    """
     points = np.asarray(points, float)
-    if grid.crs is None:
+    if crs is None:
         return float(metrics.path_length(points))
     from usvtool.geodesy import geodesic_length, map_to_lonlat
 
-    return geodesic_length(*map_to_lonlat(grid.crs, points[:, 0], points[:, 1]))
+    return geodesic_length(*map_to_lonlat(crs, points[:, 0], points[:, 1]))
 
 
 def write_path_geojson(path: str | os.PathLike, route: Route, grid: Grid) -> None:

@@ -96,8 +96,8 @@ def test_a_real_run_matches_the_simulate_summary(usv, run):
     rows = {r["controller"]: r for r in table(out.read_text())}
     for name, s in summaries.items():
         r = rows[name]
-        assert float(r["closest_distance_m"]) == pytest.approx(s["min_distance_m"], abs=1.5e-3)
-        assert float(r["average_distance_m"]) == pytest.approx(s["mean_distance_m"], abs=1.5e-3)
+        assert float(r["closest_distance_m"]) == pytest.approx(s["closest_distance_m"], abs=1.5e-3)
+        assert float(r["average_distance_m"]) == pytest.approx(s["average_distance_m"], abs=1.5e-3)
         assert float(r["length_m"]) == pytest.approx(s["path_length_m"], abs=0.01)
         assert int(r["turns"]) == s["turns"]
         assert float(r["mot"]) == pytest.approx(s["mot"], abs=1e-3)
@@ -106,8 +106,8 @@ def test_a_real_run_matches_the_simulate_summary(usv, run):
         if s["arrived"]:
             assert float(r["arrival_time_s"]) == s["time_s"]
     assert rows["dwa"]["average_distance_rate"] == "0.0"
-    expected = (summaries["udwa"]["mean_distance_m"] - summaries["dwa"]["mean_distance_m"]) \
-        / summaries["dwa"]["mean_distance_m"]  # fmt: skip
+    expected = (summaries["udwa"]["average_distance_m"] - summaries["dwa"]["average_distance_m"]) \
+        / summaries["dwa"]["average_distance_m"]  # fmt: skip
     assert float(rows["udwa"]["average_distance_rate"]) == pytest.approx(expected, abs=1e-3)
     # the same inputs in another order: the same bytes
     again = d / "again.csv"

@@ -93,8 +93,8 @@ def test_a_run_writes_trace_events_and_tracks_and_prints_the_summary(case, usv):
     assert trace.x[0, 0] == 100 and trace.y[0, 0] == 10
     # the independent check: the smallest centre distance, from the trace
     d = np.hypot(trace.x[:, 1:] - trace.x[:, :1], trace.y[:, 1:] - trace.y[:, :1])
-    assert summary["min_distance_m"] == pytest.approx(d.min(), abs=2e-3)
-    assert summary["min_distance_m"] > (2.5 + 2.5) / 2
+    assert summary["closest_distance_m"] == pytest.approx(d.min(), abs=2e-3)
+    assert summary["closest_distance_m"] > (2.5 + 2.5) / 2
     events = read_events(out / "events.json")
     assert events["scenario"] == "head-on-open" and events["controller"] == "udwa"
     assert {"steps", "encounters", "thresholds", "unmatched_rule2"} <= set(events)

@@ -291,13 +291,15 @@ def test_the_domain_ellipse_lies_along_the_heading_with_7_by_3_lengths(heading):
 def test_snapshot_times_come_from_the_encounters():
     trace = two_ship_trace()
     events = {"encounters": [
-        {"class": "head-on", "onset_s": 2.0, "cpa_time_s": 6.0, "min_distance_m": 30.0},
-        {"class": "crossing-give-way", "onset_s": 3.0, "cpa_time_s": 8.0, "min_distance_m": 28.3},
-        {"class": "none", "onset_s": None, "cpa_time_s": None, "min_distance_m": 1.0}]}  # fmt: skip
+        {"class": "head-on", "onset_s": 2.0, "cpa_time_s": 6.0, "closest_distance_m": 30.0},
+        {"class": "crossing-give-way", "onset_s": 3.0, "cpa_time_s": 8.0,
+         "closest_distance_m": 28.3},
+        {"class": "none", "onset_s": None, "cpa_time_s": None,
+         "closest_distance_m": 1.0}]}  # fmt: skip
     assert F.snapshot_times(trace, events) == {"preparatory": 2.0, "meeting": 8.0,
                                                "completion": 10.0}  # fmt: skip
     # no encounter: the first step, the closest step (t = 8 s, by hand), the last step
-    none = {"encounters": [{"class": "none", "min_distance_m": 28.284}]}
+    none = {"encounters": [{"class": "none", "closest_distance_m": 28.284}]}
     assert F.snapshot_times(trace, none) == {"preparatory": 0.0, "meeting": 8.0,
                                              "completion": 10.0}  # fmt: skip
 
@@ -322,7 +324,7 @@ def test_snapshots_of_a_real_run_from_its_events(tmp_path):
     # minimum distance of the encounters
     i = int(np.flatnonzero(np.isclose(trace.t, times["meeting"]))[0])
     d = np.hypot(trace.x[i, 1] - trace.x[i, 0], trace.y[i, 1] - trace.y[i, 0])
-    assert abs(d - min(e["min_distance_m"] for e in latched)) < 1e-3
+    assert abs(d - min(e["closest_distance_m"] for e in latched)) < 1e-3
     plot = F.encounter_snapshots(trace, times, {s: 2.5 for s in trace.ships})
     assert len(rows(plot)) == 1 + 3 * 2
 

@@ -449,7 +449,7 @@ def test_head_on_clear_starboard_turn_is_compliant():
     assert m["side"] == "starboard" and m["course_change_deg"] == pytest.approx(40.0)
     assert 5.0 <= m["t"] <= 5.1 + 1e-9  # the turn starts at 5 s (within the 1° start tolerance)
     assert m["range_m"] == pytest.approx(600 - 10 * m["t"], abs=0.6)
-    assert e["passing_side"] == "port" and e["min_distance_m"] > 150
+    assert e["passing_side"] == "port" and e["closest_distance_m"] > 150
     assert e["compliant"] and e["failed_rules"] == [] and e["released_s"] is not None
     assert r["figures"]["domain_intrusion_s"] == 0.0
 
@@ -495,7 +495,7 @@ def test_late_turn_is_not_in_time():
 def test_no_manoeuvre_head_on():
     r = run(own_track(0, 5), HEAD_ON_TARGET)
     (e,) = r["events"]
-    assert e["first_manoeuvre"] is None and e["min_distance_m"] < 5
+    assert e["first_manoeuvre"] is None and e["closest_distance_m"] < 5
     assert e["failed_rules"] == [c.NO_ACTION, c.SAFE_DISTANCE, c.STARBOARD_TURN, c.PORT_TO_PORT]
     assert e["domain_intrusion_s"] > 0 and r["figures"]["domain_intrusion_s"] > 0
 
@@ -531,7 +531,7 @@ def test_stand_on_that_slows_early_is_not_compliant():
 def test_stand_on_that_never_acts_in_extremis_fails_17b():
     r = run(own_track(0, 4), PORT_TARGET)
     (e,) = r["events"]
-    assert e["min_distance_m"] < 5 and e["failed_rules"] == [c.IN_EXTREMIS]
+    assert e["closest_distance_m"] < 5 and e["failed_rules"] == [c.IN_EXTREMIS]
 
 
 def test_stand_on_turning_to_port_in_extremis_fails_17c():
@@ -597,4 +597,4 @@ def test_targets_without_an_encounter_and_several_targets():
     first, second = r["events"]
     assert first["class"] == "head-on" and first["compliant"]
     assert second == {**second, "target": 1, "class": "none", "compliant": None}
-    assert r["figures"]["min_distance_m"] == pytest.approx(first["min_distance_m"])
+    assert r["figures"]["closest_distance_m"] == pytest.approx(first["closest_distance_m"])

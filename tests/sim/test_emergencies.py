@@ -31,7 +31,7 @@ def closest():
             result = simulate(parse(emergencies.scene(seed, controller), f"scene {seed}"))
             tr, s = result.trace, result.summary()
             gap = np.hypot(tr.x[:, 1:] - tr.x[:, :1], tr.y[:, 1:] - tr.y[:, :1]).min()
-            assert s["min_distance_m"] == pytest.approx(gap, abs=1e-3)
+            assert s["closest_distance_m"] == pytest.approx(gap, abs=1e-3)
             assert (s["collision"] is not None) == (gap < LENGTH)
             out[controller, seed] = gap
     return out

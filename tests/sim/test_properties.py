@@ -56,11 +56,11 @@ def test_the_summary_agrees_with_the_trace(targets, controller):
         else:
             end = tr.t[-1] if event["released_s"] is None else event["released_s"]
             span = (tr.t >= event["onset_s"] - 1e-9) & (tr.t <= end + 1e-9)
-        assert math.isclose(event["min_distance_m"], gap[span, j].min(), abs_tol=1e-3)
+        assert math.isclose(event["closest_distance_m"], gap[span, j].min(), abs_tol=1e-3)
     for j, entry in enumerate(s["per_target"]):  # per target: over the whole run
         assert entry["target"] == names[j]
-        assert math.isclose(entry["min_distance_m"], gap[:, j].min(), abs_tol=1e-3)
-    assert math.isclose(s["min_distance_m"], gap.min(), abs_tol=1e-3)
+        assert math.isclose(entry["closest_distance_m"], gap[:, j].min(), abs_tol=1e-3)
+    assert math.isclose(s["closest_distance_m"], gap.min(), abs_tol=1e-3)
     end = math.hypot(tr.x[-1, 0] - GOAL[0], tr.y[-1, 0] - GOAL[1])
     assert s["arrived"] == (end <= TOLERANCE)
     assert s["time_s"] == round(float(tr.t[-1]), 3)

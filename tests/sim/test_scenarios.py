@@ -128,13 +128,13 @@ def check_trace(sc, result) -> None:
     own_length = vessel_from(sc.own.vessel, sc.own.overrides).length
     d = np.hypot(tr.x[:, 1:] - tr.x[:, :1], tr.y[:, 1:] - tr.y[:, :1])  # (n, k)
     if not sc.targets:
-        assert s["min_distance_m"] is None and s["per_target"] == []
+        assert s["closest_distance_m"] is None and s["per_target"] == []
         return
-    assert s["min_distance_m"] == pytest.approx(d.min(), abs=1e-3)
+    assert s["closest_distance_m"] == pytest.approx(d.min(), abs=1e-3)
     for j, target in enumerate(sc.targets):
         events = [p for p in s["per_target"] if p["target"] == target.name]
         assert events, f"no entry for {target.name}"
-        reported = min(p["min_distance_m"] for p in events)
+        reported = min(p["closest_distance_m"] for p in events)
         assert reported == pytest.approx(d[:, j].min(), abs=1e-3), (
             f"{sc.name}/{s['controller']}: {target.name} came within {d[:, j].min():.3f} m "
             f"(t = {tr.t[np.argmin(d[:, j])]:.1f} s), its encounters report {reported} m"
@@ -214,9 +214,9 @@ def keeps_further(udwa: dict, ccdwa: dict) -> None:
     """The UDWA paper's claim (section 4.1, Table 1): no collision, and a closest distance
     larger by a margin, not by noise (the paper's Table 1 has 1.8, 3.3 and 2.1 times)."""
     assert udwa["collision"] is None, (udwa["collision"], udwa["time_s"])
-    assert udwa["min_distance_m"] > 1.1 * ccdwa["min_distance_m"], (
-        udwa["min_distance_m"],
-        ccdwa["min_distance_m"],
+    assert udwa["closest_distance_m"] > 1.1 * ccdwa["closest_distance_m"], (
+        udwa["closest_distance_m"],
+        ccdwa["closest_distance_m"],
     )
 
 

@@ -4,11 +4,11 @@ Inputs, by extension:
 
 - ``*.geojson``: a route (path GeoJSON of ``usvtool plan``). Its chart is the name of the file's
   directory (the pipeline writes ``build/paths/CHART/ALGO.geojson``). Length, turns and mot are
-  computed again from its map coordinates (geodesic length when it has a CRS, as ``plan``
-  does); fitness, planning time, collision-free and attempt are the file's properties.
-  ``length_ratio``: the length over that of the chart's reference route: a ``--reference``
-  file in the same directory, else the input route of that directory whose algorithm is
-  ``anyangle``; empty when there is none.
+  computed again from its map coordinates (:func:`usvtool.route.length_in_metres`: geodesic
+  when it has a CRS, as ``plan``); fitness, planning time, collision-free and attempt are the
+  file's properties. ``length_ratio``: the length over that of the chart's reference route:
+  a ``--reference`` file in the same directory, else the input route of that directory whose
+  algorithm is ``anyangle``; empty when there is none.
 - ``*.csv``: a run (trace CSV of ``usvtool simulate``) with its events JSON: given with
   ``events`` (paired with the traces in order), else ``<stem>.json`` beside the trace, else
   ``<stem>.events.json``. The events JSON must hold the ``run`` object (docs/simulate.md).
@@ -32,7 +32,7 @@ import numpy as np
 
 from usvtool import metrics
 from usvtool.errors import UsvError, check_input_file
-from usvtool.route import read_path_geojson
+from usvtool.route import length_in_metres, read_path_geojson
 from usvtool.trace import OWN, read_events, read_trace
 
 ROUTE_COLUMNS = ("chart", "algorithm", "length_m", "length_ratio", "turns", "mot", "fitness",
@@ -148,13 +148,7 @@ def _route_figures(path: str) -> tuple[np.ndarray, dict, float]:
         raise UsvError(f"{path}: a route needs two or more [x, y] points")
     if not np.isfinite(points).all():
         raise UsvError(f"{path}: a route's coordinates must be finite")
-    if props.get("crs"):
-        from usvtool.geodesy import geodesic_length, map_to_lonlat
-
-        length = geodesic_length(*map_to_lonlat(props["crs"], points[:, 0], points[:, 1]))
-    else:
-        length = float(metrics.path_length(points))
-    return points, props, float(length)
+    return points, props, length_in_metres(points, props.get("crs") or None)
 
 
 def _route_row(path: str) -> dict:
@@ -243,10 +237,7 @@ def _run_row(path: str, events_path: str) -> dict:
         "turns": int(metrics.turns(sampled)),
         "mot": float(metrics.mot(sampled)),
         "arrival_time_s": float(trace.t[-1]) if arrived else None,
-        "closest_distance_m": metrics.closest_distance(own_x, own_y, tx, ty),
-        "average_distance_m": metrics.average_distance(
-            own_x, own_y, tx, ty, metrics.encounter_steps(trace.t, intervals)
-        ),
+        **metrics.run_distances(own_x, own_y, tx, ty, metrics.encounter_steps(trace.t, intervals)),
         "domain_intrusion_s": run.get("domain_intrusion_s"),
         "encounters": len(intervals),
         "judged": len(judged),

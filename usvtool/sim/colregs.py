@@ -98,6 +98,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from usvtool import metrics
 from usvtool.angles import wrap360
 from usvtool.encounter import (
     DOMAIN_LENGTH_FACTOR,
@@ -574,15 +575,16 @@ def evaluate(
     Returns ``{"events": [...], "figures": {...}, "thresholds": {...}, "unmatched_rule2":
     [...]}``. Each event is one encounter (a target without one gets a single event of class
     ``none``, ``compliant`` None): ``target``, ``class``, ``onset_s``, ``onset_range_m``,
-    ``released_s``, ``cpa_time_s``, ``min_distance_m``, ``passing_side`` (the side of the own ship
-    the target is on at the CPA), ``crossing`` (where the own ship first passes from one side
-    of the target's heading line to the other between onset and release: ``ahead`` of her bow,
-    ``astern``, or None), ``first_manoeuvre`` (``t``, ``side``, ``course_change_deg``,
+    ``released_s``, ``cpa_time_s``, ``closest_distance_m``, ``passing_side`` (the side of the
+    own ship the target is on at the CPA), ``crossing`` (where the own ship first passes from
+    one side of the target's heading line to the other between onset and release: ``ahead`` of
+    her bow, ``astern``, or None), ``first_manoeuvre`` (``t``, ``side``, ``course_change_deg``,
     ``speed_change``, ``range_m``, or None), ``domain_intrusion_s``, ``own_in_target_domain_s``,
     ``rule2_departure`` (the records in the encounter, or None), ``compliant``, ``failed_rules``
     and ``excused_rules`` (failures excused by a Rule 2 record). ``figures``:
-    ``min_distance_m`` (to any target), ``mean_distance_m`` (mean distance to the nearest target
-    over the steps with a latched encounter), ``domain_intrusion_s`` (some target inside).
+    :func:`usvtool.metrics.run_distances` (``closest_distance_m`` to any target,
+    ``average_distance_m`` to the nearest target over the steps with a latched encounter),
+    ``domain_intrusion_s`` (some target inside); distances to 1 mm.
     ``thresholds`` echoes the values used (an infinite ``release_distance`` is null);
     ``unmatched_rule2`` the records that fall in no encounter of their target.
     """
@@ -648,11 +650,10 @@ def evaluate(
                 [records[q] for q in mine],
             )
             events.append(event)
-    any_latched = (latched != NONE).any(axis=1)
-    nearest = sit.range.min(axis=1) if k else np.full(n, np.nan)
+    distances = metrics.run_distances(own_xy[:, 0], own_xy[:, 1], tx, ty,
+                                      (latched != NONE).any(axis=1))  # fmt: skip
     figures = {
-        "min_distance_m": _num(nearest.min()) if k and n else None,
-        "mean_distance_m": _num(nearest[any_latched].mean()) if any_latched.any() else None,
+        **{name: _num(value) for name, value in distances.items()},
         "domain_intrusion_s": _num(intrusion_time(t, inside) if k else 0.0),
     }
     thresholds = {
@@ -690,7 +691,7 @@ def _no_encounter(j: int, rng: np.ndarray) -> dict:
         "onset_range_m": None,
         "released_s": None,
         "cpa_time_s": None,
-        "min_distance_m": _num(rng.min()) if len(rng) else None,
+        "closest_distance_m": _num(rng.min()) if len(rng) else None,
         "passing_side": None,
         "crossing": None,
         "first_manoeuvre": None,
@@ -776,7 +777,7 @@ def _verdict(
         "onset_range_m": _num(r_on),
         "released_s": _num(t[last + 1]) if released else None,
         "cpa_time_s": _num(t[i_cpa]),
-        "min_distance_m": _num(rng[i_cpa]),
+        "closest_distance_m": _num(rng[i_cpa]),
         "passing_side": side,
         "crossing": crossing,
         "first_manoeuvre": first,

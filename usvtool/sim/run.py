@@ -12,9 +12,10 @@ The run ends when the own ship is within ``sim.goal_tolerance`` of the goal (*ar
 touches a target (centres closer than half the sum of the two lengths) or an obstacle cell of the
 map (*collision*), or at ``sim.duration``.
 
-Figures of a run (the summary; :meth:`Result.summary`): ``min_distance_m`` the smallest centre
-distance to any target, ``mean_distance_m`` the mean over the steps with a latched encounter of
-the distance to the nearest target (the UDWA paper's "average distance", Table 1),
+Figures of a run (the summary; :meth:`Result.summary`): ``closest_distance_m`` the smallest
+centre distance to any target, ``average_distance_m`` the mean over the steps with a latched
+encounter of the distance to the nearest target (the UDWA paper's Table 1;
+:func:`usvtool.metrics.run_distances`, as the metrics table),
 ``domain_intrusion_s`` the time some target is inside the own ship's domain, ``path_length_m``
 the length of her track, ``turns`` and ``mot`` (:mod:`usvtool.metrics`) on her track sampled
 every ``metrics.TURN_WINDOW`` seconds (:func:`usvtool.metrics.track_samples`): a turn is a course
@@ -384,8 +385,8 @@ def _per_target(j: int, name: str, encounters: list[dict], times, x, y) -> dict:
     every encounter); ``compliant`` only when all its judged encounters are, ``rule2_departure``
     when any has one."""
     mine = [e for e in encounters if e["target"] == j]
-    main = min(mine, key=lambda e: e["min_distance_m"])
-    gap = np.hypot(x[:, 1 + j] - x[:, 0], y[:, 1 + j] - y[:, 0])
+    main = min(mine, key=lambda e: e["closest_distance_m"])
+    gap = metrics.target_distances(x[:, 0], y[:, 0], x[:, 1 + j], y[:, 1 + j])[:, 0]
     closest = int(np.argmin(gap))
     judged = [e["compliant"] for e in mine if e["compliant"] is not None]
     manoeuvre = main.get("first_manoeuvre") or {}
@@ -393,7 +394,7 @@ def _per_target(j: int, name: str, encounters: list[dict], times, x, y) -> dict:
         "target": name,
         "class": main["class"],
         "encounters": sum(e["class"] != "none" for e in mine),
-        "min_distance_m": round(float(gap[closest]), 3),
+        "closest_distance_m": round(float(gap[closest]), 3),
         "cpa_time_s": round(float(times[closest]), 3),
         "passing_side": main["passing_side"],
         "first_manoeuvre_side": manoeuvre.get("side"),

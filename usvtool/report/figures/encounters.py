@@ -45,7 +45,7 @@ def snapshot_times(trace: Trace, events: dict) -> dict[str, float]:
     """The three states of IWSO-DWA Figs. 11-26 from a run's events JSON (``encounters``):
 
     - ``preparatory``: the earliest onset of an encounter (class other than ``none``);
-    - ``meeting``: the CPA of the encounter with the smallest minimum distance (its
+    - ``meeting``: the CPA of the encounter with the smallest closest distance (its
       ``cpa_time_s``);
     - ``completion``: the end of the run (the trace's last step). Not the encounter's release:
       when the ships pass outside the clear distance (3.5 L) the release is the step after the
@@ -63,7 +63,7 @@ def snapshot_times(trace: Trace, events: dict) -> dict[str, float]:
     try:
         if latched:
             onset = min(float(e["onset_s"]) for e in latched)
-            closest = min(latched, key=lambda e: (float(e["min_distance_m"]), e["cpa_time_s"]))
+            closest = min(latched, key=lambda e: (float(e["closest_distance_m"]), e["cpa_time_s"]))
             meeting = float(closest["cpa_time_s"])
         else:
             onset = t[0]
