@@ -15,14 +15,18 @@ CHART_CONTRACTS := grid geodesy atomic errors
 CHART_SRC := $(shell find usvtool/chart -name '*.py') usvtool/cli/preprocess.py $(CLI_SRC) \
 	$(call contracts,$(CHART_CONTRACTS))
 
-# the pipeline's lists as Make variables (GRIDS, CHART_SOURCE_*, PREPROCESS_*, ROUTE_GRIDS, ALGOS,
-# ENDS_*, ROUTES, ...), regenerated when the YAML or its reader changes (Make then restarts)
+# the pipeline's lists as Make variables (GRIDS, CHART_SOURCE_*, CHART_INPUTS_*, PREPROCESS_*,
+# ROUTE_GRIDS, ALGOS, ENDS_*, ROUTES, ...) from the batch's own command lines and file lists,
+# regenerated when the YAML, the code writing it or a folder of the charts' files changes (a file
+# added or removed there: a new sidecar, an update, a glob's match); Make then restarts
 PIPELINE ?= pipelines/report.yaml
 PIPELINE_MK := build/pipeline.mk
+PIPELINE_MK_SRC := usvtool/pipeline.py usvtool/companions.py usvtool/batch/commands.py \
+	usvtool/batch/make.py usvtool/cli/batch.py
 include $(PIPELINE_MK)
-$(PIPELINE_MK): $(PIPELINE) usvtool/pipeline.py
+$(PIPELINE_MK): $(PIPELINE) $(PIPELINE_MK_SRC) $(CHART_FOLDERS)
 	@mkdir -p $(@D)
-	$(BIN)/python -m usvtool.pipeline make $< -o $@
+	$(USV) batch $< --make-fragment $@
 
 all: $(GRIDS:%=$(OUT)/%.tif)
 

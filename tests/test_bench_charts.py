@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 from affine import Affine
 
+from usvtool.batch.commands import ends_args
 from usvtool.grid import Grid
 from usvtool.pipeline import Ends, load
 
@@ -18,7 +19,7 @@ def test_the_bench_reads_the_route_matrix_of_the_pipeline(bench):
     assert ends == load().routes["report"].ends
     # every route chart but the 25-million-cell approach cell, which is preprocessed only
     assert set(ends) == set(load().charts) - {"us4md81m"}
-    assert ends["grid20"].args() == ["--start", "0.5", "0.5", "--goal", "19.5", "19.5"]
+    assert ends_args(ends["grid20"]) == ["--start", "0.5", "0.5", "--goal", "19.5", "19.5"]
     assert ends["us5ma12m"].frame == "lonlat"
 
 

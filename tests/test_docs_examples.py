@@ -17,6 +17,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
+from usvtool.batch.commands import option_args
 from usvtool.cli import cli
 from usvtool.pipeline import load
 
@@ -59,7 +60,8 @@ def project(tmp_path_factory) -> Path:
         if name not in charts:
             pytest.fail(f"an example plans on build/grids/{name}.tif: no chart of report.yaml")
         chart = charts[name]
-        args = ["preprocess", str(ROOT / chart.source), *chart.args(), "-o", grids / f"{name}.tif"]
+        args = ["preprocess", str(ROOT / chart.source), *option_args(chart.options),
+                "-o", grids / f"{name}.tif"]  # fmt: skip
         result = CliRunner().invoke(cli, [str(a) for a in args])
         assert result.exit_code == 0, result.output
     return root

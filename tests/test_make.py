@@ -22,8 +22,8 @@ def tree(tmp_path_factory):
     """A build directory whose grid env1 and route env1/astar are newer than every source."""
     tmp = tmp_path_factory.mktemp("build")
     fragment = tmp / "pipeline.mk"
-    subprocess.run([sys.executable, "-m", "usvtool.pipeline", "make", "pipelines/report.yaml",
-                    "-o", fragment], cwd=ROOT, check=True)  # fmt: skip
+    subprocess.run([sys.executable, "-m", "usvtool.cli", "batch", "pipelines/report.yaml",
+                    "--make-fragment", fragment], cwd=ROOT, check=True)  # fmt: skip
     _newer_than_every_source(fragment, tmp / "grids" / "env1.tif",
                              tmp / "paths" / "env1" / "astar.geojson")  # fmt: skip
     return tmp
@@ -124,3 +124,81 @@ def test_a_stage_chart_or_pipeline_change_runs_the_batch_then_the_report(report_
     assert r.returncode == 0, r.stderr
     batch = r.stdout.find("usvtool batch pipelines/full.yaml")
     assert 0 <= batch < r.stdout.find("usvtool report"), r.stdout
+
+
+#: A project of two charts (paths relative to its root): each file, and the charts whose grid
+#: reads it (a raster's sidecars, an S-57 cell's update files, an input glob's matches, an
+#: option file and its sidecar), or none (another file's sidecar, another cell's update).
+CHART_FILES = {
+    "charts/r.tif": {"r"}, "charts/r.tif.aux.xml": {"r"}, "charts/r.TFW": {"r"},
+    "charts/other.tif.aux.xml": set(), "extra/a.dat": {"r"}, "extra/b.dat": {"r"},
+    "cut/cut.geojson": {"r"}, "cut/cut.geojson.aux.xml": {"r"}, "cut/notes.txt": set(),
+    "enc/CELL.000": {"s"}, "enc/CELL.001": {"s"}, "enc/CELL.002": {"s"}, "enc/OTHER.001": set(),
+}  # fmt: skip
+SOURCES = {"r": "charts/r.tif", "s": "enc/CELL.000"}
+
+
+@pytest.fixture()
+def project(tmp_path):
+    """CHART_FILES, a pipeline of their two charts with a route each, and ``usvtool/`` (a link:
+    the rules depend on the stages' code); the fragment, grids and routes newer than all."""
+    for name in CHART_FILES:
+        (tmp_path / name).parent.mkdir(exist_ok=True)
+        (tmp_path / name).write_text(name)
+    (tmp_path / "usvtool").symlink_to(ROOT / "usvtool")
+    (tmp_path / "p.yaml").write_text(
+        "charts:\n"
+        "  r: {source: charts/r.tif, inputs: [extra/*.dat], options: {cutline: cut/cut.geojson},\n"
+        "      start: [1, 1], goal: [5, 5]}\n"
+        "  s: {source: enc/CELL.000, start: [1, 1], goal: [5, 5]}\n"
+        "routes:\n  a: {charts: [r, s], algorithms: [astar], seeds: [1]}\n")  # fmt: skip
+    subprocess.run([sys.executable, "-m", "usvtool.cli", "batch", "p.yaml", "--make-fragment",
+                    "pipeline.mk"], cwd=tmp_path, check=True)  # fmt: skip
+    _newer_than_every_source(tmp_path / "pipeline.mk", tmp_path / "grids" / "r.tif",
+                             tmp_path / "grids" / "s.tif")  # fmt: skip
+    return tmp_path
+
+
+def make_project(project: Path, *args: str) -> subprocess.CompletedProcess:
+    variables = [f"BIN={Path(sys.executable).parent}", "PIPELINE=p.yaml", "PIPELINE_MK=pipeline.mk",
+                 "OUT=grids"]  # fmt: skip
+    return subprocess.run(["make", "-f", str(ROOT / "pipelines" / "charts.mk"), *variables, *args,
+                           "grids/r.tif", "grids/s.tif"], cwd=project, capture_output=True,
+                          text=True)  # fmt: skip
+
+
+def grid_keys(project: Path) -> dict[str, str]:
+    from usvtool.batch.jobs import expand
+    from usvtool.cli.batch import stage_names
+    from usvtool.pipeline import load
+
+    names = stage_names()
+    jobs = expand(load(project / "p.yaml", names), names)
+    return {j.case: j.key for j in jobs if j.kind == "grids"}
+
+
+def test_make_remakes_a_grid_when_a_file_its_batch_key_hashes_changes(project):
+    assert make_project(project, "-q").returncode == 0
+    keys = grid_keys(project)
+    for name, readers in CHART_FILES.items():
+        r = make_project(project, "-n", "-W", name)
+        assert r.returncode == 0, r.stderr
+        remade = {c for c, source in SOURCES.items() if f" preprocess {source} " in r.stdout}
+        with open(project / name, "a") as f:
+            f.write("changed")
+        changed = {c for c, k in grid_keys(project).items() if keys[c] != k}
+        keys = grid_keys(project)
+        assert (name, remade) == (name, readers) and (name, changed) == (name, readers)
+
+
+def test_a_file_new_in_a_charts_folder_regenerates_the_fragment(project):
+    assert make_project(project, "-q").returncode == 0
+    (project / "enc" / "CELL.003").write_text("an update")
+    past = time.time() - 3600  # the fragment older than the folder the update was added to
+    os.utime(project / "pipeline.mk", (past, past))
+    r = make_project(project, "-n")
+    assert r.returncode == 0, r.stderr
+    assert "--make-fragment pipeline.mk" in r.stdout and " preprocess enc/CELL.000 " not in r.stdout
+    fragment = (project / "pipeline.mk").read_text()
+    assert "CHART_INPUTS_s := enc/CELL.001 enc/CELL.002 enc/CELL.003\n" in fragment
+    assert make_project(project, "-n", "-W", "enc/CELL.003").stdout.count(" preprocess ") == 1

@@ -1,10 +1,9 @@
-"""usvtool.pipeline: the bundled pipelines read, their matrices expand, bad files give one line
-naming the file and the field, and the Make fragment names every route target."""
+"""usvtool.pipeline: the bundled pipelines read, their matrices expand into plain data, and bad
+files give one line naming the file and the field. (Their command lines and the Make fragment
+are the batch's: tests/batch/test_commands.py, tests/batch/test_make_fragment.py.)"""
 
 from __future__ import annotations
 
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -12,7 +11,7 @@ import yaml
 
 from usvtool.cli.batch import stage_names
 from usvtool.errors import UsvError
-from usvtool.pipeline import BUNDLED, Names, load, make_fragment
+from usvtool.pipeline import BUNDLED, Ends, Names, load
 
 ROOT = Path(__file__).resolve().parent.parent
 NAMES = stage_names()
@@ -32,8 +31,8 @@ def test_the_bundled_pipeline_reads(bundled):
     assert set(matrix.charts) == set(bundled.charts) - {"us4md81m"}
     assert matrix.seed == 1 and matrix.attempts == 5
     assert dict(bundled.charts["env1"].options) == {"cell-size": 1, "margin": 3}
-    assert bundled.charts["grid20"].args() == ["--cell-size", "1", "--no-swell", "--occupancy",
-                                               "0.5"]  # fmt: skip
+    assert bundled.charts["grid20"].options == (("cell-size", 1), ("no-swell", True),
+                                                ("occupancy", 0.5))  # fmt: skip
     assert bundled.charts["us4md81m"].ends is None
 
 
@@ -43,14 +42,12 @@ def test_a_route_matrix_expands_into_charts_x_algorithms_x_seeds(bundled):
     assert len(jobs) == len(m.charts) * len(m.algorithms) == 8 * 13
     assert len({(j.chart, j.algorithm) for j in jobs}) == len(jobs)
     job = next(j for j in jobs if j.chart == "us5ma12m" and j.algorithm == "iwso")
-    assert job.ends.frame == "lonlat" and job.ends == m.ends["us5ma12m"]
-    assert job.args() == ["--start-lonlat", "-70.93391", "42.32119", "--goal-lonlat",
-                          "-70.79426", "42.31806", "--algo", "iwso", "--seed", "1",
-                          "--attempts", "5"]  # fmt: skip
+    assert job.ends == m.ends["us5ma12m"] == Ends((-70.93391, 42.32119), (-70.79426, 42.31806),
+                                                  "lonlat")  # fmt: skip
+    assert (job.seed, job.attempts, job.options) == (1, 5, ())
     # with the stages' names, an exact planner is one job without a seed
     exact = [j for j in bundled.route_jobs(NAMES) if j.algorithm in ("anyangle", "astar")]
     assert len(exact) == 2 * 8 and {j.seed for j in exact} == {None}
-    assert "--seed" not in exact[0].args() and "--attempts" not in exact[0].args()
 
 
 def test_the_simulation_matrix_is_scenarios_x_controllers_x_seeds(bundled):
@@ -77,29 +74,6 @@ def test_full_and_ci_read_with_the_stages_names():
     assert sum(j.matrix == "grid20" for j in routes) == 3 * 50 + 1
     ci = load(ROOT / "pipelines" / "ci.yaml", NAMES)
     assert len(ci.route_jobs(NAMES)) + len(ci.simulation_jobs()) + len(ci.function_jobs()) < 120
-
-
-def test_the_make_fragment_names_every_route_target(bundled):
-    text = make_fragment(bundled)
-    for job in bundled.route_jobs():
-        assert f"build/paths/{job.chart}/{job.algorithm}.geojson" in text
-    for name, chart in bundled.charts.items():
-        assert f"CHART_SOURCE_{name} := {chart.source}\n" in text
-    assert "ENDS_grid20 := --start 0.5 0.5 --goal 19.5 19.5\n" in text
-    assert f"GRIDS := {' '.join(bundled.charts)}\n" in text
-    assert "SEED ?= 1\nATTEMPTS ?= 5\n" in text
-
-
-def test_the_module_writes_the_fragment(tmp_path, bundled):
-    out = tmp_path / "pipeline.mk"
-    subprocess.run([sys.executable, "-m", "usvtool.pipeline", "make", str(BUNDLED), "-o", str(out)],
-                   check=True)  # fmt: skip
-    assert out.read_text() == make_fragment(bundled)
-
-
-def test_the_fragment_needs_one_matrix_of_one_seed():
-    with pytest.raises(UsvError, match=r"full\.yaml: routes: the Make fragment needs exactly one"):
-        make_fragment(load(ROOT / "pipelines" / "full.yaml"))
 
 
 def write(tmp_path: Path, data: dict) -> Path:
@@ -241,11 +215,9 @@ def test_an_option_naming_an_input_file_is_read_relative_to_the_root(tmp_path):
     assert str(info.value) == f"{path}: charts.m.options.cutline: cut.geojson: no such file"
     (tmp_path / "cut.geojson").write_text("{}")
     chart = load(path, NAMES).charts["m"]
-    assert chart.args() == ["--cell-size", "1", "--cutline", str(tmp_path / "cut.geojson")]
-    assert chart.args(lambda p: p.name.upper()) == ["--cell-size", "1", "--cutline",
-                                                    "CUT.GEOJSON"]  # fmt: skip
-    # without the stages' names (the Make fragment): as written, relative to the root
-    assert load(path).charts["m"].args() == ["--cell-size", "1", "--cutline", "cut.geojson"]
+    assert chart.options == (("cell-size", 1), ("cutline", tmp_path / "cut.geojson"))
+    # without the stages' names: as written, relative to the root
+    assert load(path).charts["m"].options == (("cell-size", 1), ("cutline", "cut.geojson"))
 
 
 def test_without_names_any_algorithm_reads(tmp_path):
@@ -310,12 +282,3 @@ def test_bad_yaml_and_a_missing_file_are_one_line(tmp_path):
 def test_names_know_exact_planners_with_shortening():
     names = Names(optimizers=("pso",), exact=("astar",), controllers=(), functions=())
     assert names.is_exact("astar+s") and not names.is_exact("pso")
-
-
-def test_the_module_exits_1_with_one_line(tmp_path):
-    path = write(tmp_path, edit(minimal(), "routes.a.seeds", "one"))
-    run = subprocess.run([sys.executable, "-m", "usvtool.pipeline", "make", str(path)],
-                         capture_output=True, text=True)  # fmt: skip
-    assert run.returncode == 1 and run.stdout == ""
-    assert run.stderr == (f"usvtool.pipeline: {path}: routes.a.seeds: expected a list of seeds "
-                          "or {first: F, count: N}, got 'one'\n")  # fmt: skip

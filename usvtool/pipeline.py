@@ -7,28 +7,24 @@ benchmark-function matrix (functions x optimizers x seeds). :func:`load` reads a
 one; a bad file raises :class:`usvtool.errors.UsvError` in one line naming the file and the
 field. The schema is in docs/pipelines.md. This is a contract module: it imports no stage, so
 the names of algorithms, controllers and functions are checked against a :class:`Names` that
-the caller takes from the stages (``usvtool batch`` does).
-
-``python -m usvtool.pipeline make PIPELINE.yaml [-o build/pipeline.mk]`` writes the Make
-fragment that ``pipelines/charts.mk`` includes (its variables feed ``pipelines/routes.mk``).
+the caller takes from the stages (``usvtool batch`` does). It holds plain data: the command
+lines of the jobs, and the Make fragment, are the batch's (:mod:`usvtool.batch.commands`,
+:mod:`usvtool.batch.make`).
 
 >>> p = load()
 >>> m = p.routes["report"]
 >>> len(p.route_jobs()) == len(m.charts) * len(m.algorithms) * len(m.seeds)
 True
->>> m.ends["grid20"].args()
-['--start', '0.5', '0.5', '--goal', '19.5', '19.5']
+>>> m.ends["grid20"]
+Ends(start=(0.5, 0.5), goal=(19.5, 19.5), frame='map')
 """
 
 from __future__ import annotations
 
-import argparse
 import glob
 import math
 import re
-import shlex
-import sys
-from collections.abc import Callable, Collection, Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -38,9 +34,6 @@ from usvtool.yamlfile import show as _show
 
 #: The pipeline of ``make report``.
 BUNDLED = Path(__file__).resolve().parent.parent / "pipelines" / "report.yaml"
-#: Where the Make fragment puts the grids and routes (relative to the project root).
-GRIDS_DIR = "build/grids"
-PATHS_DIR = "build/paths"
 #: ``usvtool plan`` options a route matrix sets itself (or the batch does). Options naming an
 #: output file are refused for every command (:class:`FileOptions`).
 RESERVED_PLAN_OPTIONS = {"seed", "attempts", "algo", "start", "goal", "start-lonlat",
@@ -51,23 +44,6 @@ _OPTION = re.compile(r"^[a-z][a-z0-9-]*$")
 Options = tuple[tuple[str, object], ...]
 
 
-def _arg(value: object) -> str:
-    """A YAML scalar as a command-line word: 10 -> '10', 0.5 -> '0.5' (shortest repr)."""
-    return repr(value) if isinstance(value, float) else str(value)
-
-
-def option_args(options: Options, file: Callable[[Path], str] = str) -> list[str]:
-    """``(("cell-size", 1), ("no-swell", True))`` -> ``["--cell-size", "1", "--no-swell"]``;
-    a file (a :class:`Path`) as ``file(path)`` gives it (its path by default)."""
-    out: list[str] = []
-    for key, value in options:
-        if value is True:
-            out.append(f"--{key}")
-        else:
-            out += [f"--{key}", file(value) if isinstance(value, Path) else _arg(value)]
-    return out
-
-
 @dataclass(frozen=True)
 class Ends:
     """A route's start and goal: map metres (``frame="map"``) or (lon, lat) (``"lonlat"``)."""
@@ -75,15 +51,6 @@ class Ends:
     start: tuple[float, float]
     goal: tuple[float, float]
     frame: str = "map"
-
-    def args(self) -> list[str]:
-        suffix = "-lonlat" if self.frame == "lonlat" else ""
-        return [
-            f"--start{suffix}",
-            *map(_arg, self.start),
-            f"--goal{suffix}",
-            *map(_arg, self.goal),
-        ]
 
 
 @dataclass(frozen=True)
@@ -95,10 +62,6 @@ class Chart:
     inputs: tuple[str, ...] = ()  # globs of further files the grid depends on
     options: Options = ()  # usvtool preprocess options; a file it reads: its absolute Path
     ends: Ends | None = None
-
-    def args(self, file: Callable[[Path], str] = str) -> list[str]:
-        """The ``usvtool preprocess`` options (a file as :func:`option_args` gives it)."""
-        return option_args(self.options, file)
 
 
 @dataclass(frozen=True)
@@ -150,7 +113,7 @@ class RouteMatrix:
 
 @dataclass(frozen=True)
 class RouteJob:
-    """One route to plan: ``usvtool plan GRID *args()``; ``seed`` None for an exact planner."""
+    """One route to plan (a cell of a route matrix); ``seed`` None for an exact planner."""
 
     matrix: str
     chart: str
@@ -159,14 +122,6 @@ class RouteJob:
     seed: int | None
     attempts: int
     options: Options  # the matrix's plan options
-
-    def args(self, file: Callable[[Path], str] = str) -> list[str]:
-        """The ``usvtool plan`` arguments but the grid (a file as :func:`option_args` gives
-        it)."""
-        seeded = [] if self.seed is None else ["--seed", str(self.seed), "--attempts",
-                                               str(self.attempts)]  # fmt: skip
-        return [*self.ends.args(), "--algo", self.algorithm, *seeded,
-                *option_args(self.options, file)]  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -506,71 +461,3 @@ def _functions(r: _Reader, entry, names) -> FunctionMatrix:
         r.integer(fm.get("iters", 300), "functions.iters", 1),
         r.integer(fm.get("dim", 30), "functions.dim", 1),
     )
-
-
-def _words(args: list[str]) -> str:
-    return " ".join(shlex.quote(a) for a in args)
-
-
-def make_fragment(p: Pipeline) -> str:
-    """The Make variables of a pipeline of one route matrix with one seed (paths relative to
-    its root, where Make runs)."""
-    if len(p.routes) != 1:
-        raise UsvError(f"{p.path}: routes: the Make fragment needs exactly one route matrix, "
-                       f"not {len(p.routes)}")  # fmt: skip
-    (r,) = p.routes.values()
-    try:
-        seed = r.seed
-    except UsvError as exc:
-        raise UsvError(f"{p.path}: {exc} (the Make fragment's SEED)") from None
-    lines = [
-        f"# Generated from {p.path.name} by `python -m usvtool.pipeline make`: do not edit.",
-        f"GRIDS := {' '.join(p.charts)}",
-    ]
-    for c in p.charts.values():
-        lines.append(f"CHART_SOURCE_{c.name} := {c.source}")
-        inputs = " ".join(f"$(wildcard {g})" if glob.has_magic(g) else g for g in c.inputs)
-        lines.append(f"CHART_INPUTS_{c.name} := {inputs}".rstrip())
-        lines.append(f"PREPROCESS_{c.name} := {_words(c.args())}".rstrip())
-    lines += [
-        f"ROUTE_GRIDS := {' '.join(r.charts)}",
-        f"ALGOS := {' '.join(r.algorithms)}",
-        f"SEED ?= {seed}",
-        f"ATTEMPTS ?= {r.attempts}",
-        f"PLAN_OPTIONS := {_words(option_args(r.options))}".rstrip(),
-    ]
-    lines += [f"ENDS_{chart} := {_words(e.args())}" for chart, e in r.ends.items()]
-    routes = [f"{PATHS_DIR}/{j.chart}/{j.algorithm}.geojson" for j in p.route_jobs()]
-    lines.append("ROUTES := " + " \\\n\t".join(routes))
-    if p.simulation is not None:
-        lines.append(f"SCENARIOS := {' '.join(p.simulation.scenarios)}")
-        lines.append(f"CONTROLLERS := {' '.join(p.simulation.controllers)}")
-    return "\n".join(lines) + "\n"
-
-
-def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(
-        prog="python -m usvtool.pipeline", description=__doc__.split("\n")[0]
-    )
-    sub = ap.add_subparsers(dest="command", required=True)
-    mk = sub.add_parser("make", help="write the Make fragment of a pipeline")
-    mk.add_argument("pipeline", nargs="?", default=str(BUNDLED))
-    mk.add_argument("-o", "--output", help="file to write (atomically; default stdout)")
-    args = ap.parse_args(argv)
-    try:
-        text = make_fragment(load(args.pipeline))
-        if args.output is None:
-            sys.stdout.write(text)
-        else:
-            from usvtool.atomic import atomic_path
-
-            with atomic_path(args.output) as tmp:
-                Path(tmp).write_text(text, encoding="utf-8")
-    except UsvError as exc:
-        print(f"usvtool.pipeline: {exc}", file=sys.stderr)
-        return 1
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

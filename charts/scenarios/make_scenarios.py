@@ -35,6 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
+from usvtool.batch.commands import ends_args, option_args
 from usvtool.pipeline import load
 
 HERE = Path(__file__).resolve().parent
@@ -46,7 +47,7 @@ ROUTES = load().routes["report"]
 #: Its options for an IWSO route (seed 1, 5 attempts) and the ends of env1 and env2 (the same).
 PLAN_OPTIONS = ["--algo", "iwso+s", "--seed", str(ROUTES.seed), "--attempts", str(ROUTES.attempts)]
 PLAN_OPTIONS += ["--no-timing"]
-ENV_ENDS = ROUTES.ends["env1"].args()
+ENV_ENDS = ends_args(ROUTES.ends["env1"])
 
 #: Rudee Inlet: the route's start, in Lake Rudee's channel (lon, lat), and the goal of
 #: rudee_inlet's route (report.yaml), at the channel's east end below the fixed bridges.
@@ -99,7 +100,7 @@ def env_routes(out: Path) -> None:
 
 def rudee(out: Path) -> None:
     grid = out / "grids" / "rudee_inlet.tif"
-    options = load().charts["rudee_inlet"].args()
+    options = option_args(load().charts["rudee_inlet"].options)
     run("preprocess", rel(CHARTS / "noaa" / "12205_2.KAP"), *options, "-o", rel(grid))
     start = [f"{v:.6f}" for v in RUDEE_START]
     goal = [f"{v:.6f}" for v in RUDEE_GOAL]

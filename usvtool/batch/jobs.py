@@ -2,11 +2,12 @@
 
 A job is one ``usvtool`` command (``preprocess`` a chart, ``plan`` a route, ``simulate`` a
 scenario, one run of ``functions``) run in its own directory ``DIR/<kind>/<key>/``. Its
-arguments name its outputs relative to that directory (``route.geojson``), its grid as
-``../../grids/<key>/grid.tif`` and its input files by absolute path. Its key is a short hash of
-its whole configuration, every byte the job reads included: the content of its input files
-(a chart's source and extra inputs, the files its options name, a scenario and the files it
-names: its map, route, target tracks and wind field), each with its companions (GDAL's
+arguments (:mod:`~usvtool.batch.commands` builds them) name its outputs relative to that
+directory (``route.geojson``), its grid as ``../../grids/<key>/grid.tif`` and its input files by
+absolute path. Its key is a short hash of its whole configuration, every byte the job reads
+included: the content of its input files (a grid's: a chart's source, extra inputs and the files
+its options name, :func:`~usvtool.batch.commands.chart_files`; a run's: a scenario and the files
+it names, its map, route, target tracks and wind field), each with its companions (GDAL's
 sidecars of a raster, an S-57 cell's update files: :mod:`usvtool.companions`); the options,
 the algorithm or controller, the seed, and the code of the stage that runs it (the stage's
 package, its command module, the CLI basics and the contract modules), so that a change of any
@@ -23,7 +24,16 @@ from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
 
-from usvtool.companions import companions
+from usvtool.batch.commands import (
+    chart_inputs,
+    functions_command,
+    option_args,
+    plan_command,
+    preprocess_command,
+    route_args,
+    simulate_command,
+    with_companions,
+)
 from usvtool.errors import UsvError
 from usvtool.pipeline import Names, Pipeline
 
@@ -33,7 +43,6 @@ STAGES = {"grids": ("chart", "preprocess"), "routes": ("plan", "plan"),
           "runs": ("sim", "simulate"), "functions": ("plan", "functions")}  # fmt: skip
 #: The order in which ready jobs start: grids (routes wait for them), then the longest kinds.
 PRIORITY = {"grids": 0, "runs": 1, "routes": 2, "functions": 3}
-GRID = "grid.tif"
 
 
 @dataclass(frozen=True)
@@ -86,7 +95,8 @@ class _Contents:
         its folder, and their bytes)."""
         path = Path(os.path.abspath(path))
         if path not in self._known:
-            files = {os.path.relpath(p, path.parent): sha256(p) for p in companions(path)}
+            _, *others = with_companions(path)
+            files = {os.path.relpath(p, path.parent): sha256(p) for p in others}
             text = json.dumps({"sha256": sha256(path), "with": files}, sort_keys=True)
             self._known[path] = hashlib.sha256(text.encode()).hexdigest()
         return self._known[path]
@@ -123,30 +133,25 @@ def expand(pipeline: Pipeline, names: Names,
     grid_keys: dict[str, str] = {}
     for chart in dict.fromkeys(j.chart for j in pipeline.route_jobs()):
         c = pipeline.charts[chart]
-        inputs = sorted(str(p.relative_to(root)) for pattern in c.inputs
-                        for p in root.glob(pattern) if p.is_file())  # fmt: skip
         key = grid_keys[chart] = _key({
             "kind": "grids", "source": content(root / c.source),
             "suffix": Path(c.source).suffix.lower(),
-            "inputs": {p: content(root / p) for p in inputs}, "options": c.args(content),
+            "inputs": {p: content(root / p) for p in chart_inputs(root, c)},
+            "options": option_args(c.options, content),
         })  # fmt: skip
-        args = ("preprocess", str(root / c.source), *c.args(), "-o", GRID,
-                "--preview", "preview.png")  # fmt: skip
-        jobs.setdefault(key, Job("grids", key, chart, "preprocess", None, args,
+        jobs.setdefault(key, Job("grids", key, chart, "preprocess", None,
+                                 preprocess_command(root, c),
                                  info={"source": str(root / c.source)}))  # fmt: skip
     owners: dict[tuple, tuple[str, str]] = {}  # (kind, case, method, seed) -> (key, where)
     for r in pipeline.route_jobs(names):
         grid = grid_keys[r.chart]
-        key = _key({"kind": "routes", "grid": grid, "args": r.args(content)})
-        # a faithful run's colliding route is a result to count (its collision_free is false),
-        # not a failed job: plan exits 0 for it with --allow-collision, not 3
-        args = ("plan", f"../../grids/{grid}/{GRID}", *r.args(), "--allow-collision",
-                "-o", "route.geojson")  # fmt: skip
+        key = _key({"kind": "routes", "grid": grid, "args": route_args(r, content)})
         info = {"matrix": r.matrix, "grid": grid, "frame": r.ends.frame,
                 "start": list(r.ends.start), "goal": list(r.ends.goal)}  # fmt: skip
         _claim(pipeline, owners, ("routes", r.chart, r.algorithm, r.seed), key,
                f"routes.{r.matrix}")  # fmt: skip
-        jobs.setdefault(key, Job("routes", key, r.chart, r.algorithm, r.seed, args, grid, info))
+        jobs.setdefault(key, Job("routes", key, r.chart, r.algorithm, r.seed,
+                                 plan_command(grid, r), grid, info))  # fmt: skip
     scenarios: dict[str, dict] = {}
     for scenario, controller, seed in pipeline.simulation_jobs():
         path = root / scenario
@@ -154,18 +159,17 @@ def expand(pipeline: Pipeline, names: Names,
             scenarios[scenario] = _scenario_content(path, scenario_files, content)
         key = _key({"kind": "runs", "scenario": scenarios[scenario], "controller": controller,
                     "seed": seed})  # fmt: skip
-        args = ("simulate", str(path), "--controller", controller, "--seed", str(seed),
-                "-o", "trace.csv", "--events", "trace.events.json")  # fmt: skip
-        jobs.setdefault(key, Job("runs", key, Path(scenario).stem, controller, seed, args,
+        jobs.setdefault(key, Job("runs", key, Path(scenario).stem, controller, seed,
+                                 simulate_command(path, controller, seed),
                                  info={"scenario": str(path)}))  # fmt: skip
     f = pipeline.functions
     for function, algorithm, seed in pipeline.function_jobs():
         sizes = {"pop": f.pop, "iters": f.iters, "dim": f.dim}
         key = _key({"kind": "functions", "function": function, "algorithm": algorithm,
                     "seed": seed, **sizes})  # fmt: skip
-        args = ("functions", "--function", function, "--algo", algorithm, "--runs", "1",
-                "--seed", str(seed), *(w for k, v in sizes.items() for w in (f"--{k}", str(v))))
-        jobs.setdefault(key, Job("functions", key, function, algorithm, seed, args, info=sizes))
+        jobs.setdefault(key, Job("functions", key, function, algorithm, seed,
+                                 functions_command(function, algorithm, seed, sizes),
+                                 info=sizes))  # fmt: skip
     return list(jobs.values())
 
 

@@ -6,6 +6,8 @@ them: :func:`run_command`, which its workers call to run one ``usvtool`` command
 in-process; :func:`stage_names`, the algorithms, controllers and functions the stages know and
 the file options of the commands (:func:`file_options`), to check the pipeline against before
 anything runs; and :func:`scenario_files`, the files a scenario names, for the runs' keys.
+``--make-fragment FILE`` writes the pipeline's Make fragment instead (:mod:`usvtool.batch.make`)
+and runs nothing.
 """
 
 from __future__ import annotations
@@ -94,11 +96,19 @@ def scenario_files(path: Path) -> list[Path]:
               help="The memory budget of the jobs that run at once (4G, 512M, 2.5GiB or bytes): "
               "each job gets SIZE / workers as its --max-memory [default: half the machine's "
               "memory; with --scheduler, each job its own machine's default].")  # fmt: skip
-def batch(pipeline_path, workers, scheduler, out_dir, timeout, summary_path, max_memory) -> None:
+@click.option("--make-fragment", "fragment_path", type=OutputPath(), metavar="FILE.mk",
+              help="Write the pipeline's Make variables to this file (atomically) and run no "
+              "job: pipelines/charts.mk includes it (docs/pipelines.md).")  # fmt: skip
+@click.pass_context
+def batch(ctx, pipeline_path, workers, scheduler, out_dir, timeout, summary_path, max_memory,
+          fragment_path) -> None:  # fmt: skip
     """Run every job of PIPELINE.yaml (grids, routes, runs, function runs); rerun to resume."""
     from usvtool.atomic import check_output_path
     from usvtool.batch import BatchOptions, run_batch
 
+    if fragment_path is not None:
+        _make_fragment(ctx, pipeline_path, fragment_path)
+        return
     if workers is not None and scheduler is not None:
         raise click.UsageError("-j: not with --scheduler (the cluster's workers run the jobs)")
     if timeout is not None and scheduler is not None:
@@ -115,3 +125,17 @@ def batch(pipeline_path, workers, scheduler, out_dir, timeout, summary_path, max
     emit(result.summary())
     if result.failed:
         raise click.ClickException(f"{len(result.failed)} of {result.figures['jobs']} jobs failed")
+
+
+def _make_fragment(ctx: click.Context, pipeline_path: str, fragment_path: str) -> None:
+    """``--make-fragment``: the pipeline read with the stages' names, its fragment written."""
+    from usvtool.atomic import check_output_path, write_text
+    from usvtool.batch.make import fragment
+    from usvtool.pipeline import load
+
+    for name in ("workers", "scheduler", "out_dir", "timeout", "summary_path", "max_memory"):
+        if ctx.get_parameter_source(name) is not click.core.ParameterSource.DEFAULT:
+            option = next(p for p in ctx.command.params if p.name == name).opts[0]
+            raise click.UsageError(f"{option}: not with --make-fragment (it runs no job)")
+    check_output_path(fragment_path, "--make-fragment")
+    write_text(fragment_path, fragment(load(pipeline_path, stage_names())))
