@@ -15,14 +15,16 @@ import numpy as np
 import pytest
 
 from usvtool import angles
-from usvtool.sim import colregs as c
+from usvtool import encounter as enc
+from usvtool.sim import tracking as trk
+from usvtool.sim import verdicts as vd
 
 L = 10.0  # ship length: domain semi-axes 35 m and 15 m, risk distance 35 m, critical range 100 m
 DT = 0.1
 
 
 def names(codes):
-    return [c.CLASS_NAMES[k] for k in np.atleast_1d(codes)]
+    return [enc.CLASS_NAMES[k] for k in np.atleast_1d(codes)]
 
 
 def at_bearing(origin, bearing_deg, r):
@@ -36,18 +38,18 @@ def at_bearing(origin, bearing_deg, r):
 
 def test_relative_bearings_and_course_difference():
     own, target = (0.0, 0.0), (100.0, 100.0)
-    assert c.relative_bearing(own, 0.0, target) == pytest.approx(45.0)
-    assert c.relative_bearing(own, 90.0, target) == pytest.approx(315.0)
-    assert c.relative_bearing(target, 200.0, own) == pytest.approx(25.0)  # 225 - 200
-    assert c.relative_bearing(own, 45.0, target) == 0.0
-    assert float(c.course_difference(0.0, 200.0)) == 200.0
-    assert float(c.course_difference(200.0, 0.0)) == 160.0
+    assert enc.relative_bearing(own, 0.0, target) == pytest.approx(45.0)
+    assert enc.relative_bearing(own, 90.0, target) == pytest.approx(315.0)
+    assert enc.relative_bearing(target, 200.0, own) == pytest.approx(25.0)  # 225 - 200
+    assert enc.relative_bearing(own, 45.0, target) == 0.0
+    assert float(enc.course_difference(0.0, 200.0)) == 200.0
+    assert float(enc.course_difference(200.0, 0.0)) == 160.0
     # Δψ = 180 + β - α (mod 360) on any geometry
     rng = np.random.default_rng(1)
     p, q = rng.uniform(-500, 500, (2, 50, 2))
     ho, ht = rng.uniform(0, 360, (2, 50))
-    beta, alpha = c.relative_bearing(p, ho, q), c.relative_bearing(q, ht, p)
-    diff = angles.wrap360(180.0 + beta - alpha) - c.course_difference(ho, ht)
+    beta, alpha = enc.relative_bearing(p, ho, q), enc.relative_bearing(q, ht, p)
+    diff = angles.wrap360(180.0 + beta - alpha) - enc.course_difference(ho, ht)
     assert np.abs((diff + 180) % 360 - 180).max() < 1e-9
 
 
@@ -68,20 +70,20 @@ IWSO = [
 @pytest.mark.parametrize("own, v, tgt, th, tv, name, dcpa, tcpa", IWSO)
 def test_iwso_encounters_by_hand(own, v, tgt, th, tv, name, dcpa, tcpa):
     # e.g. fig. 25: p = (70, 80), v = (-3, -4): tcpa = 530 / 25 = 21.2, p + v t = (6.4, -4.8)
-    s = c.assess(own, 0.0, v, [tgt], [th], [tv])
+    s = enc.assess(own, 0.0, v, [tgt], [th], [tv])
     assert names(s.cls) == [name]
     assert s.dcpa[0] == pytest.approx(dcpa, abs=1e-9)
     assert s.tcpa[0] == pytest.approx(tcpa, rel=1e-12)
 
 
 def test_cpa_by_hand_and_degenerate_cases():
-    d, t = c.cpa([(0.0, 100.0)], [(0.0, -10.0)])  # straight at us: CPA 0 in 10 s
+    d, t = enc.cpa([(0.0, 100.0)], [(0.0, -10.0)])  # straight at us: CPA 0 in 10 s
     assert (d[0], t[0]) == (0.0, 10.0)
-    d, t = c.cpa([(30.0, 40.0)], [(0.0, 0.0)])  # no relative motion: now, at the range
+    d, t = enc.cpa([(30.0, 40.0)], [(0.0, 0.0)])  # no relative motion: now, at the range
     assert (d[0], t[0]) == (50.0, 0.0)
-    d, t = c.cpa([(0.0, 100.0)], [(3.0, 4.0)])  # moving apart: CPA in the past
+    d, t = enc.cpa([(0.0, 100.0)], [(3.0, 4.0)])  # moving apart: CPA in the past
     assert t[0] == pytest.approx(-16.0) and d[0] == pytest.approx(60.0)  # |(−48, 36)|
-    d, t = c.cpa(np.zeros((2, 3, 2)), np.ones((2, 3, 2)))  # broadcasting over (n, k)
+    d, t = enc.cpa(np.zeros((2, 3, 2)), np.ones((2, 3, 2)))  # broadcasting over (n, k)
     assert d.shape == t.shape == (2, 3) and not d.any()
 
 
@@ -89,7 +91,7 @@ def test_cpa_against_dense_time_sampling():
     rng = np.random.default_rng(7)
     p = rng.uniform(-400, 400, (40, 2))
     v = rng.uniform(-8, 8, (40, 2))
-    dcpa, tcpa = c.cpa(p, v)
+    dcpa, tcpa = enc.cpa(p, v)
     times = np.linspace(-400.0, 400.0, 40001)  # 0.02 s apart
     track = p[:, None, :] + times[None, :, None] * v[:, None, :]
     dist = np.hypot(track[..., 0], track[..., 1])
@@ -131,14 +133,14 @@ def test_cpa_against_dense_time_sampling():
     ],
 )
 def test_sector_borders_exactly(beta, alpha, expected):
-    assert names(c.classify_angles(beta, alpha, True)) == [expected]
-    assert names(c.classify_angles(beta, alpha, False)) == ["none"]
+    assert names(enc.classify_angles(beta, alpha, True)) == [expected]
+    assert names(enc.classify_angles(beta, alpha, False)) == ["none"]
 
 
 def test_class_names_and_codes():
-    assert c.CLASS_NAMES[c.NONE] == "none" and c.CLASS_NAMES[c.OVERTAKEN] == "overtaken"
-    assert len(set(c.CLASS_NAMES)) == 6 and c.CLASSES is c.CLASS_NAMES
-    assert c.classify_angles([0.0, 90.0], [0.0, 300.0], True).dtype == np.int8
+    assert enc.CLASS_NAMES[enc.NONE] == "none" and enc.CLASS_NAMES[enc.OVERTAKEN] == "overtaken"
+    assert len(set(enc.CLASS_NAMES)) == 6
+    assert enc.classify_angles([0.0, 90.0], [0.0, 300.0], True).dtype == np.int8
 
 
 EPS = 1e-6  # degrees: geometric "just inside / just outside"
@@ -148,7 +150,7 @@ EPS = 1e-6  # degrees: geometric "just inside / just outside"
 def test_overtaken_border_on_geometry(offset, expected):
     # target 100 m away at β = 112.5 ± ε, heading north at 5 m/s; own north at 2 m/s: closing
     target = at_bearing((0, 0), 112.5 + offset, 100.0)
-    s = c.assess((0, 0), 0.0, 2.0, [target], [0.0], [5.0])
+    s = enc.assess((0, 0), 0.0, 2.0, [target], [0.0], [5.0])
     assert s.beta[0] == pytest.approx(112.5 + offset, abs=1e-10)
     assert names(s.cls) == [expected]
 
@@ -158,7 +160,7 @@ def test_overtaking_border_on_geometry(offset, expected):
     # own 100 m from the target at α = 247.5 ∓ ε (her port quarter), both heading north, own
     # faster; outside the sector the target is at β = 67.5 on own's starboard bow
     own = at_bearing((0, 0), 247.5 + offset, 100.0)
-    s = c.assess(own, 0.0, 5.0, [(0.0, 0.0)], [0.0], [2.0])
+    s = enc.assess(own, 0.0, 5.0, [(0.0, 0.0)], [0.0], [2.0])
     assert s.alpha[0] == pytest.approx(247.5 + offset, abs=1e-10)
     assert names(s.cls) == [expected]
 
@@ -168,14 +170,14 @@ def test_head_on_bearing_border_on_geometry(offset, expected):
     # target at β = 12 ± ε heading straight at own (α = 0)
     b = 12.0 + offset
     target = at_bearing((0, 0), b, 200.0)
-    s = c.assess((0, 0), 0.0, 3.0, [target], [b + 180.0], [3.0])
+    s = enc.assess((0, 0), 0.0, 3.0, [target], [b + 180.0], [3.0])
     assert names(s.cls) == [expected]
 
 
 @pytest.mark.parametrize("offset, expected", [(-EPS, "head-on"), (+EPS, "crossing-give-way")])
 def test_head_on_aspect_border_on_geometry(offset, expected):
     # target dead ahead heading 192 ± ε: own seen from her at α = 348 ∓ ε
-    s = c.assess((0, 0), 0.0, 3.0, [(0.0, 200.0)], [192.0 + offset], [3.0])
+    s = enc.assess((0, 0), 0.0, 3.0, [(0.0, 200.0)], [192.0 + offset], [3.0])
     assert s.alpha[0] == pytest.approx(348.0 - offset, abs=1e-10)
     assert names(s.cls) == [expected]
 
@@ -192,7 +194,7 @@ def test_every_class_on_hand_geometry():
     ]
     headings = [210.0, 30.0 - 90, 30.0 + 90, 30.0, 30.0, 120.0]
     speeds = [4.0, 4.0, 4.0, 2.0, 6.0, 4.0]
-    got = names(c.classify(own, h, v, targets, headings, speeds))
+    got = names(enc.classify(own, h, v, targets, headings, speeds))
     assert got == [
         "head-on",
         "crossing-give-way",
@@ -205,17 +207,17 @@ def test_every_class_on_hand_geometry():
 
 def test_moving_apart_and_no_relative_motion_are_none():
     # astern of the target but slower, same course: falling behind
-    assert names(c.classify((0, 0), 0.0, 2.0, [(0, 100)], [0.0], [5.0])) == ["none"]
+    assert names(enc.classify((0, 0), 0.0, 2.0, [(0, 100)], [0.0], [5.0])) == ["none"]
     # abeam, same course and speed: constant range
-    assert names(c.classify((0, 0), 0.0, 4.0, [(50, 0)], [0.0], [4.0])) == ["none"]
+    assert names(enc.classify((0, 0), 0.0, 4.0, [(50, 0)], [0.0], [4.0])) == ["none"]
     # reciprocal courses but already passed (target astern)
-    assert names(c.classify((0, 0), 0.0, 4.0, [(0, -100)], [180.0], [4.0])) == ["none"]
+    assert names(enc.classify((0, 0), 0.0, 4.0, [(0, -100)], [180.0], [4.0])) == ["none"]
 
 
 def test_classify_broadcasts_over_time_and_targets():
     own_xy = np.array([[0.0, 0.0], [0.0, 10.0]])[:, None]  # (n, 1, 2)
     tgt = np.array([[[0.0, 300.0], [200.0, 200.0]], [[0.0, 290.0], [196.0, 200.0]]])
-    cls = c.classify(own_xy, np.zeros((2, 1)), 4.0, tgt, [[180.0, 270.0]], 4.0)
+    cls = enc.classify(own_xy, np.zeros((2, 1)), 4.0, tgt, [[180.0, 270.0]], 4.0)
     assert cls.shape == (2, 2)
     assert [names(row) for row in cls] == [["head-on", "crossing-give-way"]] * 2
 
@@ -235,7 +237,13 @@ def _random_scenes(rng, n):
 
 def _near_border(*angles, tol=1e-6):
     borders = np.array(
-        [0.0, 360.0, *c.STERN_SECTOR_DEG, c.HEAD_ON_BEARING_DEG, 360.0 - c.HEAD_ON_BEARING_DEG]
+        [
+            0.0,
+            360.0,
+            *enc.STERN_SECTOR_DEG,
+            enc.HEAD_ON_BEARING_DEG,
+            360.0 - enc.HEAD_ON_BEARING_DEG,
+        ]
     )
     return np.any([np.abs(a[:, None] - borders).min(axis=1) < tol for a in angles], axis=0)
 
@@ -243,9 +251,9 @@ def _near_border(*angles, tol=1e-6):
 def test_rotating_the_scene_keeps_the_classes():
     rng = np.random.default_rng(11)
     own, ho, vo, tgt, ht, vt = _random_scenes(rng, 4000)
-    s = c.assess(own, ho, vo, tgt, ht, vt)
+    s = enc.assess(own, ho, vo, tgt, ht, vt)
     p = tgt - own
-    v = c.velocity(ht, vt) - c.velocity(ho, vo)
+    v = enc.velocity(ht, vt) - enc.velocity(ho, vo)
     keep = ~_near_border(s.beta, s.alpha) & (np.abs((p * v).sum(axis=1)) > 1e-6)
     for theta in (37.0, 90.0, 211.5, -123.0):
         th = math.radians(theta)  # clockwise rotation about a pivot: bearings grow by theta
@@ -261,7 +269,7 @@ def test_rotating_the_scene_keeps_the_classes():
                 axis=1,
             )
 
-        r = c.assess(rot(own), ho + theta, vo, rot(tgt), ht + theta, vt)
+        r = enc.assess(rot(own), ho + theta, vo, rot(tgt), ht + theta, vt)
         assert np.allclose(angles.wrap360(r.beta - s.beta + 180) - 180, 0, atol=1e-9)
         assert np.array_equal(r.cls[keep], s.cls[keep])
     assert len(set(s.cls[keep].tolist())) == 6  # every class was exercised
@@ -275,16 +283,23 @@ def test_swapping_roles_on_collision_courses():
     when = rng.uniform(5, 200, n)
     ho, ht = rng.uniform(0, 360, (2, n))
     vo, vt = rng.uniform(0.5, 8, (2, n))
-    own = meet - when[:, None] * c.velocity(ho, vo)
-    tgt = meet - when[:, None] * c.velocity(ht, vt)
-    a = c.assess(own, ho, vo, tgt, ht, vt)
-    b = c.assess(tgt, ht, vt, own, ho, vo)
+    own = meet - when[:, None] * enc.velocity(ho, vo)
+    tgt = meet - when[:, None] * enc.velocity(ht, vt)
+    a = enc.assess(own, ho, vo, tgt, ht, vt)
+    b = enc.assess(tgt, ht, vt, own, ho, vo)
     assert np.allclose(a.dcpa, 0, atol=1e-6) and np.allclose(a.tcpa, when)
     keep = ~_near_border(a.beta, a.alpha)
     counterpart = np.array(
-        [c.NONE, c.HEAD_ON, c.CROSSING_STAND_ON, c.CROSSING_GIVE_WAY, c.OVERTAKEN, c.OVERTAKING]
+        [
+            enc.NONE,
+            enc.HEAD_ON,
+            enc.CROSSING_STAND_ON,
+            enc.CROSSING_GIVE_WAY,
+            enc.OVERTAKEN,
+            enc.OVERTAKING,
+        ]
     )
-    assert not (a.cls == c.NONE).any()  # collision courses are always closing
+    assert not (a.cls == enc.NONE).any()  # collision courses are always closing
     assert np.array_equal(b.cls[keep], counterpart[a.cls[keep]])
     assert len(set(a.cls[keep].tolist())) == 5  # all but none
 
@@ -293,7 +308,7 @@ def test_swapping_roles_on_collision_courses():
 
 
 def test_class_is_latched_at_onset_and_released_after_passing():
-    tr = c.EncounterTracker(1, risk_distance=35.0)
+    tr = trk.EncounterTracker(1, risk_distance=35.0)
     own_h, own_v = 0.0, 5.0
     seen, latched = [], []
     for i in range(200):
@@ -313,16 +328,16 @@ def test_class_is_latched_at_onset_and_released_after_passing():
         s = tr.update(t, own, own_h, own_v, [tgt], [th], [5.0])
         seen.append(int(s.cls[0]))
         latched.append(int(tr.latched[0]))
-    assert latched[0] == c.HEAD_ON and tr.onset_t[0] != tr.onset_t[0]  # released: NaN
-    swung = [i for i in range(60, 80) if seen[i] != c.HEAD_ON]
-    assert swung and all(latched[i] == c.HEAD_ON for i in swung)  # geometry changed, latch kept
-    released = latched.index(c.NONE)
+    assert latched[0] == enc.HEAD_ON and tr.onset_t[0] != tr.onset_t[0]  # released: NaN
+    swung = [i for i in range(60, 80) if seen[i] != enc.HEAD_ON]
+    assert swung and all(latched[i] == enc.HEAD_ON for i in swung)  # geometry changed, latch kept
+    released = latched.index(enc.NONE)
     assert 70 < released < 120  # after the pass (range increasing, beyond 35 m)
-    assert all(x == c.NONE for x in latched[released:])  # moving apart: no new onset
+    assert all(x == enc.NONE for x in latched[released:])  # moving apart: no new onset
 
 
 def test_onset_needs_risk_and_horizon():
-    tr = c.EncounterTracker(4, risk_distance=[35.0, 35.0, 35.0, 35.0], horizon_s=120.0)
+    tr = trk.EncounterTracker(4, risk_distance=[35.0, 35.0, 35.0, 35.0], horizon_s=120.0)
     out = tr.step(
         0.0, [1, 1, 1, 0], [34.9, 35.0, 10.0, 0.0], [119.0, 10.0, 120.0, 10.0], [500.0] * 4
     )
@@ -330,14 +345,14 @@ def test_onset_needs_risk_and_horizon():
 
 
 def test_release_by_distance_and_no_reonset_in_the_same_step():
-    tr = c.EncounterTracker(1, risk_distance=35.0, release_distance=1000.0)
+    tr = trk.EncounterTracker(1, risk_distance=35.0, release_distance=1000.0)
     assert tr.step(0, [2], [0.0], [50.0], [400.0]).tolist() == [2]
     assert tr.step(1, [3], [0.0], [50.0], [1000.5]).tolist() == [0]  # beyond: released ...
     assert tr.step(2, [3], [0.0], [50.0], [900.0]).tolist() == [3]  # ... a new encounter next
 
 
 def test_most_urgent_is_the_smallest_positive_tcpa():
-    tr = c.EncounterTracker(3, risk_distance=35.0)
+    tr = trk.EncounterTracker(3, risk_distance=35.0)
     assert tr.most_urgent() is None
     tr.step(0, [1, 2, 0], [0.0, 0.0, 0.0], [30.0, 12.0, 5.0], [300.0, 100.0, 50.0])
     assert tr.most_urgent() == 1  # target 2 has no class, so no encounter
@@ -351,8 +366,8 @@ def test_vectorised_latch_equals_the_stepwise_tracker():
     tcpa = rng.uniform(-30, 150, (n, k))
     rng_m = np.abs(200 + np.cumsum(rng.normal(0, 8, (n, k)), axis=0))
     release = np.array([np.inf, 400, np.inf, 250, np.inf, 300])
-    got = c.latch_series(cls, dcpa, tcpa, rng_m, 35.0, 120.0, 20.0, release)
-    tr = c.EncounterTracker(k, 35.0, 120.0, 20.0, release)
+    got = trk.latch_series(cls, dcpa, tcpa, rng_m, 35.0, 120.0, 20.0, release)
+    tr = trk.EncounterTracker(k, 35.0, 120.0, 20.0, release)
     want = np.array([tr.step(i, cls[i], dcpa[i], tcpa[i], rng_m[i]) for i in range(n)])
     assert np.array_equal(got, want)
     assert (np.diff((want != 0).astype(int), axis=0) == 1).sum() > 20  # many encounters
@@ -375,7 +390,7 @@ def test_domain_membership_on_hand_points():
     ]
     # heading north: semi-axes 35 along y, 15 along x; (10, 20): (20/35)² + (10/15)² = 0.77
     # (14, 10): (10/35)² + (14/15)² = 0.95
-    assert c.in_domain(own, 0.0, pts, L).tolist() == [
+    assert enc.in_domain(own, 0.0, pts, L).tolist() == [
         True,
         False,
         True,
@@ -388,13 +403,13 @@ def test_domain_membership_on_hand_points():
     # heading east: the long axis along x; (20, 12) off: (20/35)² + (12/15)² = 0.97 (in),
     # (20, 13) off: (20/35)² + (13/15)² = 1.08 (out)
     pts = [(135, 200), (100, 215), (100, 216), (120, 212), (120, 213)]
-    assert c.in_domain(own, 90.0, pts, L).tolist() == [True, True, False, True, False]
+    assert enc.in_domain(own, 90.0, pts, L).tolist() == [True, True, False, True, False]
     # heading 045: a point 30 m ahead and 10 m to starboard: (30/35)² + (10/15)² = 1.18 (out);
     # 25 ahead, 10 across: 0.51 + 0.44 = 0.95 (in)
     ahead = np.array([math.sin(math.radians(45)), math.cos(math.radians(45))])
     star = np.array([math.cos(math.radians(45)), -math.sin(math.radians(45))])
     o = np.array(own)
-    assert c.in_domain(
+    assert enc.in_domain(
         own, 45.0, [o + 30 * ahead + 10 * star, o + 25 * ahead - 10 * star], L
     ).tolist() == [False, True]
 
@@ -403,8 +418,8 @@ def test_domain_intrusion_time():
     t = np.arange(0.0, 5.1, 1.0)  # 0 … 5
     inside = np.array([[0, 0], [1, 0], [1, 1], [0, 1], [0, 0], [0, 0]], bool)
     # any target inside at t = 1, 2, 3: (0.5 + 1 + 1 + 0.5) s
-    assert c.intrusion_time(t, inside) == 3.0
-    assert c.intrusion_time(t, inside[:, 1]) == 2.0
+    assert vd.intrusion_time(t, inside) == 3.0
+    assert vd.intrusion_time(t, inside[:, 1]) == 2.0
 
 
 # ----------------------------------------------------------------------------- verdicts
@@ -422,7 +437,7 @@ def own_track(h0, v0, turns=(), slow=(), x0=0.0, y0=0.0):
     for ts, factor, dur in slow:
         v = v * (1 + (factor - 1) * np.clip((T - ts) / dur, 0.0, 1.0))
     h = angles.wrap360(h)
-    vel = c.velocity(h, v)
+    vel = enc.velocity(h, v)
     x = x0 + np.concatenate([[0.0], np.cumsum(vel[:-1, 0] * DT)])
     y = y0 + np.concatenate([[0.0], np.cumsum(vel[:-1, 1] * DT)])
     return x, y, h, v
@@ -433,7 +448,7 @@ def straight(x0, y0, h, v, turns=()):
 
 
 def run(own, target, rule2=None, **kw):
-    r = c.evaluate(T, *own, *target, L, L, rule2, **kw)
+    r = vd.evaluate(T, *own, *target, L, L, rule2, **kw)
     json.dumps(r, allow_nan=False)  # plain JSON
     return r
 
@@ -459,7 +474,7 @@ def test_head_on_port_turn_is_not_compliant():
     (e,) = r["events"]
     assert e["first_manoeuvre"]["side"] == "port" and e["passing_side"] == "starboard"
     assert not e["compliant"]
-    assert e["failed_rules"] == [c.STARBOARD_TURN, c.PORT_TO_PORT]
+    assert e["failed_rules"] == [vd.STARBOARD_TURN, vd.PORT_TO_PORT]
 
 
 def test_rule2_departure_excuses_the_side_rules_only():
@@ -468,11 +483,11 @@ def test_rule2_departure_excuses_the_side_rules_only():
     r = run(own_track(0, 5, turns=[(5, -40, 10)]), HEAD_ON_TARGET, [rec, other])
     (e,) = r["events"]
     assert e["rule2_departure"] == [rec] and r["unmatched_rule2"] == [other]
-    assert e["compliant"] and e["excused_rules"] == [c.STARBOARD_TURN, c.PORT_TO_PORT]
+    assert e["compliant"] and e["excused_rules"] == [vd.STARBOARD_TURN, vd.PORT_TO_PORT]
     # a late small port turn is not excused its Rule 8 / 16 failures
     r = run(own_track(0, 5, turns=[(53, -10, 10)]), HEAD_ON_TARGET, [{**rec, "t": 53.0}])
     (e,) = r["events"]
-    assert {c.APPARENT, c.IN_TIME} <= set(e["failed_rules"]) and not e["compliant"]
+    assert {vd.APPARENT, vd.IN_TIME} <= set(e["failed_rules"]) and not e["compliant"]
 
 
 def test_small_course_change_is_not_readily_apparent():
@@ -481,7 +496,7 @@ def test_small_course_change_is_not_readily_apparent():
     (e,) = r["events"]
     assert e["first_manoeuvre"]["course_change_deg"] == pytest.approx(10.0)
     assert e["passing_side"] == "port" and e["domain_intrusion_s"] == 0.0
-    assert e["failed_rules"] == [c.APPARENT]
+    assert e["failed_rules"] == [vd.APPARENT]
 
 
 def test_late_turn_is_not_in_time():
@@ -489,14 +504,14 @@ def test_late_turn_is_not_in_time():
     r = run(own_track(0, 5, turns=[(52, 40, 10)]), HEAD_ON_TARGET)
     (e,) = r["events"]
     assert e["first_manoeuvre"]["range_m"] < 100
-    assert c.IN_TIME in e["failed_rules"] and c.APPARENT not in e["failed_rules"]
+    assert vd.IN_TIME in e["failed_rules"] and vd.APPARENT not in e["failed_rules"]
 
 
 def test_no_manoeuvre_head_on():
     r = run(own_track(0, 5), HEAD_ON_TARGET)
     (e,) = r["events"]
     assert e["first_manoeuvre"] is None and e["closest_distance_m"] < 5
-    assert e["failed_rules"] == [c.NO_ACTION, c.SAFE_DISTANCE, c.STARBOARD_TURN, c.PORT_TO_PORT]
+    assert e["failed_rules"] == [vd.NO_ACTION, vd.SAFE_DISTANCE, vd.STARBOARD_TURN, vd.PORT_TO_PORT]
     assert e["domain_intrusion_s"] > 0 and r["figures"]["domain_intrusion_s"] > 0
 
 
@@ -518,30 +533,30 @@ def test_stand_on_that_turns_while_range_above_critical_is_not_compliant():
     r = run(own_track(0, 4, turns=[(10, 30, 5)]), PORT_TARGET)
     (e,) = r["events"]
     assert e["class"] == "crossing-stand-on" and e["first_manoeuvre"]["range_m"] > 100
-    assert c.STAND_ON in e["failed_rules"] and not e["compliant"]
+    assert vd.STAND_ON in e["failed_rules"] and not e["compliant"]
 
 
 def test_stand_on_that_slows_early_is_not_compliant():
     r = run(own_track(0, 4, slow=[(10, 0.8, 5)]), PORT_TARGET)  # 20 % slower
     (e,) = r["events"]
-    assert c.STAND_ON in e["failed_rules"]
+    assert vd.STAND_ON in e["failed_rules"]
     assert e["first_manoeuvre"]["speed_change"] == pytest.approx(-0.2)
 
 
 def test_stand_on_that_never_acts_in_extremis_fails_17b():
     r = run(own_track(0, 4), PORT_TARGET)
     (e,) = r["events"]
-    assert e["closest_distance_m"] < 5 and e["failed_rules"] == [c.IN_EXTREMIS]
+    assert e["closest_distance_m"] < 5 and e["failed_rules"] == [vd.IN_EXTREMIS]
 
 
 def test_stand_on_turning_to_port_in_extremis_fails_17c():
     # range falls below 100 m at t ≈ 82 s; a port turn at 85 s
     r = run(own_track(0, 4, turns=[(85, -40, 10)]), PORT_TARGET)
     (e,) = r["events"]
-    assert c.NOT_PORT in e["failed_rules"] and c.STAND_ON not in e["failed_rules"]
+    assert vd.NOT_PORT in e["failed_rules"] and vd.STAND_ON not in e["failed_rules"]
     r = run(own_track(0, 4, turns=[(85, 40, 10)]), PORT_TARGET)  # starboard: allowed
     (e,) = r["events"]
-    assert c.NOT_PORT not in e["failed_rules"] and c.STAND_ON not in e["failed_rules"]
+    assert vd.NOT_PORT not in e["failed_rules"] and vd.STAND_ON not in e["failed_rules"]
 
 
 def test_give_way_passing_astern_is_compliant():
@@ -556,7 +571,7 @@ def test_give_way_that_passes_ahead_is_not_compliant():
     r = run(own_track(0, 4, turns=[(5, -40, 10)]), STARBOARD_TARGET)
     (e,) = r["events"]
     assert e["crossing"] == "ahead"
-    assert e["failed_rules"] == [c.NOT_AHEAD]
+    assert e["failed_rules"] == [vd.NOT_AHEAD]
 
 
 def test_give_way_by_speed_reduction_is_readily_apparent():
@@ -576,7 +591,7 @@ def test_overtaking_keeps_clear_on_either_side():
         assert e["compliant"], e["failed_rules"]
     r = run(own_track(0, 5), target)
     (e,) = r["events"]
-    assert e["failed_rules"] == [c.NO_ACTION, c.KEEP_CLEAR]
+    assert e["failed_rules"] == [vd.NO_ACTION, vd.KEEP_CLEAR]
 
 
 def test_crossing_ahead_or_astern_helper():
@@ -584,16 +599,16 @@ def test_crossing_ahead_or_astern_helper():
     xs = np.linspace(30, -30, 7)
     ahead = np.column_stack([xs, np.full(7, 50.0)])
     zeros = np.zeros((7, 2))
-    assert c._crossing(ahead, zeros, np.zeros(7)) == "ahead"
-    assert c._crossing(ahead * [1, -1], zeros, np.zeros(7)) == "astern"
-    assert c._crossing(np.column_stack([np.zeros(7), xs]), zeros, np.zeros(7)) is None
+    assert vd._crossing(ahead, zeros, np.zeros(7)) == "ahead"
+    assert vd._crossing(ahead * [1, -1], zeros, np.zeros(7)) == "astern"
+    assert vd._crossing(np.column_stack([np.zeros(7), xs]), zeros, np.zeros(7)) is None
 
 
 def test_targets_without_an_encounter_and_several_targets():
     far = straight(500, -500, 90, 3)  # moving away east, never closing
     own = own_track(0, 5, turns=[(5, 40, 10)])
     targets = [np.column_stack(pair) for pair in zip(HEAD_ON_TARGET, far, strict=True)]
-    r = c.evaluate(T, *own, *targets, L)
+    r = vd.evaluate(T, *own, *targets, L)
     first, second = r["events"]
     assert first["class"] == "head-on" and first["compliant"]
     assert second == {**second, "target": 1, "class": "none", "compliant": None}

@@ -1,12 +1,12 @@
 """Run a scenario: the own ship under a DWA controller among its targets (``usvtool simulate``).
 
 Each step of ``sim.dt`` seconds: the targets are where their courses put them
-(:mod:`usvtool.sim.targets`, computed before the run); every target is classified and its
-encounter latched (:mod:`usvtool.sim.colregs`); the controller picks a velocity pair for the
-step, with the side rule of the most urgent latched encounter (the smallest time to the closest
-point of approach); the own ship moves on an exact arc (IWSO-DWA eq. 16) at the speed she makes
-good in the wind and waves (UDWA eq. 5, when the scenario has weather: for every controller, the
-sea does not care which one steers).
+(:mod:`usvtool.sim.targets`, computed before the run); every target is classified
+(:mod:`usvtool.encounter`) and its encounter latched (:mod:`usvtool.sim.tracking`); the
+controller picks a velocity pair for the step, with the side rule of the most urgent latched
+encounter (the smallest time to the closest point of approach); the own ship moves on an exact
+arc (IWSO-DWA eq. 16) at the speed she makes good in the wind and waves (UDWA eq. 5, when the
+scenario has weather: for every controller, the sea does not care which one steers).
 
 The run ends when the own ship is within ``sim.goal_tolerance`` of the goal (*arrived*), when she
 touches a target (centres closer than half the sum of the two lengths) or an obstacle cell of the
@@ -39,8 +39,9 @@ from pathlib import Path
 import numpy as np
 
 from usvtool import angles, geodesy, metrics
+from usvtool.encounter import CLASS_NAMES
 from usvtool.errors import UsvError
-from usvtool.sim import colregs, memory
+from usvtool.sim import memory, tracking, verdicts
 from usvtool.sim import targets as target_motion
 from usvtool.sim import vessel as vessel_model
 from usvtool.sim.controllers import Encounter, Own, Targets, World, make_controller
@@ -106,7 +107,7 @@ def simulate(scenario: Scenario, options: Options | None = None) -> Result:
     psi = float(angles.compass_to_math(scenario.own.heading))
     v = float(np.clip(scenario.own.speed, vessel.min_speed, vessel.max_speed))
     omega, made_good = 0.0, v
-    tracker = colregs.EncounterTracker(k, risk_distance=colregs.onset_distance(vessel.length))
+    tracker = tracking.EncounterTracker(k, risk_distance=tracking.onset_distance(vessel.length))
     heading = angles.math_to_compass(psi)  # the own ship's in the trace's and tracker's unit
     own_states = [(x, y, heading, made_good, omega)]
     controller_events: list[dict] = []
@@ -116,7 +117,7 @@ def simulate(scenario: Scenario, options: Options | None = None) -> Result:
                        motion.speed[i])  # fmt: skip
         urgent = tracker.most_urgent()
         encounter = None if urgent is None else Encounter(
-            colregs.CLASS_NAMES[tracker.latched[urgent]], urgent
+            CLASS_NAMES[tracker.latched[urgent]], urgent
         )  # fmt: skip
         t0 = time.perf_counter()
         decision = controller.decide(Own(x, y, psi, v, omega), Targets(ahead[i], motion.vel[i],
@@ -307,7 +308,7 @@ def _result(scenario, setup, opts, controller, times, own, ahead, motion, length
     names = ["own", *[t.name for t in scenario.targets]]
     trace = Trace(times, names, x, y, heading, speed, yaw)
     rule2 = [e for e in controller_events if e["kind"] == "rule2-departure"]
-    evaluation = colregs.evaluate(
+    evaluation = verdicts.evaluate(
         times, x[:, 0], y[:, 0], heading[:, 0], speed[:, 0], x[:, 1:], y[:, 1:], heading[:, 1:],
         speed[:, 1:], setup.vessel.length, lengths, rule2,
     )  # fmt: skip

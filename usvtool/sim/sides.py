@@ -4,7 +4,7 @@ A side is ``STARBOARD`` (a turn to the right: a negative yaw rate in the simulat
 mathematical, counter-clockwise convention), ``PORT`` (positive yaw rate) or ``EITHER``. The
 UDWA paper writes the yaw rate the other way round (its "starboard region (omega > 0)").
 
-Tables, by encounter class (:data:`usvtool.sim.colregs.CLASSES`):
+Tables, by encounter class (:data:`usvtool.encounter.CLASS_NAMES`):
 
 - ``paper``: the UDWA paper's section 3, read closely. Its priority list sends "the first,
   second, and fourth scenarios in Figure 4" (head-on, crossing from starboard, overtaking) to

@@ -1,58 +1,13 @@
-"""COLREGs encounters: geometry, classification, latching, the ship domain and run verdicts.
+"""COLREGs verdicts of a finished run: its encounters, the own ship's manoeuvres and the rules.
 
-Conventions. Positions are map metres, ``x`` east and ``y`` north. Angles in every argument and
-result are compass degrees: 0 = north, clockwise, headings and bearings in ``[0, 360)``. A ship
-moves along her heading: her velocity is ``speed · (sin h, cos h)`` (no leeway, no current).
-Every function broadcasts its arguments (positions carry a trailing axis of 2), so one call
-covers all ``k`` targets of a control step (own ship arrays of shape ``()``, targets ``(k,)``)
-or a whole run (own ``(n, 1)``, targets ``(n, k)``); there are no Python loops over targets or
-steps, except in :func:`evaluate`'s per-encounter bookkeeping. Class codes are small integers
-(``NONE`` … ``OVERTAKEN``) named by :data:`CLASS_NAMES`.
+The offline evaluation of a run (the simulation's events JSON): the run latched at once
+(:func:`usvtool.sim.tracking.latch_series` on :func:`usvtool.encounter.assess`), then, per
+encounter, the manoeuvre on the sampled own track and the verdict.
 
-Geometry (own ship O at ``p_o`` heading ``h_o``, target T at ``p_t`` heading ``h_t``)
-    ``β`` (:func:`relative_bearing` of T from O): the compass bearing of T from O minus ``h_o``,
-    in ``[0, 360)``; ``α``: the same for O seen from T, relative to ``h_t``. Course difference
-    ``Δψ = h_t - h_o`` in ``[0, 360)``; ``Δψ = 180 + β - α`` (mod 360) always. Relative position
-    ``p = p_t - p_o``, relative velocity ``v = v_t - v_o``.
-CPA (:func:`cpa`)
-    Straight-line extrapolation: ``tcpa = -p·v / |v|²`` and ``dcpa = |p + tcpa v|``. ``tcpa``
-    is not clamped: ``tcpa < 0`` means the ships are moving apart and the CPA is in the past.
-    A relative speed below ``VEL_EPS`` (1e-9 m/s) keeps the range constant: then ``tcpa = 0``
-    and ``dcpa = |p|`` (finite values, so results stay valid JSON). The target is *closing*
-    when ``p·v < 0`` (equivalently ``tcpa > 0``).
-Classes (:func:`classify_angles`, the first rule that holds wins)
-    1. ``none``: not closing (moving apart, or no relative motion).
-    2. ``overtaking`` (own overtakes, Rule 13): ``α`` in the stern sector ``[112.5, 247.5]``
-       (more than 22.5° abaft the target's beam) while closing. Closing from that sector is how
-       "coming up with" is read; for a target on the same course it is the same as "own
-       faster", and unlike a speed test it also covers a slower own ship closing at an angle.
-    3. ``overtaken`` (the target overtakes own): ``β`` in ``[112.5, 247.5]`` while closing. The two
-       sectors together give ``p·v_t ≥ 0 ≥ p·v_o``, so ``p·v ≥ 0``: they never both hold while
-       closing.
-    4. ``head-on`` (Rule 14): ``|β| ≤ HEAD_ON_BEARING_DEG`` and ``|α| ≤ HEAD_ON_BEARING_DEG``
-       (each sees the other ahead or nearly ahead, Rule 14(b); by ``Δψ = 180 + β - α`` the
-       courses are then within 24° of reciprocal). 12° is MOOS-IvP's BHV_AvdColregs
-       ``headon_abs_relbng_thresh``, which tests the same two bearings; DNV's trafficgen uses 5°
-       on them (``theta14Criteria``).
-    5. ``crossing-give-way`` (Rule 15): the target on own starboard side, ``β`` in
-       ``[0, 112.5)`` (dead ahead counts as starboard: in doubt, keep clear).
-    6. ``crossing-stand-on`` (Rule 17): the target on own port side, ``β`` in ``(247.5, 360)``.
-    Every border is closed on the side listed first: 112.5 and 247.5 belong to the stern
-    sectors (Rule 13(c): in doubt, assume overtaking), ±12° to head-on. Swapping the ships'
-    roles swaps ``β`` and ``α``: head-on stays head-on, overtaking and overtaken swap, and give-way
-    and stand-on swap whenever ``β`` and ``α`` lie on opposite sides (always so on a collision
-    course; two ships that see each other on the same side are passing clear of each other).
-Latching (:class:`EncounterTracker`, :func:`latch_series`)
-    An encounter starts (its class is latched) at the first step at which the target is
-    classified (not ``none``) and ``dcpa < risk_distance`` and ``0 < tcpa < horizon_s``
-    (``RISK_HORIZON_S`` = 120 s). The class is kept, whatever the geometry does, until the
-    target is passed: ``tcpa < 0`` and the range larger than at the previous step and at least
-    ``clear_distance`` (default ``risk_distance``: not released while still that close), or the
-    range beyond ``release_distance`` (default infinite). The releasing step reports ``none``;
-    a new encounter with the same target can start from the next step.
-Ship domain (:func:`usvtool.encounter.in_domain`, UDWA paper section 4.1)
-    The 7 L x 3 L ellipse of :mod:`usvtool.encounter`. *Domain intrusion* is the time during
-    which some target is inside (:func:`intrusion_time`, trapezoidal on the samples).
+Ship domain: the 7 L x 3 L ellipse of :func:`usvtool.encounter.in_domain`. *Domain intrusion*
+is the time during which some target is inside (:func:`intrusion_time`, trapezoidal on the
+samples).
+
 Manoeuvre (on the sampled own track, :func:`evaluate`)
     A manoeuvre is detected at the first sample ``i`` (from the encounter's onset) from which
     the heading changes by at least ``MANOEUVRE_COURSE_DEG`` (5°), or the speed by at least
@@ -84,48 +39,30 @@ critical range, default ``CRITICAL_RANGE_LENGTHS`` = 10 own lengths)
     A Rule 2 departure record of the controller within the encounter excuses the side and
     stand-on rules (:data:`EXCUSABLE`), never Rules 8, 16, 13(a) or 17(b). Sources, and the
     readings of the papers, are in docs/colregs.md.
-
->>> names = lambda codes: [CLASS_NAMES[c] for c in codes]
->>> own, heading, speed = (0.0, 0.0), 0.0, 4.0
->>> targets = [(0.0, 300.0), (70.0, 80.0), (-80.0, 80.0), (0.0, 90.0)]
->>> names(classify(own, heading, speed, targets, [180.0, 270.0, 90.0, 0.0], [3.0, 4.0, 4.0, 2.0]))
-['head-on', 'crossing-give-way', 'crossing-stand-on', 'overtaking']
 """
 
 from __future__ import annotations
 
-from typing import NamedTuple
-
 import numpy as np
 
 from usvtool import metrics
-from usvtool.angles import wrap360
 from usvtool.encounter import (
+    CLASS_NAMES,
+    CROSSING_GIVE_WAY,
+    CROSSING_STAND_ON,
     DOMAIN_LENGTH_FACTOR,
     DOMAIN_WIDTH_FACTOR,
-    domain_semi_axes,
+    HEAD_ON,
+    HEAD_ON_BEARING_DEG,
+    NONE,
+    OVERTAKEN,
+    OVERTAKING,
+    STERN_SECTOR_DEG,
+    assess,
     in_domain,
 )
+from usvtool.sim.tracking import RISK_HORIZON_S, latch_series, onset_distance
 
-NONE, HEAD_ON, CROSSING_GIVE_WAY, CROSSING_STAND_ON, OVERTAKING, OVERTAKEN = range(6)
-CLASS_NAMES = (
-    "none",
-    "head-on",
-    "crossing-give-way",
-    "crossing-stand-on",
-    "overtaking",
-    "overtaken",
-)
-CLASSES = CLASS_NAMES  # alias: the name usvtool.sim.sides refers to
-
-#: Rule 13(b): "more than 22.5 degrees abaft her beam", 90 + 22.5 … 270 - 22.5 (closed).
-STERN_SECTOR_DEG = (112.5, 247.5)
-#: Rule 14: both relative bearings within this of dead ahead (MOOS-IvP BHV_AvdColregsV17: 12).
-HEAD_ON_BEARING_DEG = 12.0
-#: Latching: a risk must be within this time to CPA (our choice; scenarios close at ≤ 10 m/s).
-RISK_HORIZON_S = 120.0
-#: Relative speeds below this (m/s) are zero in :func:`cpa`.
-VEL_EPS = 1e-9
 #: Offsets (m) from a target's heading line below this are on it (for ahead/astern crossings).
 LINE_EPS = 1e-6
 #: Manoeuvre detection on the sampled track.
@@ -172,264 +109,6 @@ RULES = (
     NOT_PORT,
 )
 EXCUSABLE = frozenset({STARBOARD_TURN, PORT_TO_PORT, NOT_AHEAD, STAND_ON, NOT_PORT})
-
-
-# ----------------------------------------------------------------------------- geometry
-
-
-def velocity(heading, speed) -> np.ndarray:
-    """Velocity vectors ``(..., 2)`` (east, north) of ships on compass ``heading`` at ``speed``.
-
-    >>> velocity([0.0, 90.0], 2.0).round(12).tolist()
-    [[0.0, 2.0], [2.0, 0.0]]
-    """
-    h = np.radians(np.asarray(heading, float))
-    s = np.asarray(speed, float)
-    return np.stack(np.broadcast_arrays(s * np.sin(h), s * np.cos(h)), axis=-1)
-
-
-def bearing(from_xy, to_xy) -> np.ndarray:
-    """Compass bearing (degrees, ``[0, 360)``) of ``to_xy`` from ``from_xy``; 0 if they coincide.
-
-    >>> bearing((0, 0), [(1, 1), (0, -1), (-1, 0)]).tolist()
-    [45.0, 180.0, 270.0]
-    """
-    d = np.asarray(to_xy, float) - np.asarray(from_xy, float)
-    return wrap360(np.degrees(np.arctan2(d[..., 0], d[..., 1])))
-
-
-def relative_bearing(from_xy, from_heading, to_xy) -> np.ndarray:
-    """Bearing of ``to_xy`` seen from a ship at ``from_xy`` heading ``from_heading``: ``[0, 360)``.
-
-    The target from the own ship is ``β = relative_bearing(own_xy, own_heading, target_xy)``;
-    the own ship seen from the target is ``α = relative_bearing(target_xy, target_heading,
-    own_xy)``.
-
-    >>> relative_bearing((0, 0), 90.0, [(0, 10), (10, 0)]).tolist()
-    [270.0, 0.0]
-    """
-    return wrap360(bearing(from_xy, to_xy) - np.asarray(from_heading, float))
-
-
-def course_difference(own_heading, target_heading) -> np.ndarray:
-    """``Δψ``: the target's heading minus the own ship's, in ``[0, 360)`` (180 = reciprocal).
-
-    >>> float(course_difference(350.0, 170.0)), float(course_difference(10.0, 0.0))
-    (180.0, 350.0)
-    """
-    return wrap360(np.asarray(target_heading, float) - np.asarray(own_heading, float))
-
-
-def cpa(rel_pos, rel_vel) -> tuple[np.ndarray, np.ndarray]:
-    """``(dcpa, tcpa)`` of targets at ``rel_pos`` (target minus own, ``(..., 2)``) moving at
-    ``rel_vel`` relative to the own ship; see the module docstring for ``tcpa`` ≤ 0 and zero
-    relative velocity.
-
-    >>> d, t = cpa([(70.0, 80.0), (0.0, 100.0)], [(-4.0, -4.0), (0.0, 0.0)])
-    >>> d.round(6).tolist(), t.tolist()
-    ([7.071068, 100.0], [18.75, 0.0])
-    """
-    p = np.asarray(rel_pos, float)
-    v = np.asarray(rel_vel, float)
-    vv = (v * v).sum(axis=-1)
-    moving = vv > VEL_EPS * VEL_EPS
-    tcpa = np.where(moving, -(p * v).sum(axis=-1) / np.where(moving, vv, 1.0), 0.0)
-    at = p + tcpa[..., None] * v
-    return np.hypot(at[..., 0], at[..., 1]), tcpa
-
-
-# ----------------------------------------------------------------------------- classes
-
-
-def classify_angles(beta, alpha, closing) -> np.ndarray:
-    """Class codes (``int8``) from the relative bearings ``β``, ``α`` (degrees) and whether the
-    target is closing: the rules of the module docstring, exactly at every border.
-
-    >>> [CLASS_NAMES[c] for c in classify_angles([12.0, 12.5, 0.0, 247.5], [348.0, 350.0,
-    ...                                           112.5, 0.0], True)]
-    ['head-on', 'crossing-give-way', 'overtaking', 'overtaken']
-    """
-    beta = wrap360(beta)
-    alpha = wrap360(alpha)
-    lo, hi = STERN_SECTOR_DEG
-    b = HEAD_ON_BEARING_DEG
-    cls = np.where(beta < lo, CROSSING_GIVE_WAY, CROSSING_STAND_ON)
-    ahead = ((beta <= b) | (beta >= 360.0 - b)) & ((alpha <= b) | (alpha >= 360.0 - b))
-    cls = np.where(ahead, HEAD_ON, cls)
-    cls = np.where((beta >= lo) & (beta <= hi), OVERTAKEN, cls)
-    cls = np.where((alpha >= lo) & (alpha <= hi), OVERTAKING, cls)
-    return np.where(np.asarray(closing, bool), cls, NONE).astype(np.int8)
-
-
-class Situation(NamedTuple):
-    """Everything one control step needs about its targets (arrays of one shape)."""
-
-    cls: np.ndarray  # class codes
-    beta: np.ndarray  # target's relative bearing from own (deg)
-    alpha: np.ndarray  # own's relative bearing from the target (deg)
-    range: np.ndarray  # m
-    dcpa: np.ndarray  # m
-    tcpa: np.ndarray  # s
-
-
-def assess(own_xy, own_heading, own_speed, target_xy, target_heading, target_speed) -> Situation:
-    """Classes, bearings, ranges and CPA of every target (arguments broadcast; module docstring).
-
-    >>> s = assess((0, 0), 0.0, 4.0, [(70.0, 80.0)], [270.0], [4.0])
-    >>> CLASS_NAMES[s.cls[0]], round(float(s.beta[0]), 2), round(float(s.tcpa[0]), 9)
-    ('crossing-give-way', 41.19, 18.75)
-    """
-    own_xy = np.asarray(own_xy, float)
-    target_xy = np.asarray(target_xy, float)
-    p = target_xy - own_xy
-    v = velocity(target_heading, target_speed) - velocity(own_heading, own_speed)
-    dcpa, tcpa = cpa(p, v)
-    beta = relative_bearing(own_xy, own_heading, target_xy)
-    alpha = relative_bearing(target_xy, target_heading, own_xy)
-    closing = (p * v).sum(axis=-1) < 0.0
-    cls = classify_angles(beta, alpha, closing)
-    return Situation(cls, beta, alpha, np.hypot(p[..., 0], p[..., 1]), dcpa, tcpa)
-
-
-def classify(own_xy, own_heading, own_speed, target_xy, target_heading, target_speed):
-    """Class codes of targets (``int8``, names in :data:`CLASS_NAMES`): :func:`assess`'s ``cls``."""
-    return assess(own_xy, own_heading, own_speed, target_xy, target_heading, target_speed).cls
-
-
-# ----------------------------------------------------------------------------- latching
-
-
-class EncounterTracker:
-    """Latched encounter classes of ``n_targets`` targets, one :meth:`step` per control step.
-
-    Distances may be scalars or one per target. ``latched`` holds the current codes (``NONE``
-    outside an encounter), ``onset_t`` the onset times (NaN outside).
-
-    >>> tr = EncounterTracker(1, risk_distance=20.0)
-    >>> [int(tr.step(t, [c], [d], [tc], [r])[0]) for t, c, d, tc, r in [
-    ...     (0, HEAD_ON, 5, 30, 300), (1, CROSSING_GIVE_WAY, 5, 20, 200),  # latched, then kept
-    ...     (2, NONE, 30, -1, 25), (3, NONE, 30, -2, 40)]]  # range fell; then opening past 20 m
-    [1, 1, 1, 0]
-    """
-
-    def __init__(
-        self,
-        n_targets: int,
-        risk_distance,
-        horizon_s: float = RISK_HORIZON_S,
-        clear_distance=None,
-        release_distance=np.inf,
-    ):
-        self.risk_distance = np.asarray(risk_distance, float)
-        self.horizon_s = float(horizon_s)
-        self.clear_distance = (
-            self.risk_distance if clear_distance is None else np.asarray(clear_distance, float)
-        )
-        self.release_distance = np.asarray(release_distance, float)
-        self.latched = np.full(n_targets, NONE, np.int8)
-        self.onset_t = np.full(n_targets, np.nan)
-        self.tcpa = np.full(n_targets, np.nan)
-        self._prev_range = np.full(n_targets, np.nan)
-
-    def step(self, t: float, cls, dcpa, tcpa, rng) -> np.ndarray:
-        """Advance one step with this step's classes, CPA and ranges; the latched codes (a copy)."""
-        cls = np.asarray(cls)
-        dcpa, tcpa, rng = (np.asarray(a, float) for a in (dcpa, tcpa, rng))
-        active = self.latched != NONE
-        release = active & (self._opening(tcpa, rng) | (rng > self.release_distance))
-        onset = ~active & _onset(cls, dcpa, tcpa, self.risk_distance, self.horizon_s)
-        self.latched = np.where(release, NONE, np.where(onset, cls, self.latched)).astype(np.int8)
-        self.onset_t = np.where(onset, float(t), np.where(release, np.nan, self.onset_t))
-        self.tcpa = tcpa
-        self._prev_range = rng
-        return self.latched.copy()
-
-    def update(self, t, own_xy, own_heading, own_speed, target_xy, target_heading, target_speed):
-        """:func:`assess` the targets, then :meth:`step`; returns the :class:`Situation`."""
-        s = assess(own_xy, own_heading, own_speed, target_xy, target_heading, target_speed)
-        self.step(t, s.cls, s.dcpa, s.tcpa, s.range)
-        return s
-
-    def most_urgent(self) -> int | None:
-        """Index of the latched target with the smallest positive ``tcpa`` (None if none)."""
-        urgent = (self.latched != NONE) & (self.tcpa > 0)
-        if not urgent.any():
-            return None
-        return int(np.argmin(np.where(urgent, self.tcpa, np.inf)))
-
-    def _opening(self, tcpa, rng):
-        with np.errstate(invalid="ignore"):
-            return (tcpa < 0) & (rng > self._prev_range) & (rng >= self.clear_distance)
-
-
-def _onset(cls, dcpa, tcpa, risk_distance, horizon_s):
-    return (cls != NONE) & (dcpa < risk_distance) & (tcpa > 0) & (tcpa < horizon_s)
-
-
-def latch_series(
-    cls,
-    dcpa,
-    tcpa,
-    rng,
-    risk_distance,
-    horizon_s: float = RISK_HORIZON_S,
-    clear_distance=None,
-    release_distance=np.inf,
-) -> np.ndarray:
-    """The latched codes ``(n, k)`` that :class:`EncounterTracker` gives on a whole run
-    (arrays ``(n, k)``, step along axis 0), vectorised over steps and targets.
-
-    The onset and release conditions of a step do not depend on the latch, so the latch is the
-    alternation of first passages: the first onset, the first release after it, the first onset
-    after that, …, found for all targets at once, one round per encounter.
-
-    >>> latch_series([[1], [2], [0], [0], [3]], [[5], [5], [30], [30], [5]],
-    ...              [[30], [20], [-1], [-2], [9]], [[300], [200], [25], [40], [100]], 20.0)[:, 0]
-    array([1, 1, 1, 0, 3], dtype=int8)
-    """
-    cls = np.asarray(cls)
-    dcpa, tcpa, rng = (np.asarray(a, float) for a in (dcpa, tcpa, rng))
-    n, k = cls.shape
-    clear = risk_distance if clear_distance is None else clear_distance
-    prev = np.vstack([np.full((1, k), np.nan), rng[:-1]])
-    with np.errstate(invalid="ignore"):
-        opening = (tcpa < 0) & (rng > prev) & (rng >= np.asarray(clear, float))
-    release = opening | (rng > np.asarray(release_distance, float))
-    next_on = _next_true(_onset(cls, dcpa, tcpa, np.asarray(risk_distance, float), horizon_s))
-    next_off = _next_true(release)
-    cols = np.arange(k)
-    cursor = np.zeros(k, int)
-    delta = np.zeros((n + 1, k), int)
-    start = np.zeros((n, k), bool)
-    while True:
-        on = next_on[cursor, cols]
-        live = on < n
-        if not live.any():
-            break
-        off = next_off[np.minimum(on + 1, n), cols]
-        delta[on[live], cols[live]] += 1
-        delta[off[live], cols[live]] -= 1
-        start[on[live], cols[live]] = True
-        cursor = np.where(live, np.minimum(off + 1, n), n)
-    active = np.cumsum(delta[:-1], axis=0) > 0
-    first = np.maximum.accumulate(np.where(start, np.arange(n)[:, None], 0), axis=0)
-    return np.where(active, np.take_along_axis(cls, first, axis=0), NONE).astype(np.int8)
-
-
-def _next_true(mask: np.ndarray) -> np.ndarray:
-    """``(n + 1, k)``: the first index ``≥ i`` where ``mask[:, j]`` holds, ``n`` if none."""
-    n = mask.shape[0]
-    idx = np.where(mask, np.arange(n)[:, None], n)
-    idx = np.vstack([idx, np.full((1, mask.shape[1]), n)])
-    return np.minimum.accumulate(idx[::-1], axis=0)[::-1]
-
-
-# ----------------------------------------------------------------------------- ship domain
-
-
-def onset_distance(length: float) -> float:
-    """The DCPA below which an encounter begins: the domain's semi-major axis, ``3.5 L``."""
-    return domain_semi_axes(length)[0]
 
 
 def intrusion_time(t, inside) -> float:
