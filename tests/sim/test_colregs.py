@@ -613,3 +613,62 @@ def test_targets_without_an_encounter_and_several_targets():
     assert first["class"] == "head-on" and first["compliant"]
     assert second == {**second, "target": 1, "class": "none", "compliant": None}
     assert r["figures"]["closest_distance_m"] == pytest.approx(first["closest_distance_m"])
+
+
+# ----------------------------------------------------------------------------- the rule table
+
+
+def test_the_rule_table_per_role():
+    """The rows of each role, in the order a verdict lists its failures (docs/colregs.md)."""
+    give_way = [vd.NO_ACTION, vd.APPARENT, vd.IN_TIME]
+    stand_on = [vd.STAND_ON, vd.IN_EXTREMIS]
+    ids = {enc.CLASS_NAMES[code]: [r.id for r in rules] for code, rules in vd.ROLE_RULES.items()}
+    assert ids == {
+        "head-on": [*give_way, vd.SAFE_DISTANCE, vd.STARBOARD_TURN, vd.PORT_TO_PORT],
+        "crossing-give-way": [*give_way, vd.SAFE_DISTANCE, vd.NOT_AHEAD],
+        "overtaking": [*give_way, vd.KEEP_CLEAR],
+        "crossing-stand-on": [*stand_on, vd.NOT_PORT],
+        "overtaken": stand_on,
+    }
+    # Rule 2 excuses the side and stand-on rules, never Rules 8, 16, 13 or 17(b)
+    assert vd.EXCUSABLE == {vd.STARBOARD_TURN, vd.PORT_TO_PORT, vd.NOT_AHEAD, vd.STAND_ON,
+                            vd.NOT_PORT}  # fmt: skip
+
+
+# Overtaken: the target 200 m astern at 6 m/s on the own ship's course (3 m/s), 30 m or 5 m to
+# starboard: tcpa = 200 / 3 = 66.7 s, dcpa 30 or 5 m (< 35: onset at t = 0); the range falls
+# below the critical 100 m at t = 33 s. At 30 m she never enters the own domain (15 m across).
+def overtaking_target(offset):
+    return straight(offset, -200, 0, 6)
+
+
+def test_overtaken_that_keeps_course_and_speed_is_compliant():
+    (e,) = run(own_track(0, 3), overtaking_target(30))["events"]
+    assert e["class"] == "overtaken" and e["onset_s"] == 0.0
+    assert e["first_manoeuvre"] is None and e["domain_intrusion_s"] == 0.0
+    assert e["compliant"] and e["failed_rules"] == []
+
+
+def test_overtaken_that_turns_early_fails_17a_unless_rule2():
+    own = own_track(0, 3, turns=[(5, 30, 10)])  # at a range of about 185 m
+    (e,) = run(own, overtaking_target(30))["events"]
+    assert e["class"] == "overtaken" and e["first_manoeuvre"]["range_m"] > 100
+    assert e["failed_rules"] == [vd.STAND_ON]
+    rec = {"t": 5.0, "target": 0, "reason": "test"}
+    (e,) = run(own, overtaking_target(30), [rec])["events"]
+    assert e["compliant"] and e["excused_rules"] == [vd.STAND_ON]
+
+
+def test_overtaken_that_never_acts_while_she_passes_close_fails_17b():
+    (e,) = run(own_track(0, 3), overtaking_target(5))["events"]
+    assert e["class"] == "overtaken" and e["domain_intrusion_s"] > 0
+    assert e["failed_rules"] == [vd.IN_EXTREMIS]
+
+
+def test_overtaken_turning_to_port_in_extremis_fails_no_port_rule():
+    """Rule 17(c) (no port turn for a vessel on her own port side) is the crossing stand-on
+    vessel's, not the overtaken one's: a late port turn keeps 17(b) and fails nothing."""
+    (e,) = run(own_track(0, 3, turns=[(40, -40, 10)]), overtaking_target(5))["events"]
+    assert e["class"] == "overtaken" and e["first_manoeuvre"]["side"] == "port"
+    assert e["first_manoeuvre"]["range_m"] < 100
+    assert e["failed_rules"] == []

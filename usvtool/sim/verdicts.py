@@ -1,47 +1,55 @@
-"""COLREGs verdicts of a finished run: its encounters, the own ship's manoeuvres and the rules.
+"""COLREGs verdicts of a finished run: its encounters and, per encounter, the rules of its role.
 
 The offline evaluation of a run (the simulation's events JSON): the run latched at once
 (:func:`usvtool.sim.tracking.latch_series` on :func:`usvtool.encounter.assess`), then, per
-encounter, the manoeuvre on the sampled own track and the verdict.
+encounter, the first manoeuvre on the sampled own track (:mod:`usvtool.sim.manoeuvres`), its
+:class:`Facts` and the rules of its role (:data:`ROLE_RULES`).
 
 Ship domain: the 7 L x 3 L ellipse of :func:`usvtool.encounter.in_domain`. *Domain intrusion*
 is the time during which some target is inside (:func:`intrusion_time`, trapezoidal on the
 samples).
 
-Manoeuvre (on the sampled own track, :func:`evaluate`)
-    A manoeuvre is detected at the first sample ``i`` (from the encounter's onset) from which
-    the heading changes by at least ``MANOEUVRE_COURSE_DEG`` (5°), or the speed by at least
-    ``MANOEUVRE_SPEED_FRACTION`` (10 %) of the speed at ``i`` (at least ``SPEED_FLOOR`` m/s),
-    within the following ``MANOEUVRE_WINDOW_S`` (10 s). It starts at the last sample before the
-    threshold is crossed whose heading is within ``MANOEUVRE_START_DEG`` (1°) and speed within
-    ``MANOEUVRE_START_FRACTION`` (2 %) of those at ``i`` (so a fast turn is not dated up to 10 s
-    early). Its course change is the signed heading deviation from ``i`` of largest magnitude
-    until the CPA (positive = starboard), its speed change the signed relative speed deviation of
-    largest magnitude; its side is starboard/port when the course change is at least 5° either
-    way, else none (a speed manoeuvre).
+Rules (:data:`ROLE_RULES`: one row per rule, each a small named test of the encounter's facts
+that says whether the rule fails; ``r`` the range, ``r_on`` at onset, ``r_crit`` the critical
+range, default ``CRITICAL_RANGE_LENGTHS`` = 10 own lengths)
 
-Verdicts (:func:`evaluate`, per encounter; ``r`` the range, ``r_on`` at onset, ``r_crit`` the
-critical range, default ``CRITICAL_RANGE_LENGTHS`` = 10 own lengths)
-    Give-way roles (head-on, crossing-give-way, overtaking) fail ``rule16-no-action`` without a
-    manoeuvre before the CPA; ``rule8-readily-apparent`` unless it changes course by at least
-    ``APPARENT_COURSE_DEG`` (30°) or cuts speed by at least ``APPARENT_SPEED_FRACTION`` (50 %);
-    ``rule16-in-time`` unless it starts at ``r ≥ TIMELY_RANGE_FRACTION · r_on`` (half) and
-    ``r ≥ r_crit`` (waived when ``r_on < r_crit``); ``rule8-safe-distance`` (overtaking:
-    ``rule13-keep-clear``) if the target enters the own domain. Head-on also fails
-    ``rule14-starboard`` unless the manoeuvre is a starboard alteration, and
-    ``rule14-port-to-port`` unless the target is on the own port side at the CPA. Crossing
-    give-way fails ``rule15-ahead`` if the own ship crosses the target's heading line ahead of
-    her bow. Stand-on roles (crossing-stand-on, overtaken) fail ``rule17-keep-course-speed`` if,
-    while ``r ≥ r_crit``, the heading leaves its onset value by more than
-    ``STAND_ON_COURSE_DEG`` (10°) or the speed by more than ``STAND_ON_SPEED_FRACTION`` (10 %);
-    ``rule17b-no-action`` if the target enters the own domain and no manoeuvre starts once
-    ``r < r_crit``; crossing-stand-on fails ``rule17c-port-turn`` if that manoeuvre is to port.
-    A Rule 2 departure record of the controller within the encounter excuses the side and
-    stand-on rules (:data:`EXCUSABLE`), never Rules 8, 16, 13(a) or 17(b). Sources, and the
-    readings of the papers, are in docs/colregs.md.
+============================  =========================  ==========================================
+role (classes)                rule                       fails when
+============================  =========================  ==========================================
+give-way (head-on, crossing   ``rule16-no-action``       no manoeuvre from onset to the CPA
+give-way, overtaking)         ``rule8-readily-apparent`` it changes course by less than 30°
+                                                         (``APPARENT_COURSE_DEG``) and cuts speed
+                                                         by less than 50 %
+                              ``rule16-in-time``         it starts at ``r < 0.5 r_on``, or at
+                                                         ``r < r_crit`` (waived when
+                                                         ``r_on < r_crit``)
+                              ``rule8-safe-distance``    the target enters the own domain
+                              (overtaking:
+                              ``rule13-keep-clear``)
+head-on                       ``rule14-starboard``       the manoeuvre is no starboard alteration
+                              ``rule14-port-to-port``    the target is not on the own port side
+                                                         at the CPA
+crossing give-way             ``rule15-ahead``           the own ship crosses the target's
+                                                         heading line ahead of her bow
+stand-on (crossing stand-on,  ``rule17-keep-course-      while ``r ≥ r_crit`` the heading leaves
+overtaken)                    speed``                    its onset value by more than 10° or the
+                                                         speed by more than 10 %
+                              ``rule17b-no-action``      the target enters the own domain and no
+                                                         manoeuvre starts once ``r < r_crit``
+crossing stand-on             ``rule17c-port-turn``      that manoeuvre is to port
+============================  =========================  ==========================================
+
+A Rule 2 departure record of the controller within the encounter excuses the side and stand-on
+rules (``excusable`` in the table, :data:`EXCUSABLE`), never Rules 8, 16, 13(a) or 17(b).
+Sources, and the readings of the papers, are in docs/colregs.md.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from functools import cached_property
+from typing import NamedTuple
 
 import numpy as np
 
@@ -58,20 +66,22 @@ from usvtool.encounter import (
     OVERTAKEN,
     OVERTAKING,
     STERN_SECTOR_DEG,
+    Situation,
     assess,
     in_domain,
+)
+from usvtool.sim.manoeuvres import (
+    MANOEUVRE_COURSE_DEG,
+    MANOEUVRE_SPEED_FRACTION,
+    MANOEUVRE_WINDOW_S,
+    SPEED_FLOOR,
+    Manoeuvre,
+    Track,
 )
 from usvtool.sim.tracking import RISK_HORIZON_S, latch_series, onset_distance
 
 #: Offsets (m) from a target's heading line below this are on it (for ahead/astern crossings).
 LINE_EPS = 1e-6
-#: Manoeuvre detection on the sampled track.
-MANOEUVRE_COURSE_DEG = 5.0
-MANOEUVRE_WINDOW_S = 10.0
-MANOEUVRE_SPEED_FRACTION = 0.1
-MANOEUVRE_START_DEG = 1.0
-MANOEUVRE_START_FRACTION = 0.02
-SPEED_FLOOR = 0.01  # m/s: speed thresholds are relative to at least this
 #: Rule 8(b) "readily apparent": a course change of at least 30° or a speed reduction to half.
 APPARENT_COURSE_DEG = 30.0
 APPARENT_SPEED_FRACTION = 0.5
@@ -94,21 +104,158 @@ NOT_AHEAD = "rule15-ahead"
 STAND_ON = "rule17-keep-course-speed"
 IN_EXTREMIS = "rule17b-no-action"
 NOT_PORT = "rule17c-port-turn"
-#: Every rule a verdict can fail, and those a Rule 2 departure record excuses.
-RULES = (
-    NO_ACTION,
-    APPARENT,
-    IN_TIME,
-    SAFE_DISTANCE,
-    KEEP_CLEAR,
-    STARBOARD_TURN,
-    PORT_TO_PORT,
-    NOT_AHEAD,
-    STAND_ON,
-    IN_EXTREMIS,
-    NOT_PORT,
+
+
+# ----------------------------------------------------------------------------- the facts
+
+
+@dataclass(frozen=True)
+class Facts:
+    """What the rules of one encounter look at: its latched class ``code``, the range to the
+    target at every sample ``rng``, the onset and CPA samples, the critical range, the own
+    ``track``, where the target is at the CPA (``passing_side``), where the own ship crosses
+    the target's heading line (``crossing``: ``ahead``, ``astern`` or None) and whether the
+    target entered the own domain (``intruded``)."""
+
+    code: int
+    rng: np.ndarray
+    on: int
+    i_cpa: int
+    r_crit: float
+    track: Track
+    passing_side: str
+    crossing: str | None
+    intruded: bool
+
+    @property
+    def r_on(self) -> float:
+        return float(self.rng[self.on])
+
+    @cached_property
+    def manoeuvre(self) -> Manoeuvre | None:
+        """The first manoeuvre from the onset to the CPA."""
+        return self.track.manoeuvre(self.on, self.i_cpa)
+
+    @cached_property
+    def i_crit(self) -> int:
+        """The first sample from the onset closer than the critical range (past the CPA: none
+        before it)."""
+        below = np.flatnonzero(self.rng[self.on : self.i_cpa + 1] < self.r_crit)
+        return self.on + int(below[0]) if below.size else self.i_cpa + 1
+
+    @cached_property
+    def late_manoeuvre(self) -> Manoeuvre | None:
+        """The first manoeuvre once within the critical range, before the CPA."""
+        if self.i_crit > self.i_cpa:
+            return None
+        return self.track.manoeuvre(self.i_crit, self.i_cpa)
+
+
+# ----------------------------------------------------------------------------- the rules
+# Each takes an encounter's facts and says whether the rule fails.
+
+
+def no_action(f: Facts) -> bool:
+    return f.manoeuvre is None
+
+
+def not_readily_apparent(f: Facts) -> bool:
+    m = f.manoeuvre
+    if m is None:
+        return False
+    slowed = m.speed is not None and m.speed <= -APPARENT_SPEED_FRACTION
+    return not (abs(m.course) >= APPARENT_COURSE_DEG or slowed)
+
+
+def not_in_time(f: Facts) -> bool:
+    m = f.manoeuvre
+    if m is None:
+        return False
+    r = float(f.rng[m.start])
+    return not (r >= TIMELY_RANGE_FRACTION * f.r_on and (r >= f.r_crit or f.r_on < f.r_crit))
+
+
+def target_in_domain(f: Facts) -> bool:
+    return f.intruded
+
+
+def no_starboard_alteration(f: Facts) -> bool:
+    return f.manoeuvre is None or f.manoeuvre.side != "starboard"
+
+
+def not_port_to_port(f: Facts) -> bool:
+    return f.passing_side != "port"
+
+
+def crosses_ahead(f: Facts) -> bool:
+    return f.crossing == "ahead"
+
+
+def course_or_speed_not_kept(f: Facts) -> bool:
+    if f.i_crit <= f.on:  # within the critical range from the onset: nothing to keep
+        return False
+    dh, dv = f.track.deviation(f.on, f.i_crit)
+    speed = f.track.v[f.on]
+    return dh > STAND_ON_COURSE_DEG or dv > STAND_ON_SPEED_FRACTION * max(speed, SPEED_FLOOR)
+
+
+def no_action_in_extremis(f: Facts) -> bool:
+    return f.late_manoeuvre is None and f.intruded
+
+
+def turns_to_port_in_extremis(f: Facts) -> bool:
+    m = f.late_manoeuvre
+    return m is not None and m.course <= -MANOEUVRE_COURSE_DEG
+
+
+class Rule(NamedTuple):
+    """One row of the rule table: the rule's id (as ``failed_rules`` lists it), the test that
+    says it fails, and whether a Rule 2 departure record excuses it."""
+
+    id: str
+    fails: Callable[[Facts], bool]
+    excusable: bool = False
+
+
+_GIVE_WAY = (
+    Rule(NO_ACTION, no_action),
+    Rule(APPARENT, not_readily_apparent),
+    Rule(IN_TIME, not_in_time),
 )
-EXCUSABLE = frozenset({STARBOARD_TURN, PORT_TO_PORT, NOT_AHEAD, STAND_ON, NOT_PORT})
+_STAND_ON = (
+    Rule(STAND_ON, course_or_speed_not_kept, excusable=True),
+    Rule(IN_EXTREMIS, no_action_in_extremis),
+)
+#: The rules of each role (by latched class), in the order a verdict lists its failures.
+ROLE_RULES: dict[int, tuple[Rule, ...]] = {
+    HEAD_ON: (
+        *_GIVE_WAY,
+        Rule(SAFE_DISTANCE, target_in_domain),
+        Rule(STARBOARD_TURN, no_starboard_alteration, excusable=True),
+        Rule(PORT_TO_PORT, not_port_to_port, excusable=True),
+    ),
+    CROSSING_GIVE_WAY: (
+        *_GIVE_WAY,
+        Rule(SAFE_DISTANCE, target_in_domain),
+        Rule(NOT_AHEAD, crosses_ahead, excusable=True),
+    ),
+    OVERTAKING: (*_GIVE_WAY, Rule(KEEP_CLEAR, target_in_domain)),
+    CROSSING_STAND_ON: (*_STAND_ON, Rule(NOT_PORT, turns_to_port_in_extremis, excusable=True)),
+    OVERTAKEN: _STAND_ON,
+}
+#: The rules a Rule 2 departure record excuses.
+EXCUSABLE = frozenset(r.id for rules in ROLE_RULES.values() for r in rules if r.excusable)
+
+
+def judge(facts: Facts, departed: bool) -> tuple[list[str], list[str]]:
+    """The rules of the encounter's role that fail: ``(failed, excused)``, the excused ones
+    those a Rule 2 departure (``departed``) excuses."""
+    failing = [r for r in ROLE_RULES[facts.code] if r.fails(facts)]
+    excused = [r.id for r in failing if departed and r.excusable]
+    return [r.id for r in failing if r.id not in excused], excused
+
+
+# ----------------------------------------------------------------------------- evaluation
 
 
 def intrusion_time(t, inside) -> float:
@@ -125,102 +272,6 @@ def intrusion_time(t, inside) -> float:
     if len(t) < 2:
         return 0.0
     return float((np.diff(t) * (inside[1:].astype(float) + inside[:-1]) / 2).sum())
-
-
-# ----------------------------------------------------------------------------- evaluation
-
-
-def _range_extrema(a: np.ndarray, lo: np.ndarray, hi: np.ndarray):
-    """Max and min of ``a[lo_i … hi_i]`` (inclusive, ``lo ≤ hi``) for all ``i``: sparse table."""
-    n = len(a)
-    tmax, tmin = [a], [a]
-    width = 1
-    while 2 * width <= n:
-        m, s = tmax[-1], tmin[-1]
-        tmax.append(np.concatenate([np.maximum(m[:-width], m[width:]), m[-width:]]))
-        tmin.append(np.concatenate([np.minimum(s[:-width], s[width:]), s[-width:]]))
-        width *= 2
-    level = np.floor(np.log2(hi - lo + 1)).astype(int)
-    tmax, tmin = np.array(tmax), np.array(tmin)
-    right = hi - (1 << level) + 1
-    return (
-        np.maximum(tmax[level, lo], tmax[level, right]),
-        np.minimum(tmin[level, lo], tmin[level, right]),
-    )
-
-
-class _Track:
-    """The own ship's sampled track with its manoeuvre flags (module docstring)."""
-
-    def __init__(self, t, heading, speed):
-        self.t = t
-        self.h = np.degrees(np.unwrap(np.radians(heading)))
-        self.v = speed
-        n = len(t)
-        self.end = np.searchsorted(t, t + MANOEUVRE_WINDOW_S, side="right") - 1
-        self.thr = MANOEUVRE_SPEED_FRACTION * np.maximum(speed, SPEED_FLOOR)
-        lo = np.minimum(np.arange(n) + 1, n - 1)
-        hi = np.maximum(self.end, lo)
-        valid = self.end > np.arange(n)
-        hmax, hmin = _range_extrema(self.h, lo, hi)
-        vmax, vmin = _range_extrema(self.v, lo, hi)
-        dev_h = np.maximum(hmax - self.h, self.h - hmin)
-        dev_v = np.maximum(vmax - self.v, self.v - vmin)
-        self.flag = valid & ((dev_h >= MANOEUVRE_COURSE_DEG) | (dev_v >= self.thr))
-
-    def manoeuvre(self, first: int, last: int, extent: int):
-        """The first manoeuvre detected at a sample in ``[first, last]``, its extent measured up
-        to sample ``extent``: ``(start index, course change deg, speed change or None)``."""
-        hits = np.flatnonzero(self.flag[first : last + 1])
-        if not hits.size:
-            return None
-        i = first + int(hits[0])
-        h0, v0 = self.h[i], self.v[i]
-        win = slice(i + 1, self.end[i] + 1)
-        over = (np.abs(self.h[win] - h0) >= MANOEUVRE_COURSE_DEG) | (
-            np.abs(self.v[win] - v0) >= self.thr[i]
-        )
-        cross = i + 1 + int(np.argmax(over))
-        seg = slice(i, cross)
-        v_tol = MANOEUVRE_START_FRACTION * max(v0, SPEED_FLOOR)
-        calm = np.abs(self.h[seg] - h0) <= MANOEUVRE_START_DEG
-        calm &= np.abs(self.v[seg] - v0) <= v_tol
-        start = i + int(np.flatnonzero(calm)[-1])
-        span = slice(start, max(extent, cross) + 1)
-        dh = self.h[span] - h0
-        dv = self.v[span] - v0
-        course = float(dh[np.argmax(np.abs(dh))])
-        speed = float(dv[np.argmax(np.abs(dv))] / v0) if v0 > 0 else None
-        return start, course, speed
-
-
-def _side(beta: float) -> str:
-    s, c = np.sin(np.radians(beta)), np.cos(np.radians(beta))
-    if abs(s) > 1e-12:
-        return "starboard" if s > 0 else "port"
-    return "ahead" if c > 0 else "astern"
-
-
-def _crossing(own_xy, target_xy, target_heading) -> str | None:
-    """Whether the own ship first crosses the target's heading line ahead of or astern of her."""
-    d = own_xy - target_xy
-    h = np.radians(target_heading)
-    along = d[:, 0] * np.sin(h) + d[:, 1] * np.cos(h)
-    lateral = d[:, 0] * np.cos(h) - d[:, 1] * np.sin(h)
-    lateral = np.where(np.abs(lateral) < LINE_EPS, 0.0, lateral)  # on the line: rounding
-    # a side change from a nonzero lateral offset (starting on the line is not a crossing)
-    flips = np.flatnonzero((lateral[:-1] != 0) & (lateral[:-1] * lateral[1:] <= 0))
-    if not flips.size:
-        return None
-    i = int(flips[0])
-    f = lateral[i] / (lateral[i] - lateral[i + 1])
-    return "ahead" if along[i] + f * (along[i + 1] - along[i]) > 0 else "astern"
-
-
-def _num(x, digits: int = 3):
-    if x is None or not np.isfinite(x):
-        return None
-    return round(float(x), digits)
 
 
 def evaluate(
@@ -284,58 +335,115 @@ def evaluate(
     )
     risk = onset_distance(length) if risk_distance is None else risk_distance
     r_crit = CRITICAL_RANGE_LENGTHS * length if critical_range is None else float(critical_range)
-    sit = assess(own_xy[:, None], own_h[:, None], own_v[:, None], txy, th, tv)
-    latched = latch_series(
-        sit.cls, sit.dcpa, sit.tcpa, sit.range, risk, horizon_s, clear_distance, release_distance
+    run = _Run(
+        t=t,
+        own_xy=own_xy,
+        target_xy=txy,
+        target_heading=th,
+        sit=assess(own_xy[:, None], own_h[:, None], own_v[:, None], txy, th, tv),
+        inside=in_domain(own_xy[:, None], own_h[:, None], txy, length),
+        own_inside=in_domain(txy, th, own_xy[:, None], t_len),
+        track=Track(t, own_h, own_v),
+        r_crit=r_crit,
     )
-    inside = in_domain(own_xy[:, None], own_h[:, None], txy, length)
-    own_inside = in_domain(txy, th, own_xy[:, None], t_len)
-    track = _Track(t, own_h, own_v)
+    latched = latch_series(run.sit.cls, run.sit.dcpa, run.sit.tcpa, run.sit.range, risk,
+                           horizon_s, clear_distance, release_distance)  # fmt: skip
     records = [dict(r) for r in (rule2 or [])]
     matched = [False] * len(records)
     events = []
     for j in range(k):
-        col = latched[:, j]
-        edges = np.flatnonzero(np.diff(np.concatenate([[0], (col != NONE).astype(int), [0]])))
-        if not edges.size:
-            events.append(_no_encounter(j, sit.range[:, j]))
-            continue
-        for on, off in edges.reshape(-1, 2):
-            last = off - 1
-            window = slice(on, last + 1)
-            i_cpa = on + int(np.argmin(sit.range[window, j]))
-            mine = [
-                q
-                for q, r in enumerate(records)
-                if int(r.get("target", -1)) == j
-                and t[on] <= float(r.get("t", np.nan)) <= t[min(off, n - 1)]
-            ]
+        spans = _spans(latched[:, j])
+        if not spans:
+            events.append(_no_encounter(j, run.sit.range[:, j]))
+        for on, off in spans:
+            mine = [q for q, r in enumerate(records) if _within(r, j, t[on], t[min(off, n - 1)])]
             for q in mine:
                 matched[q] = True
-            event = _verdict(
-                j,
-                int(col[on]),
-                t,
-                on,
-                last,
-                off < n,
-                i_cpa,
-                sit,
-                track,
-                inside[:, j],
-                own_inside[:, j],
-                _crossing(own_xy[window], txy[window, j], th[window, j]),
-                r_crit,
-                [records[q] for q in mine],
-            )
-            events.append(event)
+            events.append(run.event(j, int(latched[on, j]), on, off, [records[q] for q in mine]))
     distances = metrics.run_distances(own_xy[:, 0], own_xy[:, 1], tx, ty,
                                       (latched != NONE).any(axis=1))  # fmt: skip
     figures = {
         **{name: _num(value) for name, value in distances.items()},
-        "domain_intrusion_s": _num(intrusion_time(t, inside) if k else 0.0),
+        "domain_intrusion_s": _num(intrusion_time(t, run.inside) if k else 0.0),
     }
-    thresholds = {
+    return {
+        "events": events,
+        "figures": figures,
+        "thresholds": _thresholds(
+            risk, horizon_s, clear_distance, release_distance, r_crit, length
+        ),
+        "unmatched_rule2": [r for r, m in zip(records, matched, strict=True) if not m],
+    }
+
+
+@dataclass(frozen=True)
+class _Run:
+    """A run as the verdicts see it: the samples, the own and the targets' positions, their
+    situations (:func:`usvtool.encounter.assess`), who is inside whose domain, the own track."""
+
+    t: np.ndarray
+    own_xy: np.ndarray
+    target_xy: np.ndarray
+    target_heading: np.ndarray
+    sit: Situation
+    inside: np.ndarray
+    own_inside: np.ndarray
+    track: Track
+    r_crit: float
+
+    def event(self, j: int, code: int, on: int, off: int, rule2: list[dict]) -> dict:
+        """The event and verdict of target ``j``'s encounter of class ``code`` latched from
+        sample ``on`` to before ``off`` (``off`` = n: to the end)."""
+        t, rng = self.t, self.sit.range[:, j]
+        window = slice(on, off)
+        i_cpa = on + int(np.argmin(rng[window]))
+        crossing = _crossing(self.own_xy[window], self.target_xy[window, j],
+                             self.target_heading[window, j])  # fmt: skip
+        facts = Facts(code, rng, on, i_cpa, self.r_crit, self.track,
+                      _side(float(self.sit.beta[i_cpa, j])), crossing,
+                      bool(self.inside[window, j].any()))  # fmt: skip
+        failed, excused = judge(facts, bool(rule2))
+        m = facts.manoeuvre
+        return {
+            "target": j,
+            "class": CLASS_NAMES[code],
+            "onset_s": _num(t[on]),
+            "onset_range_m": _num(facts.r_on),
+            "released_s": _num(t[off]) if off < len(t) else None,
+            "cpa_time_s": _num(t[i_cpa]),
+            "closest_distance_m": _num(rng[i_cpa]),
+            "passing_side": facts.passing_side,
+            "crossing": crossing,
+            "first_manoeuvre": None if m is None else {
+                "t": _num(t[m.start]),
+                "side": m.side,
+                "course_change_deg": _num(m.course),
+                "speed_change": _num(m.speed, 4),
+                "range_m": _num(rng[m.start]),
+            },
+            "domain_intrusion_s": _num(intrusion_time(t[window], self.inside[window, j])),
+            "own_in_target_domain_s": _num(intrusion_time(t[window], self.own_inside[window, j])),
+            "rule2_departure": rule2 or None,
+            "compliant": not failed,
+            "failed_rules": failed,
+            "excused_rules": excused,
+        }  # fmt: skip
+
+
+def _spans(latched: np.ndarray) -> list[tuple[int, int]]:
+    """The encounters of one target's latched codes: ``(onset, first sample after)`` pairs."""
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], (latched != NONE).astype(int), [0]])))
+    return [(int(on), int(off)) for on, off in edges.reshape(-1, 2)]
+
+
+def _within(record: dict, j: int, start: float, end: float) -> bool:
+    """Whether a Rule 2 record is of target ``j`` at a time in ``[start, end]``."""
+    return int(record.get("target", -1)) == j and start <= float(record.get("t", np.nan)) <= end
+
+
+def _thresholds(risk, horizon_s, clear_distance, release_distance, r_crit, length) -> dict:
+    """The values the evaluation used (an infinite ``release_distance`` is null)."""
+    return {
         "risk_distance_m": _num(float(np.max(risk))),
         "horizon_s": horizon_s,
         "clear_distance_m": _num(float(np.max(risk if clear_distance is None else clear_distance))),
@@ -352,13 +460,6 @@ def evaluate(
         "apparent": {"course_deg": APPARENT_COURSE_DEG, "speed_reduction": APPARENT_SPEED_FRACTION},
         "timely_range_fraction": TIMELY_RANGE_FRACTION,
         "stand_on": {"course_deg": STAND_ON_COURSE_DEG, "speed_fraction": STAND_ON_SPEED_FRACTION},
-    }
-    unmatched = [r for r, m in zip(records, matched, strict=True) if not m]
-    return {
-        "events": events,
-        "figures": figures,
-        "thresholds": thresholds,
-        "unmatched_rule2": unmatched,
     }
 
 
@@ -383,87 +484,31 @@ def _no_encounter(j: int, rng: np.ndarray) -> dict:
     }
 
 
-def _verdict(
-    j, code, t, on, last, released, i_cpa, sit, track, inside, own_inside, crossing, r_crit, rule2
-) -> dict:
-    """One encounter's event and verdict (the rules are listed in docs/colregs.md)."""
-    rng = sit.range[:, j]
-    window = slice(on, last + 1)
-    r_on = float(rng[on])
-    side = _side(float(sit.beta[i_cpa, j]))
-    man = track.manoeuvre(on, i_cpa, i_cpa)
-    first = None
-    if man is not None:
-        s, course, speed = man
-        first = {
-            "t": _num(t[s]),
-            "side": "starboard"
-            if course >= MANOEUVRE_COURSE_DEG
-            else "port"
-            if course <= -MANOEUVRE_COURSE_DEG
-            else None,
-            "course_change_deg": _num(course),
-            "speed_change": _num(speed, 4),
-            "range_m": _num(rng[s]),
-        }
-    intruded = bool(inside[window].any())
-    failed = []
-    if code in (HEAD_ON, CROSSING_GIVE_WAY, OVERTAKING):
-        if man is None:
-            failed.append(NO_ACTION)
-        else:
-            s, course, speed = man
-            apparent = abs(course) >= APPARENT_COURSE_DEG or (
-                speed is not None and speed <= -APPARENT_SPEED_FRACTION
-            )
-            if not apparent:
-                failed.append(APPARENT)
-            r_man = float(rng[s])
-            timely = r_man >= TIMELY_RANGE_FRACTION * r_on and (r_man >= r_crit or r_on < r_crit)
-            if not timely:
-                failed.append(IN_TIME)
-        if intruded:
-            failed.append(KEEP_CLEAR if code == OVERTAKING else SAFE_DISTANCE)
-        if code == HEAD_ON:
-            if first is None or first["side"] != "starboard":
-                failed.append(STARBOARD_TURN)
-            if side != "port":
-                failed.append(PORT_TO_PORT)
-        if code == CROSSING_GIVE_WAY and crossing == "ahead":
-            failed.append(NOT_AHEAD)
-    elif code in (CROSSING_STAND_ON, OVERTAKEN):
-        below = np.flatnonzero(rng[on : i_cpa + 1] < r_crit)
-        i_crit = on + int(below[0]) if below.size else i_cpa + 1
-        if i_crit > on:
-            keep = slice(on, i_crit)
-            dh = np.abs(track.h[keep] - track.h[on]).max()
-            dv = np.abs(track.v[keep] - track.v[on]).max()
-            if dh > STAND_ON_COURSE_DEG or dv > STAND_ON_SPEED_FRACTION * max(
-                track.v[on], SPEED_FLOOR
-            ):
-                failed.append(STAND_ON)
-        late = track.manoeuvre(i_crit, i_cpa, i_cpa) if i_crit <= i_cpa else None
-        if late is None and intruded:
-            failed.append(IN_EXTREMIS)
-        if code == CROSSING_STAND_ON and late is not None and late[1] <= -MANOEUVRE_COURSE_DEG:
-            failed.append(NOT_PORT)
-    excused = [r for r in failed if rule2 and r in EXCUSABLE]
-    failed = [r for r in failed if r not in excused]
-    return {
-        "target": j,
-        "class": CLASS_NAMES[code],
-        "onset_s": _num(t[on]),
-        "onset_range_m": _num(r_on),
-        "released_s": _num(t[last + 1]) if released else None,
-        "cpa_time_s": _num(t[i_cpa]),
-        "closest_distance_m": _num(rng[i_cpa]),
-        "passing_side": side,
-        "crossing": crossing,
-        "first_manoeuvre": first,
-        "domain_intrusion_s": _num(intrusion_time(t[window], inside[window])),
-        "own_in_target_domain_s": _num(intrusion_time(t[window], own_inside[window])),
-        "rule2_departure": rule2 or None,
-        "compliant": not failed,
-        "failed_rules": failed,
-        "excused_rules": excused,
-    }
+def _side(beta: float) -> str:
+    """The side of the own ship a target at relative bearing ``beta`` is on."""
+    s, c = np.sin(np.radians(beta)), np.cos(np.radians(beta))
+    if abs(s) > 1e-12:
+        return "starboard" if s > 0 else "port"
+    return "ahead" if c > 0 else "astern"
+
+
+def _crossing(own_xy, target_xy, target_heading) -> str | None:
+    """Whether the own ship first crosses the target's heading line ahead of or astern of her."""
+    d = own_xy - target_xy
+    h = np.radians(target_heading)
+    along = d[:, 0] * np.sin(h) + d[:, 1] * np.cos(h)
+    lateral = d[:, 0] * np.cos(h) - d[:, 1] * np.sin(h)
+    lateral = np.where(np.abs(lateral) < LINE_EPS, 0.0, lateral)  # on the line: rounding
+    # a side change from a nonzero lateral offset (starting on the line is not a crossing)
+    flips = np.flatnonzero((lateral[:-1] != 0) & (lateral[:-1] * lateral[1:] <= 0))
+    if not flips.size:
+        return None
+    i = int(flips[0])
+    f = lateral[i] / (lateral[i] - lateral[i + 1])
+    return "ahead" if along[i] + f * (along[i + 1] - along[i]) > 0 else "astern"
+
+
+def _num(x, digits: int = 3):
+    if x is None or not np.isfinite(x):
+        return None
+    return round(float(x), digits)
