@@ -15,7 +15,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from usvtool.report import build, render
+from usvtool.report import build
+from usvtool.report.page import PDF_HINT
 from usvtool.report.papers import TABLES
 
 pytestmark = pytest.mark.slow  # the report built from a batch, with its PDF
@@ -135,7 +136,7 @@ def test_without_weasyprint_the_same_html_and_pngs_are_written_and_a_line_says_w
     run (same results, same bytes), and no PDF."""
     def missing(page):
         raise build.PdfUnavailable("report.pdf not written (OSError: cannot load library "
-                                   "'pango'): " + render.PDF_HINT)  # fmt: skip
+                                   "'pango'): " + PDF_HINT)  # fmt: skip
 
     monkeypatch.setattr(build, "pdf", missing)
     from click.testing import CliRunner

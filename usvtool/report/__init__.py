@@ -5,6 +5,6 @@ The comparison report is put together from its sections (:mod:`.sections`), whic
 papers' data (:mod:`.papers`) beside ours. Both reports use the pieces at this level: the value
 kinds of a results table (:mod:`.values`), the all-or-nothing output writer (:mod:`.output`) and
 the templates (:mod:`.templating`); the comparison report also the document model
-(:mod:`.document`), its loaded results (:mod:`.data`), its page and PDF (:mod:`.render`) and its
+(:mod:`.document`), its loaded results (:mod:`.data`), its page and PDF (:mod:`.page`) and its
 figures (:mod:`.figures`).
 """

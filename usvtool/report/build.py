@@ -19,7 +19,7 @@ from usvtool.errors import UsvError
 from usvtool.report.data import load
 from usvtool.report.document import Section
 from usvtool.report.output import write_together
-from usvtool.report.render import PdfUnavailable, html, pdf
+from usvtool.report.page import PdfUnavailable, html, pdf
 from usvtool.report.sections import (
     claims,
     encounters,

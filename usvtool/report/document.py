@@ -1,6 +1,6 @@
 """The report as data: sections of paragraphs, figures and tables, rendered by the templates.
 
-Building the document (:mod:`.sections`) is kept apart from writing it (:mod:`.render`), so
+Building the document (:mod:`.sections`) is kept apart from writing it (:mod:`.page`), so
 that the HTML and the PDF come from one document and the tests can look at it directly.
 """
 
