@@ -21,9 +21,9 @@ from usvtool.report.document import Section
 from usvtool.report.output import write_together
 from usvtool.report.page import PdfUnavailable, html, pdf
 from usvtool.report.sections import (
+    benchmark_functions,
     claims,
     encounters,
-    functions,
     methods,
     planning,
     preprocessing,
@@ -72,7 +72,7 @@ class ReportResult:
 
 
 #: The section builders, in reading order.
-BUILDERS = (claims.section, planning.section, functions.section, encounters.section,
+BUILDERS = (claims.section, planning.section, benchmark_functions.section, encounters.section,
             preprocessing.section, methods.section)  # fmt: skip
 
 
