@@ -18,8 +18,8 @@ import time
 
 import numpy as np
 
+from usvtool.plan.benchmark_functions import FUNCTIONS
 from usvtool.plan.benchrun import BenchmarkOptions, run_benchmark
-from usvtool.plan.functions import FUNCTIONS
 from usvtool.plan.optimizers import OPTIMIZERS, make_optimizer
 
 SHIFT = 37.0

@@ -250,7 +250,7 @@ def case_exists(kind: str, case: str) -> bool:
     if kind == "runs":
         path = SCENARIOS / f"{case}.yaml"
         return path.is_file() and yaml.safe_load(path.read_text(encoding="utf-8"))["name"] == case
-    source = (ROOT / "usvtool" / "plan" / "functions.py").read_text(encoding="utf-8")
+    source = (ROOT / "usvtool" / "plan" / "benchmark_functions.py").read_text(encoding="utf-8")
     return f'BenchmarkFunction("{case}"' in source
 
 

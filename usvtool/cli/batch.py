@@ -58,7 +58,7 @@ def stage_names() -> Names:
     the file options of the commands a pipeline gives options to."""
     from usvtool.cli.plan import plan
     from usvtool.cli.preprocess import preprocess
-    from usvtool.plan.functions import FUNCTIONS
+    from usvtool.plan.benchmark_functions import FUNCTIONS
     from usvtool.plan.optimizers import OPTIMIZERS
     from usvtool.plan.planners import EXACT
     from usvtool.sim.controllers import CONTROLLERS

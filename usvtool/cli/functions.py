@@ -13,7 +13,7 @@ import sys
 import click
 
 from usvtool.cli.options import emit, seed_option
-from usvtool.plan.functions import FUNCTIONS
+from usvtool.plan.benchmark_functions import FUNCTIONS
 from usvtool.plan.optimizers import OPTIMIZERS
 
 

@@ -20,7 +20,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from usvtool.plan.functions import FUNCTIONS, get_function
+from usvtool.plan.benchmark_functions import FUNCTIONS, get_function
 from usvtool.plan.optimizers import OPTIMIZERS, make_optimizer
 
 STATS = ("best", "worst", "mean", "std")

@@ -134,7 +134,7 @@ IWSO_DWA_TABLE_1 = PaperTable(
     "prints 'population size ... 300, and the search agent ... 50'; read as in "
     "docs/optimizers.md); the dimension is not stated (30 fits: IWSO's F8 mean -1.23e4 is near "
     "the 30-D minimum -12569.5 and BOA's, GWO's and WOA's F5 near Rosenbrock's 30-D plateau "
-    "of 25-29). Our cases: usvtool.plan.functions F1-F10 by the same names; F6 differs.",
+    "of 25-29). Our cases: usvtool.plan.benchmark_functions F1-F10 by the same names; F6 differs.",
     notes=(
         "Every cell is printed as $m \\times 10^{e}$, in the converted text mostly as "
         "'m  imes 10^{e}' (the '\\t' of '\\times' lost); transcribed here as 'me e'.",
@@ -143,8 +143,8 @@ IWSO_DWA_TABLE_1 = PaperTable(
         "Std is printed as 0.00 x 10^0 where best and worst differ (MRFO F1 and F3, SSA F1): "
         "transcribed as printed (0.0).",
         "F6: the paper's values are not integers (IWSO's best 9.98e-9), which the step function "
-        "sum(floor(x + 0.5)^2) of usvtool.plan.functions cannot give; the paper's F6 is likely "
-        "sum(|x + 0.5|^2), as in Mirjalili's benchmark code: rows not comparable.",
+        "sum(floor(x + 0.5)^2) of usvtool.plan.benchmark_functions cannot give; the paper's F6 "
+        "is likely sum(|x + 0.5|^2), as in Mirjalili's benchmark code: rows not comparable.",
         "BOA's F8 best (-1.71e7), worst (-6.46e4) and mean (-1.48e6) are below F8's 30-D "
         "minimum, -12569.5: that implementation left the box (docs/optimizers.md).",
         "The paper has no ISSA, PSO or pso-issa column.",

@@ -35,7 +35,7 @@ def section(results: Results) -> Section | None:
     s = Section("functions", "Benchmark functions")
     s.paragraphs.append(
         "Each optimizer minimises F1-F10 (unimodal F1-F7, multimodal F8-F10; "
-        "usvtool/plan/functions.py) from its own seeds.")
+        "usvtool/plan/benchmark_functions.py) from its own seeds.")
     s.blocks += published.tables(results, "functions")
     s.blocks.append(table(results))
     return s

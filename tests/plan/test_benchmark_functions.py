@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from usvtool.errors import UsvError
-from usvtool.plan.functions import FUNCTIONS, get_function
+from usvtool.plan.benchmark_functions import FUNCTIONS, get_function
 
 
 def value(name, x, rng=None):
