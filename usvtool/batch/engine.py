@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 from functools import partial
 from pathlib import Path
 
-from usvtool.batch import table
+from usvtool.batch import results_tables
 from usvtool.batch.jobs import PRIORITY, Job, ScenarioFiles, expand
 from usvtool.batch.progress import Bar, Lines
 from usvtool.batch.record import damage
@@ -200,10 +200,11 @@ def _run_jobs(executor, run: _Run, out: Path, command: Command) -> None:
 
 
 def _measure(executor, pipeline, out: Path, jobs: list[Job], command: Command) -> str:
-    """``usvtool metrics`` of the routes and runs done, run by a worker (:func:`table.measure`)."""
+    """``usvtool metrics`` of the routes and runs done, run by a worker
+    (:func:`results_tables.measure`)."""
     sim = pipeline.simulation
     reference = sim.reference_controller if sim is not None else None
-    future = executor.submit("table", table.measure, str(out), jobs, command, reference)
+    future = executor.submit("table", results_tables.measure, str(out), jobs, command, reference)
     try:
         return future.result()
     except UsvError:
@@ -254,12 +255,12 @@ def run_batch(pipeline_path, options: BatchOptions) -> BatchResult:
                                "write there)")  # fmt: skip
             table_started = time.monotonic()
             done = [j for j in jobs if _state(j, out)]
-            measured = [j for j in done if j.kind in table.METHOD_COLUMN]
+            measured = [j for j in done if j.kind in results_tables.METHOD_COLUMN]
             wide = None
             if measured:
                 wide = _measure(executor, pipeline, out, measured, options.command)
-            metrics, timings = table.rows(done, wide, out)
-            parquet = table.write(out / "metrics.csv", metrics, timings)
+            metrics, timings = results_tables.rows(done, wide, out)
+            parquet = results_tables.write(out / "metrics.csv", metrics, timings)
             run.stage_time["table"] = time.monotonic() - table_started
             _remove_temporaries(out)
     finally:
