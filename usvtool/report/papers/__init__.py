@@ -6,7 +6,7 @@ the papers' order, into the lookups below. A new paper is a module and its entry
 
 Tables (:data:`TABLES`, by id): each :class:`PaperTable` holds one published table (or the
 figures a paper gives in its text), its columns with the paper's headings and units, and one
-:class:`Row` per method and case, with every cell as the paper prints it beside its float (None
+:class:`PaperRow` per method and case, with every cell as the paper prints it beside its float (None
 where the paper gives nothing). Names are usvtool's: algorithms as the optimizer registry spells
 them, controllers as the controller registry, cases as the bundled charts (routes), scenarios
 (runs) and benchmark functions (functions) are named in the results table
@@ -43,9 +43,9 @@ from usvtool.report.papers.schema import (
     Claim,
     Column,
     Paper,
+    PaperRow,
     PaperTable,
     Quote,
-    Row,
 )
 from usvtool.report.papers.udwa import UDWA_TABLE_1, UDWA_WIND
 
@@ -60,6 +60,6 @@ CLAIMS: tuple[Claim, ...] = tuple(c for m in PAPER_MODULES for c in m.CLAIMS)
 
 __all__ = [
     "BETTER", "CLAIMS", "PAPERS", "PAPER_MODULES", "STATISTICS", "TABLES", "Claim", "Column",
-    "Paper", "PaperTable", "Quote", "Row", "ISSA_FIGURE_11", "ISSA_TABLE_3",
+    "Paper", "PaperRow", "PaperTable", "Quote", "ISSA_FIGURE_11", "ISSA_TABLE_3",
     "IWSO_DWA_ENCOUNTERS", "IWSO_DWA_TABLE_1", "IWSO_DWA_TABLE_2", "UDWA_TABLE_1", "UDWA_WIND",
 ]  # fmt: skip

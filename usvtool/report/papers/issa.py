@@ -5,7 +5,15 @@ claims (docs/papers.md).
 
 from __future__ import annotations
 
-from usvtool.report.papers.schema import Claim, Column, Paper, PaperTable, Quote, Row, printed_row
+from usvtool.report.papers.schema import (
+    Claim,
+    Column,
+    Paper,
+    PaperRow,
+    PaperTable,
+    Quote,
+    printed_row,
+)
 
 PAPER = Paper("issa", "002_8767512603f69f43.txt",
               "Liu, Zhang, Ma & Pan, Path Planning of Unmanned Surface Vehicle Based on Improved "
@@ -71,7 +79,7 @@ ISSA_FIGURE_11 = PaperTable(
         Column("planning_time_s", "iteration time", "s", "planning_time_s", "value"),
     ),
     rows=(
-        Row("issa", "Improved Sparrow Search Algorithm", "grid50",
+        PaperRow("issa", "Improved Sparrow Search Algorithm", "grid50",
             "Zhenjiang Port to Yangzhou Port, ENC grid, (2, 2) to (50, 50)",
             (63.97, 3.0, 2.99), ("63.97", "three", "2.99")),
     ),

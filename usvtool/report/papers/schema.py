@@ -47,7 +47,7 @@ class Column:
 
 
 @dataclass(frozen=True)
-class Row:
+class PaperRow:
     """One method in one case: the paper's names beside ours, and one cell per column."""
 
     method: str
@@ -71,7 +71,7 @@ class PaperTable:
     caption: str
     kind: str
     columns: tuple[Column, ...]
-    rows: tuple[Row, ...]
+    rows: tuple[PaperRow, ...]
     setup: str
     notes: tuple[str, ...] = ()
 
@@ -82,7 +82,7 @@ class PaperTable:
                 return c
         raise KeyError(f"{self.id}: no column {name!r}")
 
-    def row(self, method: str, case: str) -> Row | None:
+    def row(self, method: str, case: str) -> PaperRow | None:
         """The paper's row for ``method`` in ``case``; None when the paper has none."""
         return next((r for r in self.rows if r.method == method and r.case == case), None)
 
@@ -128,7 +128,7 @@ class Claim:
 
 
 def printed_row(method: str, paper_method: str, case: str, paper_case: str,
-                *printed: str | None, comparable: bool = True) -> Row:  # fmt: skip
+                *printed: str | None, comparable: bool = True) -> PaperRow:  # fmt: skip
     """A row whose cells are numbers as printed (E notation for Table 1's "m x 10^e")."""
     values = tuple(None if p is None else float(p) for p in printed)
-    return Row(method, paper_method, case, paper_case, values, tuple(printed), comparable)
+    return PaperRow(method, paper_method, case, paper_case, values, tuple(printed), comparable)
