@@ -18,6 +18,7 @@ from usvtool import angles
 from usvtool import encounter as enc
 from usvtool.sim import tracking as trk
 from usvtool.sim import verdicts as vd
+from usvtool.trace import Trace
 
 L = 10.0  # ship length: domain semi-axes 35 m and 15 m, risk distance 35 m, critical range 100 m
 DT = 0.1
@@ -447,8 +448,16 @@ def straight(x0, y0, h, v, turns=()):
     return own_track(h, v, turns, x0=x0, y0=y0)
 
 
+def trace_of(own, *targets):
+    """The trace of the own ship's and the targets' ``(x, y, heading, speed)`` arrays."""
+    ships = (own, *targets)
+    x, y, h, v = (np.column_stack([s[i] for s in ships]) for i in range(4))
+    names = ["own", *(f"target{j + 1}" for j in range(len(targets)))]
+    return Trace(T, names, x, y, h, v, np.zeros_like(x))
+
+
 def run(own, target, rule2=None, **kw):
-    r = vd.evaluate(T, *own, *target, L, L, rule2, **kw)
+    r = vd.evaluate(trace_of(own, target), [L, L], rule2, **kw)
     json.dumps(r, allow_nan=False)  # plain JSON
     return r
 
@@ -607,8 +616,7 @@ def test_crossing_ahead_or_astern_helper():
 def test_targets_without_an_encounter_and_several_targets():
     far = straight(500, -500, 90, 3)  # moving away east, never closing
     own = own_track(0, 5, turns=[(5, 40, 10)])
-    targets = [np.column_stack(pair) for pair in zip(HEAD_ON_TARGET, far, strict=True)]
-    r = vd.evaluate(T, *own, *targets, L)
+    r = vd.evaluate(trace_of(own, HEAD_ON_TARGET, far), [L, L, L])
     first, second = r["events"]
     assert first["class"] == "head-on" and first["compliant"]
     assert second == {**second, "target": 1, "class": "none", "compliant": None}
@@ -672,3 +680,14 @@ def test_overtaken_turning_to_port_in_extremis_fails_no_port_rule():
     assert e["class"] == "overtaken" and e["first_manoeuvre"]["side"] == "port"
     assert e["first_manoeuvre"]["range_m"] < 100
     assert e["failed_rules"] == []
+
+
+def test_evaluate_takes_one_length_per_ship_of_the_trace():
+    with pytest.raises(ValueError, match="1 lengths for the 2 ships"):
+        vd.evaluate(trace_of(own_track(0, 5), HEAD_ON_TARGET), [L])
+    # the targets' lengths feed only the own ship's time in their domains
+    short, long = (vd.evaluate(trace_of(own_track(0, 5), HEAD_ON_TARGET), [L, length])
+                   for length in (1.0, 20.0))  # fmt: skip
+    (a,), (b,) = short["events"], long["events"]
+    assert a["own_in_target_domain_s"] < b["own_in_target_domain_s"]
+    assert {**a, "own_in_target_domain_s": 0} == {**b, "own_in_target_domain_s": 0}

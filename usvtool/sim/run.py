@@ -308,10 +308,7 @@ def _result(scenario, setup, opts, controller, times, own, ahead, motion, length
     names = ["own", *[t.name for t in scenario.targets]]
     trace = Trace(times, names, x, y, heading, speed, yaw)
     rule2 = [e for e in controller_events if e["kind"] == "rule2-departure"]
-    evaluation = verdicts.evaluate(
-        times, x[:, 0], y[:, 0], heading[:, 0], speed[:, 0], x[:, 1:], y[:, 1:], heading[:, 1:],
-        speed[:, 1:], setup.vessel.length, lengths, rule2,
-    )  # fmt: skip
+    evaluation = verdicts.evaluate(trace, [setup.vessel.length, *lengths], rule2)
     track = np.column_stack([x[:, 0], y[:, 0]])
     sampled = metrics.track_samples(track, dt)
     figures = {

@@ -79,6 +79,7 @@ from usvtool.sim.manoeuvres import (
     Track,
 )
 from usvtool.sim.tracking import RISK_HORIZON_S, latch_series, onset_distance
+from usvtool.trace import Trace
 
 #: Offsets (m) from a target's heading line below this are on it (for ahead/astern crossings).
 LINE_EPS = 1e-6
@@ -275,17 +276,8 @@ def intrusion_time(t, inside) -> float:
 
 
 def evaluate(
-    t,
-    own_x,
-    own_y,
-    own_heading,
-    own_speed,
-    target_x,
-    target_y,
-    target_heading,
-    target_speed,
-    own_length: float,
-    target_length=None,
+    trace: Trace,
+    lengths,
     rule2=None,
     *,
     risk_distance=None,
@@ -296,11 +288,12 @@ def evaluate(
 ) -> dict:
     """Encounters, manoeuvres and verdicts of a finished run, as plain JSON-ready data.
 
-    ``t`` and the own ship's arrays are ``(n,)``; the targets' are ``(n, k)`` (or ``(n,)`` for
-    one target); ``target_length`` (scalar or ``(k,)``) only feeds ``own_in_target_domain_s``.
-    ``rule2`` lists the controller's Rule 2 departure records ``{"t", "target", "reason"}``
-    (target = index). Defaults: ``risk_distance`` = the domain's semi-major axis ``3.5 L``,
-    ``clear_distance`` = ``risk_distance``, ``critical_range`` = ``10 L``.
+    ``trace``: the run, the own ship first, then its ``k`` targets (indexed from 0 in the
+    events); ``lengths``: the ships' lengths in the trace's order, the own ship's first (the
+    targets' only feed ``own_in_target_domain_s``). ``rule2`` lists the controller's Rule 2
+    departure records ``{"t", "target", "reason"}`` (target = index). Defaults:
+    ``risk_distance`` = the domain's semi-major axis ``3.5 L``, ``clear_distance`` =
+    ``risk_distance``, ``critical_range`` = ``10 L``.
 
     Returns ``{"events": [...], "figures": {...}, "thresholds": {...}, "unmatched_rule2":
     [...]}``. Each event is one encounter (a target without one gets a single event of class
@@ -318,61 +311,25 @@ def evaluate(
     ``thresholds`` echoes the values used (an infinite ``release_distance`` is null);
     ``unmatched_rule2`` the records that fall in no encounter of their target.
     """
-    t = np.asarray(t, float)
-    n = len(t)
-    own_h = np.asarray(own_heading, float)
-    own_v = np.asarray(own_speed, float)
-    own_xy = np.stack([np.asarray(own_x, float), np.asarray(own_y, float)], axis=-1)
-    tx, ty, th, tv = (
-        np.asarray(a, float).reshape(n, -1)
-        for a in (target_x, target_y, target_heading, target_speed)
-    )
-    k = tx.shape[1]
-    txy = np.stack([tx, ty], axis=-1)
-    length = float(own_length)
-    t_len = np.broadcast_to(
-        np.asarray(length if target_length is None else target_length, float), (k,)
-    )
+    lengths = np.asarray(lengths, float)
+    if lengths.shape != (len(trace.ships),):
+        raise ValueError(f"{lengths.size} lengths for the {len(trace.ships)} ships of the trace")
+    length = float(lengths[0])
     risk = onset_distance(length) if risk_distance is None else risk_distance
     r_crit = CRITICAL_RANGE_LENGTHS * length if critical_range is None else float(critical_range)
-    run = _Run(
-        t=t,
-        own_xy=own_xy,
-        target_xy=txy,
-        target_heading=th,
-        sit=assess(own_xy[:, None], own_h[:, None], own_v[:, None], txy, th, tv),
-        inside=in_domain(own_xy[:, None], own_h[:, None], txy, length),
-        own_inside=in_domain(txy, th, own_xy[:, None], t_len),
-        track=Track(t, own_h, own_v),
-        r_crit=r_crit,
-    )
-    latched = latch_series(run.sit.cls, run.sit.dcpa, run.sit.tcpa, run.sit.range, risk,
-                           horizon_s, clear_distance, release_distance)  # fmt: skip
-    records = [dict(r) for r in (rule2 or [])]
-    matched = [False] * len(records)
-    events = []
-    for j in range(k):
-        spans = _spans(latched[:, j])
-        if not spans:
-            events.append(_no_encounter(j, run.sit.range[:, j]))
-        for on, off in spans:
-            mine = [q for q, r in enumerate(records) if _within(r, j, t[on], t[min(off, n - 1)])]
-            for q in mine:
-                matched[q] = True
-            events.append(run.event(j, int(latched[on, j]), on, off, [records[q] for q in mine]))
-    distances = metrics.run_distances(own_xy[:, 0], own_xy[:, 1], tx, ty,
-                                      (latched != NONE).any(axis=1))  # fmt: skip
-    figures = {
-        **{name: _num(value) for name, value in distances.items()},
-        "domain_intrusion_s": _num(intrusion_time(t, run.inside) if k else 0.0),
-    }
+    run = _Run.of(trace, lengths, r_crit)
+    sit = run.sit
+    latched = latch_series(sit.cls, sit.dcpa, sit.tcpa, sit.range, risk, horizon_s,
+                           clear_distance, release_distance)  # fmt: skip
+    records = _Records(rule2)
+    events = [e for j in range(sit.cls.shape[1]) for e in run.events(j, latched[:, j], records)]
     return {
         "events": events,
-        "figures": figures,
+        "figures": run.figures(latched),
         "thresholds": _thresholds(
             risk, horizon_s, clear_distance, release_distance, r_crit, length
         ),
-        "unmatched_rule2": [r for r, m in zip(records, matched, strict=True) if not m],
+        "unmatched_rule2": records.unmatched(),
     }
 
 
@@ -390,6 +347,49 @@ class _Run:
     own_inside: np.ndarray
     track: Track
     r_crit: float
+
+    @classmethod
+    def of(cls, trace: Trace, lengths: np.ndarray, r_crit: float) -> _Run:
+        """The run of ``trace``, its ships of ``lengths`` (own first)."""
+        own_xy = np.stack([trace.x[:, 0], trace.y[:, 0]], axis=-1)
+        own_h, own_v = trace.heading[:, 0], trace.speed[:, 0]
+        txy = np.stack([trace.x[:, 1:], trace.y[:, 1:]], axis=-1)
+        th, tv = trace.heading[:, 1:], trace.speed[:, 1:]
+        return cls(
+            t=trace.t,
+            own_xy=own_xy,
+            target_xy=txy,
+            target_heading=th,
+            sit=assess(own_xy[:, None], own_h[:, None], own_v[:, None], txy, th, tv),
+            inside=in_domain(own_xy[:, None], own_h[:, None], txy, lengths[0]),
+            own_inside=in_domain(txy, th, own_xy[:, None], lengths[1:]),
+            track=Track(trace.t, own_h, own_v),
+            r_crit=r_crit,
+        )
+
+    def events(self, j: int, latched: np.ndarray, records: _Records) -> list[dict]:
+        """The events of target ``j`` from its latched codes: one per encounter, each with the
+        Rule 2 records within it; one of class ``none`` when it had none."""
+        spans = _spans(latched)
+        if not spans:
+            return [_no_encounter(j, self.sit.range[:, j])]
+        last = len(self.t) - 1
+        return [self.event(j, int(latched[on]), on, off,
+                           records.take(j, self.t[on], self.t[min(off, last)]))
+                for on, off in spans]  # fmt: skip
+
+    def figures(self, latched: np.ndarray) -> dict:
+        """The run's distance figures (:func:`usvtool.metrics.run_distances`, over the steps
+        with a latched encounter) and its domain intrusion, to 1 mm and 1 ms."""
+        own, targets = self.own_xy, self.target_xy
+        distances = metrics.run_distances(own[:, 0], own[:, 1], targets[..., 0], targets[..., 1],
+                                          (latched != NONE).any(axis=1))  # fmt: skip
+        return {
+            **{name: _num(value) for name, value in distances.items()},
+            "domain_intrusion_s": _num(
+                intrusion_time(self.t, self.inside) if self.inside.shape[1] else 0.0
+            ),
+        }
 
     def event(self, j: int, code: int, on: int, off: int, rule2: list[dict]) -> dict:
         """The event and verdict of target ``j``'s encounter of class ``code`` latched from
@@ -428,6 +428,25 @@ class _Run:
             "failed_rules": failed,
             "excused_rules": excused,
         }  # fmt: skip
+
+
+class _Records:
+    """The controller's Rule 2 departure records, each handed to the encounters it falls in."""
+
+    def __init__(self, records):
+        self.records = [dict(r) for r in (records or [])]
+        self.matched = [False] * len(self.records)
+
+    def take(self, j: int, start: float, end: float) -> list[dict]:
+        """The records of target ``j`` at a time in ``[start, end]``."""
+        mine = [q for q, r in enumerate(self.records) if _within(r, j, start, end)]
+        for q in mine:
+            self.matched[q] = True
+        return [self.records[q] for q in mine]
+
+    def unmatched(self) -> list[dict]:
+        """The records that fell in no encounter of their target."""
+        return [r for r, m in zip(self.records, self.matched, strict=True) if not m]
 
 
 def _spans(latched: np.ndarray) -> list[tuple[int, int]]:
