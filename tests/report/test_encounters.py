@@ -14,7 +14,7 @@ from affine import Affine
 
 from usvtool.errors import UsvError
 from usvtool.grid import Grid, write_grid
-from usvtool.report.data import Job, Results
+from usvtool.report.data import JobResults, Results
 from usvtool.report.sections.encounters import lengths, run_file, run_files, scenario_section
 from usvtool.trace import read_trace
 
@@ -32,7 +32,7 @@ SCENARIO = {
 
 
 @pytest.fixture(scope="module")
-def run(tmp_path_factory) -> Job:
+def run(tmp_path_factory) -> JobResults:
     """The scenario simulated into a batch's run directory (``runs/<key>/``), the scenario's
     map a 200 m open grid beside it. The scenario file is then made unreadable: nothing may
     read it again."""
@@ -51,7 +51,8 @@ def run(tmp_path_factory) -> Job:
                                  str(job / "trace.events.json")])  # fmt: skip
     assert r.exit_code == 0, r.stderr
     (tmp_path / "s.yaml").write_text("not: [the scenario")
-    return Job("k1", "runs", "s", "udwa", 1, job, config={"scenario": str(tmp_path / "s.yaml")})
+    config = {"scenario": str(tmp_path / "s.yaml")}
+    return JobResults("k1", "runs", "s", "udwa", 1, job, config=config)
 
 
 def test_an_unnamed_40_m_target_is_drawn_40_m_long(run):

@@ -1,8 +1,8 @@
 """The report's inputs: results tables (:mod:`usvtool.results`) and the job files they point to.
 
-Each row of a table is one metric of one job; :func:`load` gathers a job's rows into a
-:class:`Job` with its directory (``<table's directory>/<kind>/<key>/``), its ``job.json`` (what
-the batch engine ran: the grid of a route, the scenario of a run) and its timings (the
+Each row of a table is one metric of one job; :func:`load` gathers a job's rows into its
+:class:`JobResults` with its directory (``<table's directory>/<kind>/<key>/``), its ``job.json``
+(what the batch engine ran: the grid of a route, the scenario of a run) and its timings (the
 ``timings.csv`` beside the table, when there is one). Several tables may be given (several
 batches); a key found in two of them is refused, as the report could not tell which is meant.
 A table (or its timings) holding a value that is not of its metric's kind (``nan`` where a
@@ -41,8 +41,9 @@ def method_order(name: str, order: Sequence[str] = ()) -> tuple:
 
 
 @dataclass
-class Job:
-    """One job of a results table: its metrics, files and configuration."""
+class JobResults:
+    """One job of a results table: its metrics, files and configuration (its ``job.json``, which
+    the batch's :class:`usvtool.batch.jobs.Job` wrote: what ran)."""
 
     key: str
     kind: str
@@ -79,11 +80,13 @@ class Results:
     their methods in (``usvtool report`` gives the registries': the planners, then the
     controllers), which :meth:`methods` keeps."""
 
-    jobs: list[Job]
+    jobs: list[JobResults]
     tables: list[Path]
     order: tuple[str, ...] = ()
 
-    def select(self, kind: str, case: str | None = None, method: str | None = None) -> list[Job]:
+    def select(
+        self, kind: str, case: str | None = None, method: str | None = None
+    ) -> list[JobResults]:
         return [j for j in self.jobs if j.kind == kind and case in (None, j.case)
                 and method in (None, j.method)]  # fmt: skip
 
@@ -105,20 +108,20 @@ def load(tables, order: Sequence[str] = ()) -> Results:
     (:attr:`Results.order`)."""
     if not tables:
         raise UsvError("no results table given")
-    jobs: dict[str, Job] = {}
+    jobs: dict[str, JobResults] = {}
     where: dict[str, Path] = {}
     for table in map(Path, tables):
         rows = _read(table)
         timings = _read(timings_path(table)) if timings_path(table).is_file() else []
-        mine: dict[str, Job] = {}
+        mine: dict[str, JobResults] = {}
         for row in rows:
             if row.key in where and where[row.key] != table:
                 raise UsvError(f"{table}: job {row.key} is also in {where[row.key]}")
             where[row.key] = table
             job = mine.get(row.key)
             if job is None:
-                job = mine[row.key] = Job(row.key, row.kind, row.case, row.method, row.seed,
-                                          job_dir(table, row))  # fmt: skip
+                job = mine[row.key] = JobResults(row.key, row.kind, row.case, row.method,
+                                                 row.seed, job_dir(table, row))  # fmt: skip
                 config = job.dir / "job.json"
                 if config.is_file():
                     try:

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-from usvtool.report.data import Job, Results, statistic
+from usvtool.report.data import JobResults, Results, statistic
 from usvtool.report.document import Cell, Section, Table
 from usvtool.report.papers import CLAIMS, PAPERS, Claim
 
@@ -29,7 +29,7 @@ class Verdict:
     evidence: list[str]  # one line per case: our figures
 
 
-def _run_value(job: Job, metric: str) -> float | None:
+def _run_value(job: JobResults, metric: str) -> float | None:
     if metric in EVENTS:
         return 1.0 if job.text(metric) else 0.0
     return job.number(metric)

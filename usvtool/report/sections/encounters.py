@@ -22,7 +22,7 @@ import numpy as np
 from usvtool.errors import UsvError
 from usvtool.grid import read_grid
 from usvtool.report import figures
-from usvtool.report.data import Job, Results, stats
+from usvtool.report.data import JobResults, Results, stats
 from usvtool.report.document import Cell, Figure, Section, Table, number
 from usvtool.report.papers import CLAIMS
 from usvtool.report.sections import published
@@ -58,7 +58,7 @@ class RunFiles(NamedTuple):
     path: Path
 
 
-def run_files(job: Job) -> RunFiles | None:
+def run_files(job: JobResults) -> RunFiles | None:
     trace, events = job.dir / "trace.csv", job.dir / "trace.events.json"
     if not (trace.is_file() and events.is_file()):
         return None

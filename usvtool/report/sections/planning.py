@@ -1,7 +1,7 @@
 """The report's global-planning section: per chart, the routes of every algorithm, their
 convergence, box plots over seeds and a table of the papers' route metrics.
 
-A route job's grid is that of its grid job (:meth:`Job.grid_dir`); the route drawn for an
+A route job's grid is that of its grid job (:meth:`JobResults.grid_dir`); the route drawn for an
 algorithm is that of its first seed, the figures over seeds use all of them.
 """
 
@@ -14,7 +14,7 @@ import numpy as np
 
 from usvtool.grid import read_grid
 from usvtool.report import figures
-from usvtool.report.data import Job, Results, seed_text, stats
+from usvtool.report.data import JobResults, Results, seed_text, stats
 from usvtool.report.document import Cell, Figure, Section, Table, number
 from usvtool.report.sections import published
 from usvtool.route import read_path_geojson
@@ -33,18 +33,18 @@ def _grid(path: Path):
     return read_grid(path)
 
 
-def grid_of(job: Job):
+def grid_of(job: JobResults):
     """The route job's grid (None when its grid job is not beside it)."""
     where = job.grid_dir()
     return _grid(where / "grid.tif") if where and (where / "grid.tif").is_file() else None
 
 
-def _route(job: Job) -> tuple[np.ndarray, dict] | None:
+def _route(job: JobResults) -> tuple[np.ndarray, dict] | None:
     path = job.dir / "route.geojson"
     return read_path_geojson(path) if path.is_file() else None
 
 
-def _first(jobs: list[Job]) -> Job:
+def _first(jobs: list[JobResults]) -> JobResults:
     return min(jobs, key=lambda j: (j.seed is None, j.seed))
 
 
@@ -105,7 +105,7 @@ def metrics_table(results: Results, chart: str, methods: list[str]) -> Table:
                  "planning time of the machine of the methods section.", columns, rows)
 
 
-def _convergence(job: Job) -> list[float]:
+def _convergence(job: JobResults) -> list[float]:
     route = _route(job)
     return list(route[1].get("convergence") or []) if route else []
 
