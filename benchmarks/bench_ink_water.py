@@ -20,7 +20,7 @@ from pathlib import Path
 import cv2
 import numpy as np
 
-from usvtool.chart.preprocess import Options, preprocess
+from usvtool.chart.preprocess import PreprocessOptions, preprocess
 from usvtool.grid import NAVIGABLE, OBSTACLE
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -65,7 +65,7 @@ def main() -> None:
         for mode in modes:
             t = time.perf_counter()
             cells[mode] = preprocess(ROOT / "charts" / "noaa" / f"{name}.KAP",
-                                     Options(ink=mode)).grid.cells  # fmt: skip
+                                     PreprocessOptions(ink=mode)).grid.cells  # fmt: skip
             seconds[mode] = time.perf_counter() - t
         first, last = modes[0], modes[-1]
         for what, water_of in (("navigable", lambda c: c == NAVIGABLE),

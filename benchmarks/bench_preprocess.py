@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from usvtool.chart.preprocess import Options, preprocess
+from usvtool.chart.preprocess import PreprocessOptions, preprocess
 from usvtool.chart.render import RenderOptions, render
 from usvtool.chart.segment import segment
 from usvtool.chart.sources import read_raster
@@ -45,10 +45,10 @@ REAL = [
 FRESH = """
 import json, re, sys, time
 from pathlib import Path
-from usvtool.chart.preprocess import Options, preprocess
+from usvtool.chart.preprocess import PreprocessOptions, preprocess
 from usvtool.grid import write_grid
 t = time.perf_counter()
-r = preprocess(sys.argv[1], Options(**json.loads(sys.argv[2])))
+r = preprocess(sys.argv[1], PreprocessOptions(**json.loads(sys.argv[2])))
 write_grid(sys.argv[3], r.grid)
 s = time.perf_counter() - t
 kb = int(re.search(r"VmHWM:\\s+(\\d+)", Path("/proc/self/status").read_text())[1])
@@ -77,7 +77,7 @@ def main() -> None:
     times, result = [], None
     for _ in range(args.runs):
         t = time.perf_counter()
-        result = preprocess(chart_path, Options(cell_size=10.0))
+        result = preprocess(chart_path, PreprocessOptions(cell_size=10.0))
         write_grid(tmp / "grid.tif", result.grid)
         times.append(time.perf_counter() - t)
     print(f"preprocess end to end (API, read..write): median {statistics.median(times):.3f} s, "

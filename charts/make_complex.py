@@ -204,12 +204,12 @@ def connected_map(kind: str, seed: int = 0, size: float = 500.0, options: dict |
     """
     import tempfile
 
-    from usvtool.chart.preprocess import Options, preprocess
+    from usvtool.chart.preprocess import PreprocessOptions, preprocess
     from usvtool.errors import UsvError
     from usvtool.plan.planner import PlanOptions, plan_route
 
     opts = {**PREPROCESS, **(options or {})}
-    settings = Options(cell_size=float(opts["cell-size"]), margin=float(opts["margin"]))
+    settings = PreprocessOptions(cell_size=float(opts["cell-size"]), margin=float(opts["margin"]))
     for draw in range(MAX_DRAWS):
         doc = generate(kind, seed, size, draw)
         with tempfile.TemporaryDirectory() as tmp:

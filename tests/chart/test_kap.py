@@ -8,7 +8,7 @@ import rasterio
 from rasterio.transform import from_gcps
 from scipy import ndimage
 
-from usvtool.chart.preprocess import Options, preprocess
+from usvtool.chart.preprocess import PreprocessOptions, preprocess
 from usvtool.geodesy import transformer
 
 # lon/lat of three points of the Mississippi's main channel, north to south
@@ -18,7 +18,7 @@ CUTLINE_NORTH, CUTLINE_SOUTH = 29.1850, 29.1233333333
 
 @pytest.fixture(scope="module")
 def result(kap):
-    return preprocess(kap, Options())
+    return preprocess(kap, PreprocessOptions())
 
 
 def test_channel_points_are_water_on_the_chart_itself(kap):

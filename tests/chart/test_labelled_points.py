@@ -20,7 +20,7 @@ import rasterio
 from pyproj import Geod
 from rasterio.transform import from_gcps
 
-from usvtool.chart.preprocess import Options, preprocess
+from usvtool.chart.preprocess import PreprocessOptions, preprocess
 from usvtool.geodesy import transformer
 from usvtool.grid import NAVIGABLE, OBSTACLE
 
@@ -65,7 +65,7 @@ def grid_of(charts):
 
     def get(name):
         if name not in cache:
-            cache[name] = preprocess(charts / "noaa" / name, Options()).grid
+            cache[name] = preprocess(charts / "noaa" / name, PreprocessOptions()).grid
         return cache[name]
 
     return get

@@ -9,7 +9,7 @@ places of Boston Harbor.
 import pytest
 import rasterio
 
-from usvtool.chart.preprocess import Options, preprocess
+from usvtool.chart.preprocess import PreprocessOptions, preprocess
 from usvtool.chart.render import render_cell, write_chart, write_truth
 from usvtool.chart.s57 import read_cell
 from usvtool.geodesy import WGS84, transformer
@@ -31,7 +31,7 @@ def rendering(enc, tmp_path_factory):
 @pytest.mark.parametrize("channel", ["membership", "chromatic"])
 def test_land_iou_of_the_image_pipeline_on_a_real_cell(rendering, channel):
     chart, truth_path = rendering
-    result = preprocess(chart, Options(cell_size=15.0, channel=channel))
+    result = preprocess(chart, PreprocessOptions(cell_size=15.0, channel=channel))
     with rasterio.open(truth_path) as ds:
         truth = ds.read(1)
     covered, land = truth != 255, truth == 1
@@ -45,7 +45,7 @@ def cell_at(grid, lon, lat):
 
 
 def test_vector_path_on_the_real_cell(enc):
-    result = preprocess(enc, Options(cell_size=20.0))
+    result = preprocess(enc, PreprocessOptions(cell_size=20.0))
     grid = result.grid
     assert grid.crs.to_epsg() == 32619 and result.summary()["source_kind"] == "s57"
     assert cell_at(grid, *THOMPSON_ISLAND) == 1

@@ -15,7 +15,7 @@ import pytest
 import shapely
 
 from usvtool.chart import s57
-from usvtool.chart.preprocess import Options, preprocess
+from usvtool.chart.preprocess import PreprocessOptions, preprocess
 
 SOURCE = Path(__file__).resolve().parents[2] / "charts" / "noaa" / "US4MD81M"
 #: A wreck (VALSOU 11.9 m) that the updates add, lon/lat as charted.
@@ -39,7 +39,7 @@ def cells(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def results(cells):
-    return [preprocess(path, Options(cell_size=CELL_SIZE)) for path in cells]
+    return [preprocess(path, PreprocessOptions(cell_size=CELL_SIZE)) for path in cells]
 
 
 def test_update_3_applied_with_the_files_beside_it(results):

@@ -20,7 +20,7 @@ from rasterio.warp import Resampling, calculate_default_transform, reproject
 from shapely.geometry import Polygon, box, mapping
 
 from usvtool.chart.colours import colour_index
-from usvtool.chart.preprocess import Options, preprocess
+from usvtool.chart.preprocess import PreprocessOptions, preprocess
 from usvtool.chart.sources import RasterChart, read_raster
 from usvtool.errors import UsvError
 from usvtool.geodesy import WGS84, reproject_geometries, transformer
@@ -90,7 +90,7 @@ def kap_3857(kap, tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def kap_and_mercator(kap, kap_3857):
-    return preprocess(kap, Options()), preprocess(kap_3857, Options())
+    return preprocess(kap, PreprocessOptions()), preprocess(kap_3857, PreprocessOptions())
 
 
 def test_web_mercator_geotiff_gives_the_kaps_grid_in_ground_metres(kap_and_mercator):
@@ -185,7 +185,7 @@ def test_nodata_pixels_are_outside_the_chart_and_obstacles_in_the_grid(tmp_path)
     expected = np.ones((40, 60), bool)
     expected[0:10, 40:60] = False
     assert np.array_equal(chart.valid, expected)
-    grid = preprocess(path, Options(cell_size=5.0, margin=0.1)).grid
+    grid = preprocess(path, PreprocessOptions(cell_size=5.0, margin=0.1)).grid
     # cells of 5 m from the top left: rows 0-1, columns 8-11 are the no-data block
     assert (grid.cells[0:2, 8:12] == OBSTACLE).all()
     assert (grid.cells[4:8, 8:12] == 0).all()  # open water below it stays navigable

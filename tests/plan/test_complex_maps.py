@@ -58,11 +58,11 @@ def test_every_kind_gives_a_connected_grid_in_the_way(make_complex, reference):
 
 
 def test_written_map_reads_back_through_preprocess(make_complex, tmp_path):
-    from usvtool.chart.preprocess import Options, preprocess
+    from usvtool.chart.preprocess import PreprocessOptions, preprocess
 
     doc, grid = make_complex.connected_map("islands-dense", 2, SIZE, OPTIONS)
     path = make_complex.write_map(tmp_path / "dense.geojson", doc)
-    again = preprocess(path, Options(cell_size=1.0, margin=1.0)).grid
+    again = preprocess(path, PreprocessOptions(cell_size=1.0, margin=1.0)).grid
     assert np.array_equal(again.cells, grid.cells)
 
 

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy import ndimage
 
-from usvtool.chart.preprocess import Options, preprocess
+from usvtool.chart.preprocess import PreprocessOptions, preprocess
 from usvtool.geodesy import WGS84, transformer
 from usvtool.grid import read_grid
 from usvtool.pipeline import load
@@ -38,7 +38,7 @@ def on_chart(grid, *lonlat) -> list[tuple[float, float]]:
 def river(kap):
     """The KAP chart gridded at 10 m cells, the channel's ends in its UTM metres, and the
     length of the exact any-angle route between them."""
-    grid = preprocess(kap, Options(cell_size=10.0)).grid
+    grid = preprocess(kap, PreprocessOptions(cell_size=10.0)).grid
     ends = on_chart(grid, CHANNEL.start, CHANNEL.goal)
     return grid, ends, plan_route(grid, *ends, PlanOptions("anyangle")).route.length_m
 
@@ -111,7 +111,7 @@ def roads(enc, reference):
     blocked (2.9 M cells) and its shore is 12 000 cells: this fixture takes 0.9 s, not 6.8 s.
     """
     cell_size = float(dict(load().charts["us5ma12m"].options)["cell-size"])
-    grid = preprocess(enc, Options(cell_size=cell_size)).grid
+    grid = preprocess(enc, PreprocessOptions(cell_size=cell_size)).grid
     ends = on_chart(grid, ROADS.start, ROADS.goal)
     shore = grid.blocked & ndimage.binary_dilation(~grid.blocked, structure=np.ones((3, 3)))
     optimum = plan_route(grid, *ends, PlanOptions("anyangle")).route.length_m

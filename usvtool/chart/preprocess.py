@@ -24,7 +24,7 @@ CELL_PER_SHIP_LENGTH = 1.5
 
 
 @dataclass
-class Options:
+class PreprocessOptions:
     """Everything ``preprocess`` can be told; ``None`` means the documented default."""
 
     ship_length: float = DEFAULT_SHIP_LENGTH
@@ -60,7 +60,7 @@ class Options:
 
 
 @dataclass
-class Result:
+class PreprocessResult:
     """A navigation grid, what it came from, and the figures of the run."""
 
     grid: Grid
@@ -73,9 +73,9 @@ class Result:
         return dict(self.details)
 
 
-def preprocess(path, options: Options | None = None) -> Result:
+def preprocess(path, options: PreprocessOptions | None = None) -> PreprocessResult:
     """Turn the chart at ``path`` into a navigation grid."""
-    opts = options or Options()
+    opts = options or PreprocessOptions()
     timings: dict[str, float] = {}
     t = time.perf_counter()
     kind = sources.chart_kind(path)
@@ -185,7 +185,7 @@ def preprocess(path, options: Options | None = None) -> Result:
         **extra,
         "timings_s": {k: round(v, 4) for k, v in timings.items()},
     }
-    return Result(grid, summary, chart, seg)
+    return PreprocessResult(grid, summary, chart, seg)
 
 
 def _named(path, func):

@@ -90,7 +90,7 @@ def preprocess(chart, output, preview, ship_length, cell_size, margin, swell, re
     1.5 x ship length and obstacle swelling, as in the ISSA paper (section 3).
     """
     from usvtool.atomic import check_outputs, staged
-    from usvtool.chart.preprocess import Options
+    from usvtool.chart.preprocess import PreprocessOptions
     from usvtool.chart.preprocess import preprocess as run
     from usvtool.chart.sources import chart_kind
     from usvtool.grid import write_grid
@@ -98,7 +98,7 @@ def preprocess(chart, output, preview, ship_length, cell_size, margin, swell, re
     check_outputs([("-o", output), ("--preview", preview), ("--summary", summary_path)])
     if not preview and preview_resolution is not None:
         raise click.UsageError("--preview-resolution: give --preview too")
-    opts = Options(
+    opts = PreprocessOptions(
         ship_length=ship_length, cell_size=cell_size, margin=margin, swell=swell,
         resolution=resolution, cutline=cutline,
         bounds=tuple(bounds) if bounds else None, clusters=clusters,
