@@ -9,7 +9,7 @@ and ``_run``) and its entry in the tuple below; :func:`register` adds one at run
 from __future__ import annotations
 
 from usvtool.errors import UsvError
-from usvtool.plan.optimizers.base import Objective, Optimizer, Range, Result
+from usvtool.plan.optimizers.base import Objective, Optimizer, OptimizerResult, Range
 from usvtool.plan.optimizers.boa import BOA
 from usvtool.plan.optimizers.gwo import GWO
 from usvtool.plan.optimizers.issa import ISSA
@@ -55,5 +55,5 @@ def make_optimizer(name: str, pop: int = 50, iters: int = 300, seed=None, **para
     return cls(pop=pop, iters=iters, seed=seed, **params)
 
 
-__all__ = ["OPTIMIZERS", "Objective", "Optimizer", "Range", "Result", "make_optimizer",
+__all__ = ["OPTIMIZERS", "Objective", "Optimizer", "OptimizerResult", "Range", "make_optimizer",
            "register", "unregister"]  # fmt: skip

@@ -63,7 +63,7 @@ NON_NEGATIVE = Range(0.0)
 
 
 @dataclass
-class Result:
+class OptimizerResult:
     """Outcome of one optimisation run."""
 
     x: np.ndarray  # best position found, shape (d,)
@@ -120,7 +120,7 @@ class Optimizer(ABC):
             if limits is not None and value not in limits:
                 raise UsvError(f"--param {key} must be {limits} for {cls.name}, not {show(value)}")
 
-    def minimize(self, objective: Objective, lower, upper) -> Result:
+    def minimize(self, objective: Objective, lower, upper) -> OptimizerResult:
         """Minimise ``objective`` over the box; ``lower``/``upper`` are scalars or (d,) arrays."""
         lower = np.atleast_1d(np.asarray(lower, float))
         upper = np.atleast_1d(np.asarray(upper, float))
@@ -134,7 +134,7 @@ class Optimizer(ABC):
         self.history = np.empty(self.iters)
         t0 = time.perf_counter()
         self._run()
-        return Result(
+        return OptimizerResult(
             x=self.best_x.copy(),
             f=float(self.best_f),
             history=self.history,
