@@ -40,7 +40,7 @@ from pathlib import Path
 import numpy as np
 from numba import njit
 
-from usvtool import metrics
+from usvtool import measures
 from usvtool.collision import SegmentChecker
 from usvtool.collision_kernels import touches
 from usvtool.plan.planner import PlanOptions, plan_route
@@ -112,7 +112,7 @@ def fewest_links(checker: SegmentChecker, route, spacing: float, bound: float):
     and its length, or inf and None when none is within ``bound``; ``size`` the lattice's
     number of points."""
     route = np.asarray(route, float)
-    length = float(metrics.path_length(route))
+    length = float(measures.path_length(route))
     s, g = route[0], route[-1]
     xs = np.arange(spacing / 2, checker.width, spacing)
     ys = np.arange(spacing / 2, checker.height, spacing)
@@ -134,7 +134,7 @@ def analyse(name: str, spacing: float, bound: float) -> None:
     checker = SegmentChecker(grid.blocked)
     exact = plan_route(grid, start, goal, PlanOptions("anyangle")).route
     route = np.column_stack(grid.to_cell_coords(*np.asarray(exact.points, float).T))
-    length = float(metrics.path_length(route))
+    length = float(measures.path_length(route))
     t0 = time.perf_counter()
     found, routes, size = fewest_links(checker, route, spacing, bound)
     seconds = time.perf_counter() - t0
@@ -146,8 +146,8 @@ def analyse(name: str, spacing: float, bound: float) -> None:
         if r is None:
             print(f"  {k} links: none within {bound:.0%}")
             continue
-        print(f"  {k} links: {found[k] / length:.4f} x the optimum, {int(metrics.turns(r))} "
-              f"turns, mot {float(metrics.mot(r)):.3f}: "
+        print(f"  {k} links: {found[k] / length:.4f} x the optimum, {int(measures.turns(r))} "
+              f"turns, mot {float(measures.mot(r)):.3f}: "
               + " ".join(f"({x:.2f}, {y:.2f})" for x, y in r))  # fmt: skip
 
 

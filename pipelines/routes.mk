@@ -6,7 +6,7 @@
 # collision_free false in the table), not a failed target (plan would exit 3 for it).
 PATHS_DIR := build/paths
 # the plan stage's code (CLI_SRC and contracts from charts.mk): a chart-only change re-plans nothing
-PLAN_CONTRACTS := grid route collision collision_kernels metrics geodesy atomic errors
+PLAN_CONTRACTS := grid route collision collision_kernels measures geodesy atomic errors
 PLAN_SRC := $(shell find usvtool/plan -name '*.py') usvtool/cli/plan.py $(CLI_SRC) \
 	$(call contracts,$(PLAN_CONTRACTS))
 
@@ -20,7 +20,7 @@ $(foreach c,$(ROUTE_GRIDS),$(foreach a,$(ALGOS),$(eval $(call route_rule,$(c),$(
 
 # the table of the papers' metrics (docs/metrics.md): usvtool metrics writes it atomically; the
 # any-angle route of each chart's directory is the reference of length_ratio
-METRICS_CONTRACTS := metrics route trace angles grid geodesy atomic errors
+METRICS_CONTRACTS := measures route trace angles grid geodesy atomic errors
 METRICS_SRC := $(wildcard usvtool/measure/*.py) usvtool/cli/metrics.py $(CLI_SRC) \
 	$(call contracts,$(METRICS_CONTRACTS))
 $(PATHS_DIR)/summary.csv: $(ROUTES) $(METRICS_SRC)

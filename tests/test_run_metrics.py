@@ -1,4 +1,4 @@
-"""The per-route and per-run figures of usvtool.metrics on hand-computed cases, and the
+"""The per-route and per-run figures of usvtool.measures on hand-computed cases, and the
 measure stage's rows on hand-made files (a polyline route, a two-ship trace)."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from affine import Affine
 
-from usvtool import metrics
+from usvtool import measures
 from usvtool.grid import Grid
 from usvtool.measure import MeasureOptions, measure
 from usvtool.route import Route, write_path_geojson
@@ -24,17 +24,17 @@ TABLE_1 = {"head-on": (54.80, 78.50, 43.25), "crossing": (50.93, 66.90, 31.36),
 @pytest.mark.parametrize("situation", sorted(TABLE_1))
 def test_optimisation_rate_reproduces_table_1(situation):
     ccdwa, udwa, rate = TABLE_1[situation]
-    assert round(metrics.optimisation_rate(udwa, ccdwa) * 100, 2) == rate
+    assert round(measures.optimisation_rate(udwa, ccdwa) * 100, 2) == rate
 
 
 def test_optimisation_rate_and_length_ratio_edge_cases():
-    assert metrics.optimisation_rate(10.0, 10.0) == 0.0
-    assert metrics.optimisation_rate(5.0, 10.0) == -0.5
-    assert metrics.optimisation_rate(None, 10.0) is None
-    assert metrics.optimisation_rate(1.0, 0.0) is None
-    assert metrics.length_ratio(110.0, 100.0) == pytest.approx(1.1)
-    assert metrics.length_ratio(1.0, 0.0) is None
-    assert metrics.length_ratio(None, 1.0) is None
+    assert measures.optimisation_rate(10.0, 10.0) == 0.0
+    assert measures.optimisation_rate(5.0, 10.0) == -0.5
+    assert measures.optimisation_rate(None, 10.0) is None
+    assert measures.optimisation_rate(1.0, 0.0) is None
+    assert measures.length_ratio(110.0, 100.0) == pytest.approx(1.1)
+    assert measures.length_ratio(1.0, 0.0) is None
+    assert measures.length_ratio(None, 1.0) is None
 
 
 def two_ship_trace() -> Trace:
@@ -49,28 +49,28 @@ def two_ship_trace() -> Trace:
 def test_closest_and_average_distance_by_hand():
     tr = two_ship_trace()
     ox, oy, tx, ty = tr.x[:, 0], tr.y[:, 0], tr.x[:, 1:], tr.y[:, 1:]
-    assert metrics.closest_distance(ox, oy, tx, ty) == pytest.approx(3.0)
+    assert measures.closest_distance(ox, oy, tx, ty) == pytest.approx(3.0)
     every = (5 + math.sqrt(13) + 3 + math.sqrt(13) + 5) / 5
-    assert metrics.average_distance(ox, oy, tx, ty) == pytest.approx(every)
-    phase = metrics.encounter_steps(tr.t, [(1.0, 4.0)])  # steps 1, 2, 3
+    assert measures.average_distance(ox, oy, tx, ty) == pytest.approx(every)
+    phase = measures.encounter_steps(tr.t, [(1.0, 4.0)])  # steps 1, 2, 3
     assert phase.tolist() == [False, True, True, True, False]
-    assert metrics.average_distance(ox, oy, tx, ty, phase) == pytest.approx(
+    assert measures.average_distance(ox, oy, tx, ty, phase) == pytest.approx(
         (2 * math.sqrt(13) + 3) / 3
     )
-    assert metrics.closest_distance(ox, oy, np.zeros((5, 0)), np.zeros((5, 0))) is None
-    assert metrics.average_distance(ox, oy, tx, ty, np.zeros(5, bool)) is None
+    assert measures.closest_distance(ox, oy, np.zeros((5, 0)), np.zeros((5, 0))) is None
+    assert measures.average_distance(ox, oy, tx, ty, np.zeros(5, bool)) is None
 
 
 def test_average_is_over_the_nearest_target():
-    d = metrics.average_distance([0, 0], [0, 0], [[10, 1], [2, 30]], [[0, 0], [0, 0]])
+    d = measures.average_distance([0, 0], [0, 0], [[10, 1], [2, 30]], [[0, 0], [0, 0]])
     assert d == pytest.approx((1 + 2) / 2)
 
 
 def test_track_samples_every_window():
     track = np.column_stack([np.arange(25.0), np.zeros(25)])
-    assert metrics.track_samples(track, dt=1.0)[:, 0].tolist() == [0, 10, 20, 24]
-    assert metrics.track_samples(track, dt=0.5)[:, 0].tolist() == [0, 20, 24]
-    assert metrics.track_samples(track, dt=20.0).shape == (25, 2)  # window below dt: all
+    assert measures.track_samples(track, dt=1.0)[:, 0].tolist() == [0, 10, 20, 24]
+    assert measures.track_samples(track, dt=0.5)[:, 0].tolist() == [0, 20, 24]
+    assert measures.track_samples(track, dt=20.0).shape == (25, 2)  # window below dt: all
 
 
 def test_a_route_row_by_hand(tmp_path):

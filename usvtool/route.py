@@ -10,7 +10,7 @@ route's vertices, start first, goal last); :func:`read_path_geojson` also reads 
   from its lower-left corner, and the property ``frame`` says so.
 - Properties (:meth:`Route.figures`, in this order): ``algorithm``, ``parameters``, ``seed``
   (null for the exact planners), ``length_m`` (:func:`route_length`), ``turns``, ``mot``
-  (:mod:`usvtool.metrics`), ``fitness`` (the path problem's cost), ``planning_time_s`` (null
+  (:mod:`usvtool.measures`), ``fitness`` (the path problem's cost), ``planning_time_s`` (null
   when not recorded), ``collision_free`` (:func:`usvtool.collision.is_collision_free` on the
   written coordinates), ``convergence`` (best cost per iteration, metres; empty for the exact
   planners) and ``attempt`` (the optimizer run that gave the route; null for the exact
@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from usvtool import metrics
+from usvtool import measures
 from usvtool.errors import UsvError
 from usvtool.grid import Grid
 
@@ -76,7 +76,7 @@ def route_length(grid: Grid, points) -> float:
 
 def length_in_metres(points, crs=None) -> float:
     """Length in metres of a polyline ``(m, 2)`` in map coordinates: geodesic (WGS84) in
-    ``crs``, planar (:func:`usvtool.metrics.path_length`) without one. The one route length:
+    ``crs``, planar (:func:`usvtool.measures.path_length`) without one. The one route length:
     the plan's ``length_m`` and the metrics table's.
 
     >>> length_in_metres([(0, 0), (3, 4), (3, 10)])
@@ -84,7 +84,7 @@ def length_in_metres(points, crs=None) -> float:
     """
     points = np.asarray(points, float)
     if crs is None:
-        return float(metrics.path_length(points))
+        return float(measures.path_length(points))
     from usvtool.geodesy import geodesic_length, map_to_lonlat
 
     return geodesic_length(*map_to_lonlat(crs, points[:, 0], points[:, 1]))

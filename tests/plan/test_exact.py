@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.sparse.csgraph import dijkstra
 
-from usvtool import metrics
+from usvtool import measures
 from usvtool.collision import SegmentChecker
 from usvtool.grid import Grid, read_grid
 from usvtool.plan.exact import DELTA, any_angle, astar
@@ -26,7 +26,7 @@ def wall() -> np.ndarray:
 
 
 def length(route) -> float:
-    return float(metrics.path_length(route))
+    return float(measures.path_length(route))
 
 
 def test_astar_is_optimal_on_hand_made_grids():
@@ -194,7 +194,7 @@ def test_exact_routes_on_the_bundled_environments(env, reference):
         assert r.collision_free and ref.route_free(to_cells(env, r.points))
         # the reported fitness of a free route is its length and turning cost (1 m cells):
         # the exact routes pass corners within 1e-5 cell, inside the search's tolerance
-        assert r.fitness == pytest.approx(r.length_m + metrics.turn_cost(r.points), rel=1e-9)
+        assert r.fitness == pytest.approx(r.length_m + measures.turn_cost(r.points), rel=1e-9)
     best = routes["anyangle"].length_m
     assert math.hypot(480, 480) < best <= routes["astar+s"].length_m <= routes["astar"].length_m
     assert routes["astar"].length_m <= best * (1 + (SQ2 - 1) / 2)  # octile bound, loosely

@@ -61,9 +61,9 @@ def test_penalty_is_zero_exactly_for_routes_clear_of_the_grown_squares(spread, r
     assert 0.05 < clear.mean() <= free.mean() < 0.95
     if spread < 1:
         assert (free & ~clear).sum() > 10  # free routes within PAD of a blocked cell
-    from usvtool import metrics
+    from usvtool import measures
 
-    plain = metrics.path_length(routes) + metrics.turn_cost(routes)
+    plain = measures.path_length(routes) + measures.turn_cost(routes)
     cost = p(X)
     assert cost[clear] == pytest.approx(plain[clear])
     assert np.all(cost[~clear] > plain[~clear] + p.penalty - 1e-9)

@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from usvtool import metrics
+from usvtool import measures
 from usvtool.errors import UsvError, check_input_file
 from usvtool.route import length_in_metres, read_path_geojson
 from usvtool.trace import OWN, read_events, read_trace
@@ -160,8 +160,8 @@ def _route_row(path: str) -> dict:
         "chart": Path(path).resolve().parent.name,
         "algorithm": props.get("algorithm"),
         "length_m": length,
-        "turns": int(metrics.turns(points)),
-        "mot": float(metrics.mot(points)),
+        "turns": int(measures.turns(points)),
+        "mot": float(measures.mot(points)),
         "fitness": props.get("fitness"),
         "planning_time_s": props.get("planning_time_s"),
         "collision_free": props.get("collision_free"),
@@ -182,7 +182,7 @@ def _route_ratios(rows: list[dict], references) -> None:
             optimum[r["_dir"]] = (r["_path"], r["length_m"])
     for r in rows:
         if r["_kind"] == "route" and r["_dir"] in optimum:
-            r["length_ratio"] = metrics.length_ratio(r["length_m"], optimum[r["_dir"]][1])
+            r["length_ratio"] = measures.length_ratio(r["length_m"], optimum[r["_dir"]][1])
 
 
 # --- runs -----------------------------------------------------------------------------------
@@ -219,7 +219,7 @@ def _run_row(path: str, events_path: str) -> dict:
     own_x, own_y = trace.x[:, 0], trace.y[:, 0]
     tx, ty = trace.x[:, 1:], trace.y[:, 1:]
     track = np.column_stack([own_x, own_y])
-    sampled = metrics.track_samples(track, dt)
+    sampled = measures.track_samples(track, dt)
     judged = [e["compliant"] for e in encounters if e.get("compliant") is not None]
     failed = sorted({rule for e in encounters for rule in (e.get("failed_rules") or [])})
     arrived = run.get("arrived")
@@ -233,11 +233,13 @@ def _run_row(path: str, events_path: str) -> dict:
         "seed": run.get("seed"),
         "arrived": arrived,
         "collision": run.get("collision"),
-        "length_m": float(metrics.path_length(track)),
-        "turns": int(metrics.turns(sampled)),
-        "mot": float(metrics.mot(sampled)),
+        "length_m": float(measures.path_length(track)),
+        "turns": int(measures.turns(sampled)),
+        "mot": float(measures.mot(sampled)),
         "arrival_time_s": float(trace.t[-1]) if arrived else None,
-        **metrics.run_distances(own_x, own_y, tx, ty, metrics.encounter_steps(trace.t, intervals)),
+        **measures.run_distances(
+            own_x, own_y, tx, ty, measures.encounter_steps(trace.t, intervals)
+        ),
         "domain_intrusion_s": run.get("domain_intrusion_s"),
         "encounters": len(intervals),
         "judged": len(judged),
@@ -266,7 +268,7 @@ def _run_rates(rows: list[dict], controller: str | None) -> None:
         if ref is None:
             continue
         for name in ("closest_distance", "average_distance"):
-            r[f"{name}_rate"] = metrics.optimisation_rate(r[f"{name}_m"], ref[f"{name}_m"])
+            r[f"{name}_rate"] = measures.optimisation_rate(r[f"{name}_m"], ref[f"{name}_m"])
 
 
 # --- formatting -----------------------------------------------------------------------------

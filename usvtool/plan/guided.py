@@ -82,7 +82,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from usvtool import metrics
+from usvtool import measures
 from usvtool.collision import SegmentChecker
 from usvtool.plan.problem import PAD, PathProblem, Search
 
@@ -124,10 +124,10 @@ def settle(exact: np.ndarray, station: np.ndarray, best: np.ndarray) -> tuple[np
     >>> settle(exact, station, exact)[1], settle(exact, station, exact[[0, 1, 2, 4]])[1]
     (True, False)
     """
-    turns, mot = metrics.turns(exact), metrics.mot(exact)
+    turns, mot = measures.turns(exact), measures.mot(exact)
 
     def bar(route) -> bool:
-        return metrics.turns(route) < turns and metrics.mot(route) < mot
+        return measures.turns(route) < turns and measures.mot(route) < mot
 
     if bar(station) and not bar(best):
         return station, not np.array_equal(station, best)
@@ -136,8 +136,8 @@ def settle(exact: np.ndarray, station: np.ndarray, best: np.ndarray) -> tuple[np
 
 def _merged(checker: SegmentChecker, route: np.ndarray, waypoints: int | str) -> np.ndarray:
     """The exact route with its same-way corner runs merged (module docstring, Stations)."""
-    most_turns, most_mot = metrics.turns(route), metrics.mot(route)
-    limit = BUDGET * float(np.abs(metrics.segments(route)).sum()) if waypoints == AUTO else np.inf
+    most_turns, most_mot = measures.turns(route), measures.mot(route)
+    limit = BUDGET * float(np.abs(measures.segments(route)).sum()) if waypoints == AUTO else np.inf
     target = 0 if waypoints == AUTO else int(waypoints)
     added = 0.0
     refused: set[tuple[float, ...]] = set()  # merges found colliding (by their vertices)
@@ -156,7 +156,7 @@ def _merged(checker: SegmentChecker, route: np.ndarray, waypoints: int | str) ->
                 refused.add(tag)
                 continue
             merged = np.vstack([route[: i + 1], p, route[i + 3 :]])
-            if metrics.turns(merged) > most_turns or metrics.mot(merged) > most_mot:
+            if measures.turns(merged) > most_turns or measures.mot(merged) > most_mot:
                 continue  # a sharper last turn can raise mot (IWSO eq. 27) above the route's
             route = merged
             added += float(cost[i])
@@ -191,9 +191,9 @@ def _fewest_turns(checker: SegmentChecker, exact: np.ndarray, merged: np.ndarray
     and the routes of the fewest-link search (:func:`_links`), the one with the fewest turns
     whose turns and mot are both below the exact route's (the lowest mot among those); else
     ``merged``."""
-    turns, mot = metrics.turns(exact), metrics.mot(exact)
+    turns, mot = measures.turns(exact), measures.mot(exact)
     routes = [merged, *_links(checker, exact)]
-    scores = [(metrics.turns(r), metrics.mot(r)) for r in routes]
+    scores = [(measures.turns(r), measures.mot(r)) for r in routes]
     good = [(t, m, i) for i, (t, m) in enumerate(scores) if t < turns and m < mot]
     return routes[min(good)[2]] if good else merged
 
@@ -209,7 +209,7 @@ def _links(checker: SegmentChecker, exact: np.ndarray) -> list[np.ndarray]:
     link (a minimum-link shortest path, as in Mitchell, Rote and Woeginger 1992, "Minimum-link
     paths among obstacles in the plane", on a discrete point set); a pair of points is checked
     (exactly) only when a route through it can be short enough (the ellipse bound)."""
-    limit = (1.0 + LONGEST) * float(metrics.path_length(exact))
+    limit = (1.0 + LONGEST) * float(measures.path_length(exact))
     points = np.vstack([exact[:1], exact[-1:], exact[1:-1], _lattice(checker, exact)])
     n = len(points)
     start = np.hypot(*(points - exact[0]).T)
@@ -244,7 +244,7 @@ def _links(checker: SegmentChecker, exact: np.ndarray) -> list[np.ndarray]:
             if pu.size:
                 chains = _trace(parents[:-2], pu) if links > 2 else pu[:, None]
                 candidates = points[np.column_stack([chains, pw, np.ones_like(pw)])]
-                routes.append(candidates[np.argmin(metrics.mot(candidates))])
+                routes.append(candidates[np.argmin(measures.mot(candidates))])
     return routes
 
 
@@ -261,7 +261,7 @@ def _lattice(checker: SegmentChecker, exact: np.ndarray) -> np.ndarray:
     """Cell centres every ``SPACING`` of the exact route's length (at least one cell) in its
     bounding box grown by the corridor, touching no blocked cell, within ``CORRIDOR`` of its
     length from it."""
-    length = float(metrics.path_length(exact))
+    length = float(measures.path_length(exact))
     step = max(1, int(round(SPACING * length)))
     reach = CORRIDOR * length
     low = np.maximum(np.floor(exact.min(axis=0) - reach), 0).astype(int)
@@ -407,7 +407,7 @@ class GuidedProblem:
         ``ℓ (L + w T)``, its collision terms being zero for them (the same floats as
         ``PathProblem.cost(routes, exact=True)``, without the collision check; ``exact`` is
         the planner's interface: repaired routes are always scored so)."""
-        seg = metrics.segments(np.asarray(routes, float))
+        seg = measures.segments(np.asarray(routes, float))
         return self.base.grid.cell_size * self.base.free_cost(seg)
 
     def search(self) -> Search:

@@ -14,7 +14,7 @@ answer a :class:`PlanResult`, holding the :class:`usvtool.route.Route` (write it
 :func:`usvtool.route.write_path_geojson`) and the summary the command prints.
 
 Figures of a route: ``length_m`` (IWSO eq. 28; for a georeferenced grid the geodesic length on
-the WGS84 ellipsoid), ``turns`` and ``mot`` (:mod:`usvtool.metrics`), ``fitness`` (the path
+the WGS84 ellipsoid), ``turns`` and ``mot`` (:mod:`usvtool.measures`), ``fitness`` (the path
 problem's cost of the route, the same for every algorithm), ``planning_time_s`` (every run of
 the search, and any shortening; reading the grid, validating the request and building the grid's
 collision tables, about 20 ms on 500 x 500 cells and done once per grid, are not included),
@@ -28,7 +28,7 @@ import math
 import time
 from dataclasses import dataclass, field
 
-from usvtool import metrics
+from usvtool import measures
 from usvtool.collision import check_point, is_collision_free
 from usvtool.errors import UsvError
 from usvtool.grid import Grid
@@ -137,8 +137,8 @@ def plan_route(grid: Grid, start, goal, options: PlanOptions | None = None) -> P
         parameters=planned.parameters,
         seed=opts.seed if planner.seeded else None,
         length_m=route_length(grid, points),
-        turns=int(metrics.turns(points)),
-        mot=float(metrics.mot(points)),
+        turns=int(measures.turns(points)),
+        mot=float(measures.mot(points)),
         fitness=float(problem.cost(cells[None], exact=True)[0]),
         planning_time_s=elapsed if opts.timing else None,
         collision_free=is_collision_free(grid, points, problem.checker),

@@ -39,7 +39,7 @@ What the optimizers see (:meth:`PathProblem.search`)
 Cost (in metres; ``ℓ`` cell size, ``W × H`` grid)
 
 ``cost = L + ℓ · w · T + S · n_col + 10 · ℓ · L_in``, where ``L`` is the route length (IWSO eq.
-28), ``T`` the ISSA turning energy (:func:`usvtool.metrics.turn_cost`, in cell sides, weight
+28), ``T`` the ISSA turning energy (:func:`usvtool.measures.turn_cost`, in cell sides, weight
 ``w``), ``S = ℓ (W + H)`` (longer than any sensible route, so any collision-free route beats a
 colliding one of similar length), and, against the blocked squares grown by ``PAD`` = 1e-3 cell
 (:meth:`usvtool.collision.SegmentChecker.guide`), ``n_col`` the number of segments touching
@@ -62,7 +62,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from usvtool import metrics
+from usvtool import measures
 from usvtool.collision import SegmentChecker
 from usvtool.grid import Grid
 
@@ -164,7 +164,7 @@ class PathProblem:
         routes = np.asarray(routes, float)
         n, m = routes.shape[:2]
         ell = self.grid.cell_size
-        seg = metrics.segments(routes)  # once, for the lengths, the turns and the checks
+        seg = measures.segments(routes)  # once, for the lengths, the turns and the checks
         seg_length = np.abs(seg)
         hit, inside = self.checker.guide(
             routes[:, :-1].reshape(-1, 2), routes[:, 1:].reshape(-1, 2), seg_length.ravel(), exact
@@ -177,7 +177,7 @@ class PathProblem:
         """The length and turning terms (cells) of routes given by their segments
         (:func:`metrics.segments`): the whole cost, over the cell size, of a route that touches
         no blocked cell."""
-        return np.abs(seg).sum(axis=1) + self.turn_weight * metrics.turn_cost(seg)
+        return np.abs(seg).sum(axis=1) + self.turn_weight * measures.turn_cost(seg)
 
     @property
     def unit(self) -> float:

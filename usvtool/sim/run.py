@@ -15,10 +15,10 @@ map (*collision*), or at ``sim.duration``.
 Figures of a run (the summary; :meth:`Result.summary`): ``closest_distance_m`` the smallest
 centre distance to any target, ``average_distance_m`` the mean over the steps with a latched
 encounter of the distance to the nearest target (the UDWA paper's Table 1;
-:func:`usvtool.metrics.run_distances`, as the metrics table),
+:func:`usvtool.measures.run_distances`, as the metrics table),
 ``domain_intrusion_s`` the time some target is inside the own ship's domain, ``path_length_m``
-the length of her track, ``turns`` and ``mot`` (:mod:`usvtool.metrics`) on her track sampled
-every ``metrics.TURN_WINDOW`` seconds (:func:`usvtool.metrics.track_samples`): a turn is a course
+the length of her track, ``turns`` and ``mot`` (:mod:`usvtool.measures`) on her track sampled
+every ``measures.TURN_WINDOW`` seconds (:func:`usvtool.measures.track_samples`): a turn is a course
 change between two such legs (per 0.1 s step a smooth turn would count once per step, or never),
 ``step_time_ms`` the mean time of one control decision.
 
@@ -38,7 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
-from usvtool import angles, geodesy, metrics
+from usvtool import angles, geodesy, measures
 from usvtool.encounter import CLASS_NAMES
 from usvtool.errors import UsvError
 from usvtool.sim import memory, tracking, verdicts
@@ -310,7 +310,7 @@ def _result(scenario, setup, opts, controller, times, own, ahead, motion, length
     rule2 = [e for e in controller_events if e["kind"] == "rule2-departure"]
     evaluation = verdicts.evaluate(trace, [setup.vessel.length, *lengths], rule2)
     track = np.column_stack([x[:, 0], y[:, 0]])
-    sampled = metrics.track_samples(track, dt)
+    sampled = measures.track_samples(track, dt)
     figures = {
         "scenario": scenario.name,
         "controller": controller.name,
@@ -319,9 +319,9 @@ def _result(scenario, setup, opts, controller, times, own, ahead, motion, length
         "arrived": bool(arrived),
         "collision": None if collision is None else _name(scenario, collision),
         "time_s": round(float(times[-1]), 3),
-        "path_length_m": round(float(metrics.path_length(track)), 3),
-        "turns": int(metrics.turns(sampled)),
-        "mot": round(float(metrics.mot(sampled)), 6),
+        "path_length_m": round(float(measures.path_length(track)), 3),
+        "turns": int(measures.turns(sampled)),
+        "mot": round(float(measures.mot(sampled)), 6),
         "step_time_ms": round(step_time * 1e3, 4),
         **evaluation["figures"],
         "per_target": [
@@ -384,7 +384,7 @@ def _per_target(j: int, name: str, encounters: list[dict], times, x, y) -> dict:
     when any has one."""
     mine = [e for e in encounters if e["target"] == j]
     main = min(mine, key=lambda e: e["closest_distance_m"])
-    gap = metrics.target_distances(x[:, 0], y[:, 0], x[:, 1 + j], y[:, 1 + j])[:, 0]
+    gap = measures.target_distances(x[:, 0], y[:, 0], x[:, 1 + j], y[:, 1 + j])[:, 0]
     closest = int(np.argmin(gap))
     judged = [e["compliant"] for e in mine if e["compliant"] is not None]
     manoeuvre = main.get("first_manoeuvre") or {}

@@ -53,7 +53,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from usvtool import metrics
+from usvtool import measures
 from usvtool.encounter import (
     CLASS_NAMES,
     CROSSING_GIVE_WAY,
@@ -305,7 +305,7 @@ def evaluate(
     ``speed_change``, ``range_m``, or None), ``domain_intrusion_s``, ``own_in_target_domain_s``,
     ``rule2_departure`` (the records in the encounter, or None), ``compliant``, ``failed_rules``
     and ``excused_rules`` (failures excused by a Rule 2 record). ``figures``:
-    :func:`usvtool.metrics.run_distances` (``closest_distance_m`` to any target,
+    :func:`usvtool.measures.run_distances` (``closest_distance_m`` to any target,
     ``average_distance_m`` to the nearest target over the steps with a latched encounter),
     ``domain_intrusion_s`` (some target inside); distances to 1 mm.
     ``thresholds`` echoes the values used (an infinite ``release_distance`` is null);
@@ -379,10 +379,10 @@ class _Run:
                 for on, off in spans]  # fmt: skip
 
     def figures(self, latched: np.ndarray) -> dict:
-        """The run's distance figures (:func:`usvtool.metrics.run_distances`, over the steps
+        """The run's distance figures (:func:`usvtool.measures.run_distances`, over the steps
         with a latched encounter) and its domain intrusion, to 1 mm and 1 ms."""
         own, targets = self.own_xy, self.target_xy
-        distances = metrics.run_distances(own[:, 0], own[:, 1], targets[..., 0], targets[..., 1],
+        distances = measures.run_distances(own[:, 0], own[:, 1], targets[..., 0], targets[..., 1],
                                           (latched != NONE).any(axis=1))  # fmt: skip
         return {
             **{name: _num(value) for name, value in distances.items()},

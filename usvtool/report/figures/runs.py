@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from usvtool.errors import UsvError
-from usvtool.metrics import target_distances
+from usvtool.measures import target_distances
 from usvtool.report.figures.canvas import (
     Plot,
     csv_text,

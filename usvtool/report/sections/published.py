@@ -5,13 +5,13 @@ column with a counterpart metric, our figure is the column's statistic over our 
 (:func:`usvtool.report.data.statistic`) times its ``scale`` (the paper's unit), set beside the
 paper's printed figure. A row whose setup is not ours (``comparable`` false) shows the paper's
 figure alone. An optimisation rate (``*_rate``) that the runs do not carry is computed from our
-medians against the reference controller's, as :func:`usvtool.metrics.optimisation_rate`
+medians against the reference controller's, as :func:`usvtool.measures.optimisation_rate`
 defines it (UDWA Table 1: (UDWA - CCDWA) / CCDWA of the average distance).
 """
 
 from __future__ import annotations
 
-from usvtool import metrics
+from usvtool import measures
 from usvtool.report.data import Results, statistic
 from usvtool.report.document import Cell, Table, number
 from usvtool.report.papers import PAPERS, TABLES, PaperTable
@@ -27,7 +27,7 @@ def ours(results: Results, table: PaperTable, method: str, case: str, column) ->
         mine = statistic(results, table.kind, case, method, base, "median")
         ref = statistic(results, table.kind, case, REFERENCE, base, "median")
         if mine is not None and ref not in (None, 0.0) and method != REFERENCE:
-            value = float(metrics.optimisation_rate(mine, ref))
+            value = float(measures.optimisation_rate(mine, ref))
     return None if value is None else value * column.scale
 
 

@@ -1,4 +1,4 @@
-"""The papers' path metrics: one implementation, used by every stage.
+"""The papers' measures of a route and a run: one implementation each, used by every stage.
 
 A route is a polyline of ``m`` points; every function takes an array of shape ``(..., m, 2)``
 (one route, or a whole population at once), or the routes' segments from :func:`segments`
