@@ -21,7 +21,7 @@ $(foreach c,$(ROUTE_GRIDS),$(foreach a,$(ALGOS),$(eval $(call route_rule,$(c),$(
 # the table of the papers' metrics (docs/metrics.md): usvtool metrics writes it atomically; the
 # any-angle route of each chart's directory is the reference of length_ratio
 METRICS_CONTRACTS := measures route trace angles grid geodesy atomic errors
-METRICS_SRC := $(wildcard usvtool/measure/*.py) usvtool/cli/metrics.py $(CLI_SRC) \
+METRICS_SRC := $(wildcard usvtool/metrics/*.py) usvtool/cli/metrics.py $(CLI_SRC) \
 	$(call contracts,$(METRICS_CONTRACTS))
 $(PATHS_DIR)/summary.csv: $(ROUTES) $(METRICS_SRC)
 	$(USV) metrics $(ROUTES) -o $@ --summary $(@:.csv=.json) > /dev/null

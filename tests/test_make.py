@@ -75,7 +75,7 @@ def test_a_plan_stage_change_replans_without_remaking_the_grid(tree, changed):
     assert " plan " in out and " preprocess " not in out
 
 
-@pytest.mark.parametrize("changed", ["usvtool/measure/table.py", "usvtool/sim/run.py"])
+@pytest.mark.parametrize("changed", ["usvtool/metrics/tabulate.py", "usvtool/sim/run.py"])
 def test_other_stages_remake_neither(tree, changed):
     out = commands(tree, changed)
     assert " plan " not in out and " preprocess " not in out

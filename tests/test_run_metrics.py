@@ -1,5 +1,5 @@
 """The per-route and per-run figures of usvtool.measures on hand-computed cases, and the
-measure stage's rows on hand-made files (a polyline route, a two-ship trace)."""
+metrics stage's rows on hand-made files (a polyline route, a two-ship trace)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ from affine import Affine
 
 from usvtool import measures
 from usvtool.grid import Grid
-from usvtool.measure import MeasureOptions, measure
+from usvtool.metrics import MetricsOptions, measure
 from usvtool.route import Route, write_path_geojson
 from usvtool.trace import Trace, write_events, write_trace
 
@@ -120,7 +120,7 @@ def test_rates_against_a_reference_controller(tmp_path):
         write_trace(tmp_path / f"{name}.csv", moved)
         run = {"scenario": "s", "controller": name, "seed": 0, "arrived": False}
         write_events(tmp_path / f"{name}.json", {"encounters": [], "run": run})
-    opts = MeasureOptions(reference_controller="dwa")
+    opts = MetricsOptions(reference_controller="dwa")
     dwa, udwa = measure([tmp_path / "udwa.csv", tmp_path / "dwa.csv"], opts).rows
     assert dwa["closest_distance_rate"] == 0.0
     assert udwa["closest_distance_rate"] == pytest.approx((6 - 3) / 3)

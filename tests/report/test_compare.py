@@ -384,7 +384,7 @@ def test_the_markdown_summary_is_short_with_regressions_and_missing_first(tables
 
 
 def test_every_metric_of_usvtool_metrics_has_a_rule_documented():
-    from usvtool.measure import ROUTE_COLUMNS, RUN_COLUMNS
+    from usvtool.metrics import ROUTE_COLUMNS, RUN_COLUMNS
     from usvtool.results import TIMING_METRICS
 
     assert set(ROUTE_COLUMNS) | set(RUN_COLUMNS) | set(TIMING_METRICS) | {"final_cost"} <= set(

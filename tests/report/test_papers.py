@@ -20,7 +20,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from usvtool.measure.table import ROUTE_COLUMNS, RUN_COLUMNS
+from usvtool.metrics import ROUTE_COLUMNS, RUN_COLUMNS
 from usvtool.plan.optimizers import OPTIMIZERS
 from usvtool.report import papers
 from usvtool.report.papers import CLAIMS, PAPERS, TABLES

@@ -40,12 +40,12 @@ def metrics(inputs, output, references, events, reference_controller, summary_pa
     import sys
 
     from usvtool.atomic import check_outputs, staged
-    from usvtool.measure import MeasureOptions, measure
+    from usvtool.metrics import MetricsOptions, measure
 
     if summary_path is not None and output is None:
         raise click.UsageError("--summary: give -o too (without it stdout has the table)")
     check_outputs([("-o", output), ("--summary", summary_path)])
-    options = MeasureOptions(tuple(references), tuple(events), reference_controller)
+    options = MetricsOptions(tuple(references), tuple(events), reference_controller)
     result = measure(inputs, options)
     if output is None:
         sys.stdout.write(result.to_csv())

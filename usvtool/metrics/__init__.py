@@ -5,12 +5,12 @@ Reads the route contract (:mod:`usvtool.route`, path GeoJSON) and the trace cont
 The columns and their definitions: docs/metrics.md.
 """
 
-from usvtool.measure.table import (
+from usvtool.metrics.tabulate import (
     ROUTE_COLUMNS,
     RUN_COLUMNS,
-    MeasureOptions,
-    MeasureResult,
+    MetricsOptions,
+    MetricsResult,
     measure,
 )
 
-__all__ = ["ROUTE_COLUMNS", "RUN_COLUMNS", "MeasureOptions", "MeasureResult", "measure"]
+__all__ = ["ROUTE_COLUMNS", "RUN_COLUMNS", "MetricsOptions", "MetricsResult", "measure"]

@@ -51,7 +51,7 @@ ANY_ANGLE = "anyangle"
 
 
 @dataclass(frozen=True)
-class MeasureOptions:
+class MetricsOptions:
     """``references``: route files, each the optimum of the routes in its directory;
     ``events``: events JSON files paired in order with the trace inputs (empty: found beside
     them); ``reference_controller``: the controller whose runs (same scenario and seed) the
@@ -63,7 +63,7 @@ class MeasureOptions:
 
 
 @dataclass
-class MeasureResult:
+class MetricsResult:
     """The rows (values unrounded; None = blank) and the table's columns."""
 
     columns: tuple[str, ...]
@@ -91,9 +91,9 @@ class MeasureResult:
                 "runs": kinds.count("run"), "columns": list(self.columns)}  # fmt: skip
 
 
-def measure(paths, options: MeasureOptions | None = None) -> MeasureResult:
+def measure(paths, options: MetricsOptions | None = None) -> MetricsResult:
     """One row per input file (module docstring); :class:`UsvError` names the file at fault."""
-    opts = options or MeasureOptions()
+    opts = options or MetricsOptions()
     paths = [os.fspath(p) for p in paths]
     if not paths:
         raise UsvError("no input: give route (.geojson) or trace (.csv) files")
@@ -127,7 +127,7 @@ def measure(paths, options: MeasureOptions | None = None) -> MeasureResult:
         columns = RUN_COLUMNS
     else:
         columns = ROUTE_COLUMNS + tuple(c for c in RUN_COLUMNS if c not in ROUTE_COLUMNS)
-    return MeasureResult(columns, rows)
+    return MetricsResult(columns, rows)
 
 
 def kind_of(path: str) -> str:
