@@ -20,7 +20,7 @@ from pathlib import Path
 import cv2
 import numpy as np
 
-from usvtool.chart.preprocess import PreprocessOptions, preprocess
+from usvtool.chart.preprocessing import PreprocessOptions, preprocess
 from usvtool.grid import NAVIGABLE, OBSTACLE
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from usvtool.chart.preprocess import PreprocessOptions, preprocess
+from usvtool.chart.preprocessing import PreprocessOptions, preprocess
 from usvtool.chart.render import RenderOptions, render
 from usvtool.chart.segment import segment
 from usvtool.chart.sources import read_raster
@@ -45,7 +45,7 @@ REAL = [
 FRESH = """
 import json, re, sys, time
 from pathlib import Path
-from usvtool.chart.preprocess import PreprocessOptions, preprocess
+from usvtool.chart.preprocessing import PreprocessOptions, preprocess
 from usvtool.grid import write_grid
 t = time.perf_counter()
 r = preprocess(sys.argv[1], PreprocessOptions(**json.loads(sys.argv[2])))

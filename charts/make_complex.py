@@ -204,7 +204,7 @@ def connected_map(kind: str, seed: int = 0, size: float = 500.0, options: dict |
     """
     import tempfile
 
-    from usvtool.chart.preprocess import PreprocessOptions, preprocess
+    from usvtool.chart.preprocessing import PreprocessOptions, preprocess
     from usvtool.errors import UsvError
     from usvtool.plan.planner import PlanOptions, plan_route
 

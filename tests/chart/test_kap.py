@@ -8,7 +8,7 @@ import rasterio
 from rasterio.transform import from_gcps
 from scipy import ndimage
 
-from usvtool.chart.preprocess import PreprocessOptions, preprocess
+from usvtool.chart.preprocessing import PreprocessOptions, preprocess
 from usvtool.geodesy import transformer
 
 # lon/lat of three points of the Mississippi's main channel, north to south

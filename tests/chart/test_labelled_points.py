@@ -20,7 +20,7 @@ import rasterio
 from pyproj import Geod
 from rasterio.transform import from_gcps
 
-from usvtool.chart.preprocess import PreprocessOptions, preprocess
+from usvtool.chart.preprocessing import PreprocessOptions, preprocess
 from usvtool.geodesy import transformer
 from usvtool.grid import NAVIGABLE, OBSTACLE
 

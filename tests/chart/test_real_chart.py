@@ -9,7 +9,7 @@ places of Boston Harbor.
 import pytest
 import rasterio
 
-from usvtool.chart.preprocess import PreprocessOptions, preprocess
+from usvtool.chart.preprocessing import PreprocessOptions, preprocess
 from usvtool.chart.render import render_cell, write_chart, write_truth
 from usvtool.chart.s57 import read_cell
 from usvtool.geodesy import WGS84, transformer

@@ -15,7 +15,7 @@ import pytest
 import shapely
 
 from usvtool.chart import s57
-from usvtool.chart.preprocess import PreprocessOptions, preprocess
+from usvtool.chart.preprocessing import PreprocessOptions, preprocess
 
 SOURCE = Path(__file__).resolve().parents[2] / "charts" / "noaa" / "US4MD81M"
 #: A wreck (VALSOU 11.9 m) that the updates add, lon/lat as charted.

@@ -65,7 +65,7 @@ def no_grid_work(monkeypatch):
     def refuse(*args, **kwargs):
         raise AssertionError("the grid work started")
 
-    monkeypatch.setattr("usvtool.chart.preprocess.preprocess", refuse)
+    monkeypatch.setattr("usvtool.chart.preprocessing.preprocess", refuse)
 
 
 def test_default_preview_of_a_large_cell_fits(tmp_path, usv):

@@ -20,7 +20,7 @@ from rasterio.warp import Resampling, calculate_default_transform, reproject
 from shapely.geometry import Polygon, box, mapping
 
 from usvtool.chart.colours import colour_index
-from usvtool.chart.preprocess import PreprocessOptions, preprocess
+from usvtool.chart.preprocessing import PreprocessOptions, preprocess
 from usvtool.chart.sources import RasterChart, read_raster
 from usvtool.errors import UsvError
 from usvtool.geodesy import WGS84, reproject_geometries, transformer

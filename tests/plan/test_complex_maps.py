@@ -58,7 +58,7 @@ def test_every_kind_gives_a_connected_grid_in_the_way(make_complex, reference):
 
 
 def test_written_map_reads_back_through_preprocess(make_complex, tmp_path):
-    from usvtool.chart.preprocess import PreprocessOptions, preprocess
+    from usvtool.chart.preprocessing import PreprocessOptions, preprocess
 
     doc, grid = make_complex.connected_map("islands-dense", 2, SIZE, OPTIONS)
     path = make_complex.write_map(tmp_path / "dense.geojson", doc)

@@ -90,8 +90,8 @@ def preprocess(chart, output, preview, ship_length, cell_size, margin, swell, re
     1.5 x ship length and obstacle swelling, as in the ISSA paper (section 3).
     """
     from usvtool.atomic import check_outputs, staged
-    from usvtool.chart.preprocess import PreprocessOptions
-    from usvtool.chart.preprocess import preprocess as run
+    from usvtool.chart.preprocessing import PreprocessOptions
+    from usvtool.chart.preprocessing import preprocess as run
     from usvtool.chart.sources import chart_kind
     from usvtool.grid import write_grid
 
