@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from usvtool.chart.preprocessing import PreprocessOptions, preprocess
-from usvtool.chart.render import RenderOptions, render
+from usvtool.chart.rendering import RenderOptions, render
 from usvtool.chart.segment import segment
 from usvtool.chart.sources import read_raster
 from usvtool.grid import write_grid

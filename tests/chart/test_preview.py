@@ -123,7 +123,7 @@ def test_default_size_and_no_chart():
 
 def test_too_fine_a_resolution_names_the_option_and_a_value_that_works():
     from usvtool.chart.preview import preview_frame
-    from usvtool.chart.render import MAX_PIXELS
+    from usvtool.chart.rendering import MAX_PIXELS
     from usvtool.errors import UsvError
 
     grid = Grid(np.zeros((10, 10), np.uint8), Affine(10_000, 0, 0, 0, -10_000, 100_000), None,
@@ -145,7 +145,7 @@ def test_too_fine_a_resolution_names_the_option_and_a_value_that_works():
 def test_the_suggestion_counts_the_edge_pixels():
     """70 710.6 m square: the area gives sqrt(5.0e9 / 5e7) = 9.99992 -> 10.0 m, but 10 m pixels
     need 7072 x 7072 = 50.01 M (whole pixels over the edges); 10.1 m gives 7002 x 7002."""
-    from usvtool.chart.render import limited_frame
+    from usvtool.chart.rendering import limited_frame
     from usvtool.errors import UsvError
 
     with pytest.raises(UsvError, match=r"use --opt 10.1 or more$"):

@@ -10,7 +10,7 @@ import pytest
 import rasterio
 
 from usvtool.chart.preprocessing import PreprocessOptions, preprocess
-from usvtool.chart.render import render_cell, write_chart, write_truth
+from usvtool.chart.rendering import render_cell, write_chart, write_truth
 from usvtool.chart.s57 import read_cell
 from usvtool.geodesy import WGS84, transformer
 

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from usvtool.chart.render import (
+from usvtool.chart.rendering import (
     COLOURS,
     chart_frame,
     render_cell,

@@ -96,7 +96,7 @@ def test_given_preview_resolution_too_fine_fails_before_the_grid(tmp_path, usv, 
 
 def test_render_resolution_error_names_its_option():
     cell = s57.read_cell(BOSTON)
-    from usvtool.chart.render import chart_frame
+    from usvtool.chart.rendering import chart_frame
 
     with pytest.raises(UsvError, match=r"^--resolution 0.2 m: US5MA12M.000 would be \d+ x \d+ "
                        r"pixels \(limit 50 million\); use --resolution 2.7 or more$"):  # fmt: skip

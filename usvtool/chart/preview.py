@@ -85,7 +85,7 @@ def render_preview(grid: Grid, chart=None, resolution: float | None = None) -> n
 def preview_frame(bounds, resolution: float, what: str):
     """The map's frame at ``resolution`` over ``bounds``, refused over the pixel limit with the
     ``--preview-resolution`` that fits."""
-    from usvtool.chart.render import limited_frame
+    from usvtool.chart.rendering import limited_frame
 
     return limited_frame(bounds, resolution, None, what, "--preview-resolution")
 
@@ -125,7 +125,7 @@ def check_s57_preview(path, cell_size: float, resolution: float | None) -> None:
 
 def s57_background(path, resolution: float):
     """The S-52 drawing of an S-57 cell, as the preview's background."""
-    from usvtool.chart.render import render_cell
+    from usvtool.chart.rendering import render_cell
     from usvtool.chart.s57 import read_cell
     from usvtool.chart.sources import RasterChart
 

@@ -34,8 +34,8 @@ def render(
 ) -> None:
     """Draw the S-57 CELL (.000, updates beside it applied) in the S-52 day colours."""
     from usvtool.atomic import check_output_path
-    from usvtool.chart.render import RenderOptions
-    from usvtool.chart.render import render as run
+    from usvtool.chart.rendering import RenderOptions
+    from usvtool.chart.rendering import render as run
 
     if not shallow <= safety <= deep:
         raise click.UsageError(
