@@ -175,7 +175,7 @@ class PathProblem:
 
     def free_cost(self, seg: np.ndarray) -> np.ndarray:
         """The length and turning terms (cells) of routes given by their segments
-        (:func:`metrics.segments`): the whole cost, over the cell size, of a route that touches
+        (:func:`measures.segments`): the whole cost, over the cell size, of a route that touches
         no blocked cell."""
         return np.abs(seg).sum(axis=1) + self.turn_weight * measures.turn_cost(seg)
 
