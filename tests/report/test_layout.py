@@ -56,5 +56,9 @@ def test_the_sections_do_not_import_the_regression_report():
 
 def test_the_shared_pieces_import_neither_report():
     for path in [*modules(), *modules("figures"), *modules("papers")]:
-        if path.name != "build.py":
+        if path.name not in ("build.py", "__init__.py"):
             assert not report_imports(path) & {"sections", "regression", "build"}, path
+
+
+def test_the_stage_gives_the_two_reports_entry_points_only():
+    assert report_imports(REPORT / "__init__.py") == {"build", "regression"}

@@ -7,4 +7,14 @@ kinds of a results table (:mod:`.values`), the all-or-nothing output writer (:mo
 the templates (:mod:`.templating`); the comparison report also the document model
 (:mod:`.document`), its loaded results (:mod:`.data`), its page and PDF (:mod:`.page`) and its
 figures (:mod:`.figures`).
+
+Entry points (docs/api.md): :func:`make_report` writes the comparison report (``usvtool
+report``, :mod:`.build`); :func:`compare` compares a results table with a baseline (``usvtool
+compare``, :mod:`.regression.compare`).
 """
+
+from usvtool.report.build import ReportOptions, ReportResult, make_report
+from usvtool.report.regression.compare import CompareOptions, CompareResult, compare
+
+__all__ = ["CompareOptions", "CompareResult", "ReportOptions", "ReportResult", "compare",
+           "make_report"]  # fmt: skip
