@@ -12,11 +12,11 @@ Two families, scaled to the vessel (``--family``):
   (15 m) at 7 m/s, goal (0, 450), targets of 15 m at x in [-120, 120], y in [80, 400] m,
   1-6 m/s, 90 s.
 
-- ``emergency`` (the UDWA paper's section 4.1 three-ship emergencies, varied: the generator of
-  tests/sim/emergencies.py): the ``udwa-usv`` at 7 m/s toward (0, 450); by the scene's number
-  a head-on, a crossing or an overtaking encounter as in charts/scenarios/emergency-*.yaml, with
-  a third ship that blocks the starboard escape, its geometry drawn at random around the
-  bundled one, 150 s.
+- ``emergency`` (the UDWA paper's section 4.1 three-ship emergencies, varied: the scene family
+  ``emergency``, usvtool/sim/families/emergency.py): the ``udwa-usv`` at 7 m/s toward (0, 450);
+  scene ``i`` is scene ``i // 3`` of the kind ``i % 3`` (head-on, crossing, overtaking) as in
+  charts/scenarios/emergency-*.yaml, with a third ship that blocks the starboard escape, its
+  geometry drawn at random around the bundled one, 150 s.
 
 For each controller the script prints the collisions, the arrivals, the median and 5th
 percentile of the closest centre distance over the scenes, and the median arrival time; with
@@ -30,27 +30,15 @@ Usage: python benchmarks/bench_random_encounters.py [--scenes 60] [--family smal
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import json
 from concurrent.futures import ProcessPoolExecutor
-from pathlib import Path
 
 import numpy as np
 
+from usvtool.sim.families import make_scene
+from usvtool.sim.families.emergency import Emergency
 from usvtool.sim.run import Options, simulate
 from usvtool.sim.scenario import parse
-
-
-def _tests_module(name: str):
-    """A helper module of tests/sim/ (the generator the tests use too)."""
-    path = Path(__file__).resolve().parent.parent / "tests" / "sim" / f"{name}.py"
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-EMERGENCIES = _tests_module("emergencies")
 
 FAMILIES = {
     "small": {"vessel": "iwso-dwa-usv", "speed": 4.0, "goal": 160.0, "length": 2.5,
@@ -63,7 +51,8 @@ FAMILIES = {
 def scene(family: str, seed: int, controller: str) -> dict:
     """Scene ``seed`` of ``family`` as a scenario mapping (usvtool.sim.scenario.parse)."""
     if family == "emergency":
-        return EMERGENCIES.scene(seed, controller)
+        scenario = make_scene("emergency", emergency_kind(seed), seed // 3).draw.scenario
+        return {**scenario, "controller": {"name": controller}}
     f = FAMILIES[family]
     rng = np.random.default_rng(seed)
     targets = []
@@ -85,6 +74,11 @@ def scene(family: str, seed: int, controller: str) -> dict:
     }  # fmt: skip
 
 
+def emergency_kind(seed: int) -> str:
+    """The kind of emergency scene ``seed``."""
+    return Emergency.kinds[seed % 3]
+
+
 def one(job: tuple) -> tuple:
     family, seed, controller, params = job
     s = simulate(parse(scene(family, seed, controller), f"scene {seed}"),
@@ -98,7 +92,7 @@ def versus(results: list[tuple], a: str, b: str, family: str) -> None:
     closest = {(r[0], r[1]): r[4] for r in results}
     collided = {(r[0], r[1]) for r in results if r[2]}
     seeds = sorted({r[1] for r in results})
-    kinds = {s: EMERGENCIES.kind(s) if family == "emergency" else "all" for s in seeds}
+    kinds = {s: emergency_kind(s) if family == "emergency" else "all" for s in seeds}
     for kind in sorted(set(kinds.values())):
         pairs = [(closest[a, s], closest[b, s]) for s in seeds if kinds[s] == kind]
         pairs = [(x, y) for x, y in pairs if x is not None and y is not None]

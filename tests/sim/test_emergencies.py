@@ -1,34 +1,35 @@
-"""The UDWA paper's claim on seeded head-on emergencies (tests/sim/emergencies.py), beyond the
-three bundled scenes: with the port half of the window removed (ccdwa) and a ship blocking the
-starboard escape, the own ship can come into contact (measured: with the target itself, by
-0.1-0.4 m), while keeping the port half at a lower priority (udwa, Rule 2) does not. Contacts
-are recomputed from each trace: centres closer than a ship length (15 m)."""
+"""The UDWA paper's claim on seeded head-on emergencies (the ``emergency`` scene family,
+usvtool/sim/families/emergency.py), beyond the three bundled scenes: with the port half of the
+window removed (ccdwa) and a ship blocking the starboard escape, the own ship can come into
+contact (measured: with the target itself, by 0.1-0.4 m), while keeping the port half at a
+lower priority (udwa, Rule 2) does not. Contacts are recomputed from each trace: centres
+closer than a ship length (15 m)."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
+from usvtool.sim.families import make_scene
 from usvtool.sim.run import simulate
 from usvtool.sim.scenario import parse
 
-from . import emergencies
-
 pytestmark = pytest.mark.slow  # seeded emergency families
 
-#: the first six head-on scenes of the generator (every third seed), not a selection
-SEEDS = tuple(range(0, 18, 3))
+#: the first six head-on scenes of the family, not a selection
+SCENES = tuple(range(6))
 LENGTH = 15.0
 
 
 @pytest.fixture(scope="module")
 def closest():
-    """(controller, seed) -> the closest centre distance of the run, from its trace."""
+    """(controller, scene) -> the closest centre distance of the run, from its trace."""
     out = {}
-    for seed in SEEDS:
-        assert emergencies.kind(seed) == "head-on"
+    for seed in SCENES:  # the scenes the generator gave before it moved (seeds 0, 3, ..., 15)
+        scenario = make_scene("emergency", "head-on", seed).draw.scenario
         for controller in ("udwa", "ccdwa"):
-            result = simulate(parse(emergencies.scene(seed, controller), f"scene {seed}"))
+            result = simulate(parse({**scenario, "controller": {"name": controller}},
+                                    f"scene {seed}"))  # fmt: skip
             tr, s = result.trace, result.summary()
             gap = np.hypot(tr.x[:, 1:] - tr.x[:, :1], tr.y[:, 1:] - tr.y[:, :1]).min()
             assert s["closest_distance_m"] == pytest.approx(gap, abs=1e-3)
@@ -37,11 +38,11 @@ def closest():
     return out
 
 
-@pytest.mark.parametrize("seed", SEEDS)
+@pytest.mark.parametrize("seed", SCENES)
 def test_udwa_touches_no_ship(closest, seed):
     assert closest["udwa", seed] >= LENGTH
 
 
 def test_ccdwa_touches_a_ship_in_some_of_them(closest):
-    touched = [seed for seed in SEEDS if closest["ccdwa", seed] < LENGTH]
+    touched = [seed for seed in SCENES if closest["ccdwa", seed] < LENGTH]
     assert touched, "ccdwa kept clear in every scene: has its side removal changed?"

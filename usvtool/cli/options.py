@@ -110,10 +110,10 @@ def _name_values(ctx, param, values: tuple[str, ...]) -> dict:
     return params
 
 
-def param_option(help: str):
-    """``--param NAME=VALUE`` (repeatable) into a dict ``params``."""
+def param_option(help: str, flag: str = "--param", dest: str = "params"):
+    """``--param NAME=VALUE`` (repeatable; or ``flag``) into a dict ``params`` (or ``dest``)."""
     return click.option(
-        "--param", "params", multiple=True, callback=_name_values, metavar="NAME=VALUE", help=help
+        flag, dest, multiple=True, callback=_name_values, metavar="NAME=VALUE", help=help
     )
 
 

@@ -1,6 +1,8 @@
 """``usvtool simulate``: run a scenario and write its trace CSV (+ events JSON, tracks GeoJSON).
 
-The scenario's schema is docs/scenario.md, the outputs and the summary docs/simulate.md.
+The scenario's schema is docs/scenario.md, the outputs and the summary docs/simulate.md. With
+``--family`` the scenario is a scene of a scene family (docs/families.md), written first to
+``--scenario-out`` (with the rasters it names beside it) and run from there.
 """
 
 from __future__ import annotations
@@ -11,6 +13,7 @@ from pathlib import Path
 import click
 
 from usvtool.cli.options import (
+    OutputPath,
     emit,
     max_memory_option,
     output_option,
@@ -20,12 +23,48 @@ from usvtool.cli.options import (
     write_summary,
 )
 from usvtool.sim.controllers import CONTROLLERS
+from usvtool.sim.families import FAMILIES
 
 log = logging.getLogger(__name__)
 
 
+def family_options(f):
+    """``--family``, ``--kind``, ``--scene`` and ``--family-option``: one scene of a family."""
+    f = param_option("An option of the family (repeatable; usvtool scene --list names them).",
+                     "--family-option", "family_options")(f)  # fmt: skip
+    f = click.option("--scene", "scene_number", type=click.IntRange(min=0), default=0,
+                     show_default=True, help="The scene's seed (a family that is not seeded "
+                     "has only scene 0).")(f)  # fmt: skip
+    f = click.option("--kind", help="The kind of scene (usvtool scene --list names them).")(f)
+    return click.option("--family", type=click.Choice(list(FAMILIES)),
+                        help="A scene family (docs/families.md).")(f)  # fmt: skip
+
+
+def make_family_scene(family: str | None, kind: str | None, scene: int, options: dict):
+    """The scene the family options name (:func:`usvtool.sim.families.make_scene`); None without
+    ``--family``. Usage errors for options given without it or ``--kind`` missing."""
+    from usvtool.sim.families import make_scene
+
+    if family is None:
+        given = [o for o, v in (("--kind", kind), ("--family-option", options)) if v]
+        if given or scene:
+            raise click.UsageError(f"{(given or ['--scene'])[0]}: only with --family")
+        return None
+    if kind is None:
+        raise click.UsageError("--family: needs --kind")
+    return make_scene(family, kind, scene, options, lambda key: f"--family-option {key}")
+
+
 @click.command()
-@click.argument("scenario_path", metavar="SCENARIO.yaml", type=click.Path(dir_okay=False))
+@click.argument("scenario_path", metavar="[SCENARIO.yaml]", required=False,
+                type=click.Path(dir_okay=False))  # fmt: skip
+@family_options
+@click.option(
+    "--scenario-out",
+    type=OutputPath(),
+    metavar="FILE.yaml",
+    help="With --family: where to write the scene (its rasters beside it) that runs.",
+)
 @click.option(
     "--controller",
     type=click.Choice(list(CONTROLLERS)),
@@ -38,27 +77,42 @@ log = logging.getLogger(__name__)
 @click.option("--tracks", type=click.Path(dir_okay=False), help="Also write the tracks GeoJSON.")
 @max_memory_option
 @summary_option
-def simulate(scenario_path: str, controller: str | None, params: dict, seed: int, output: str,
-             events: str | None, tracks: str | None, max_memory: int | None,
-             summary_path: str | None) -> None:  # fmt: skip
-    """Run SCENARIO.yaml (own ship, targets, weather, controller) and write its trace to -o.
+def simulate(scenario_path: str | None, family: str | None, kind: str | None, scene_number: int,
+             family_options: dict, scenario_out: str | None, controller: str | None,
+             params: dict, seed: int, output: str, events: str | None, tracks: str | None,
+             max_memory: int | None, summary_path: str | None) -> None:  # fmt: skip
+    """Run SCENARIO.yaml (own ship, targets, weather, controller), or a scene of a --family,
+    and write its trace to -o.
 
-    All the outputs are written, or none. The summary JSON goes to stdout.
+    All the outputs are written, or none (with --family, the scene is written first). The
+    summary JSON goes to stdout.
     """
     from usvtool.atomic import check_outputs, staged
     from usvtool.errors import UsvError
     from usvtool.sim.controllers import make_controller
+    from usvtool.sim.families import scene_files, write_scene
     from usvtool.sim.run import Options
     from usvtool.sim.run import simulate as run
     from usvtool.sim.scenario import controller_params, read_scenario
     from usvtool.trace import write_events, write_trace, write_tracks
 
+    if (scenario_path is None) == (family is None):
+        raise click.UsageError("give SCENARIO.yaml or --family, one of them")
+    if (scenario_out is None) != (family is None):
+        raise click.UsageError("--scenario-out: with --family, and --family needs it")
+    scene = make_family_scene(family, kind, scene_number, family_options)
+    written = [] if scene is None else scene_files(scene, scenario_out)
+    scene_outputs = [("--scenario-out", p) for p in written]
     outputs = [("-o", output), ("--events", events), ("--tracks", tracks),
                ("--summary", summary_path)]  # fmt: skip
-    check_outputs(outputs)
-    for option, path in outputs:
-        if path is not None and Path(path).resolve() == Path(scenario_path).resolve():
-            raise UsvError(f"{option} {path}: is the scenario itself")
+    check_outputs([*outputs, *scene_outputs])
+    if scene is None:
+        for option, path in outputs:
+            if path is not None and Path(path).resolve() == Path(scenario_path).resolve():
+                raise UsvError(f"{option} {path}: is the scenario itself")
+    else:
+        write_scene(scene, scenario_out)
+        scenario_path = scenario_out
     scenario = read_scenario(scenario_path)
     name = controller or scenario.controller["name"]
     controller_params(name, params, lambda key: f"--param {key}")
@@ -75,6 +129,8 @@ def simulate(scenario_path: str, controller: str | None, params: dict, seed: int
                                    max_memory=max_memory))  # fmt: skip
     summary = result.summary()
     extra = {"output": output, "scenario_file": scenario_path}
+    if scene is not None:
+        extra["scene"] = scene.summary()
     if events:
         extra["events"] = events
     if tracks:
