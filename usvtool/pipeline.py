@@ -2,14 +2,15 @@
 
 A pipeline names its charts (a source file, ``usvtool preprocess`` options, extra inputs, the
 start and goal of its routes), named route matrices (charts x algorithms x seeds, with attempts
-and ``usvtool plan`` options), a simulation matrix (scenario files x controllers x seeds) and a
+and ``usvtool plan`` options), a simulation matrix (scenario files x controllers x seeds), scene
+families (family x kinds x scenes x controllers x seeds: docs/families.md) and a
 benchmark-function matrix (functions x optimizers x seeds). :func:`load` reads and validates
 one; a bad file raises :class:`usvtool.errors.UsvError` in one line naming the file and the
 field. The schema is in docs/pipelines.md. This is a contract module: it imports no stage, so
-the names of algorithms, controllers and functions are checked against a :class:`Names` that
-the caller takes from the stages (``usvtool batch`` does). It holds plain data: the command
-lines of the jobs, and the Make fragment, are the batch's (:mod:`usvtool.batch.commands`,
-:mod:`usvtool.batch.make`).
+the names of algorithms, controllers, scene families and functions are checked against a
+:class:`Names` that the caller takes from the stages (``usvtool batch`` does). It holds plain
+data: the command lines of the jobs, and the Make fragment, are the batch's
+(:mod:`usvtool.batch.commands`, :mod:`usvtool.batch.make`).
 
 >>> p = load()
 >>> m = p.routes["report"]
@@ -24,7 +25,7 @@ from __future__ import annotations
 import glob
 import math
 import re
-from collections.abc import Collection, Mapping
+from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -41,6 +42,7 @@ RESERVED_PLAN_OPTIONS = {"seed", "attempts", "algo", "start", "goal", "start-lon
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
 _OPTION = re.compile(r"^[a-z][a-z0-9-]*$")
+_FAMILY_OPTION = re.compile(r"^[a-z][a-z0-9_]*$")
 Options = tuple[tuple[str, object], ...]
 
 
@@ -74,17 +76,31 @@ class FileOptions:
 
 
 @dataclass(frozen=True)
+class FamilySpec:
+    """What the simulation tells the reader of a scene family: its kinds, whether its scenes
+    are seeded (else each kind is one scene, 0), and ``check(options, where)``, which returns
+    the options checked (every one, defaults filled in) or raises a :class:`UsvError` naming
+    the option as ``where(name)`` does."""
+
+    kinds: tuple[str, ...]
+    seeded: bool = True
+    check: Callable[[Mapping, Callable[[str], str]], dict] | None = None
+
+
+@dataclass(frozen=True)
 class Names:
     """The names the stages know, for :func:`load` to check a pipeline's entries against:
     optimizers, exact planners (deterministic: their routes take no seed), controllers and
-    benchmark functions; and ``files``, the file options of the commands a pipeline gives
-    options to (``preprocess``, ``plan``), as the commands declare them."""
+    benchmark functions; ``files``, the file options of the commands a pipeline gives
+    options to (``preprocess``, ``plan``), as the commands declare them; ``families``, the
+    scene families by name."""
 
     optimizers: Collection[str]
     exact: Collection[str]
     controllers: Collection[str]
     functions: Collection[str]
     files: Mapping[str, FileOptions] = field(default_factory=dict)
+    families: Mapping[str, FamilySpec] = field(default_factory=dict)
 
     def is_exact(self, algorithm: str) -> bool:
         """``anyangle``, ``astar+s``: an exact planner, with or without shortening."""
@@ -135,6 +151,60 @@ class SimulationMatrix:
 
 
 @dataclass(frozen=True)
+class FamilyEntry:
+    """Every kind of a scene family x every scene x every controller x every seed; ``name``
+    (the family's by default) heads the runs' case (:func:`family_case`)."""
+
+    name: str
+    family: str
+    kinds: tuple[str, ...]  # () when not given and read without the stages' names: all
+    scenes: tuple[int, ...]
+    controllers: tuple[str, ...]
+    seeds: tuple[int, ...]
+    options: tuple[tuple[str, object], ...] = ()  # the family's options as given, sorted
+
+
+@dataclass(frozen=True)
+class FamilyJob:
+    """One run of a scene of a family: ``usvtool simulate --family ...``."""
+
+    entry: str
+    family: str
+    kind: str
+    scene: int
+    controller: str
+    seed: int
+    options: tuple[tuple[str, object], ...]
+
+    @property
+    def case(self) -> str:
+        return family_case(self.entry, self.kind, self.scene)
+
+
+def family_case(entry: str, kind: str, scene: int) -> str:
+    """The results table's ``case`` of a family's run: ``ENTRY/KIND/sSCENE``, the scene's
+    number three digits or more, so that runs group by family and kind and pair by scene.
+
+    >>> family_case("emergency", "head-on", 7)
+    'emergency/head-on/s007'
+    """
+    return f"{entry}/{kind}/s{scene:03d}"
+
+
+def split_family_case(case: str) -> tuple[str, str, int] | None:
+    """``(entry, kind, scene)`` of a family run's case; None for any other case (a scenario
+    file's stem, a chart, a function: none holds a ``/``).
+
+    >>> split_family_case("imazu/07/s000"), split_family_case("emergency-head-on")
+    (('imazu', '07', 0), None)
+    """
+    parts = case.split("/")
+    if len(parts) != 3 or not re.fullmatch(r"s\d{3,}", parts[2]):
+        return None
+    return parts[0], parts[1], int(parts[2][1:])
+
+
+@dataclass(frozen=True)
 class FunctionMatrix:
     """Every benchmark function with every optimizer, one run per seed."""
 
@@ -154,6 +224,7 @@ class Pipeline:
     routes: dict[str, RouteMatrix]
     simulation: SimulationMatrix | None = None
     functions: FunctionMatrix | None = None
+    families: tuple[FamilyEntry, ...] = ()
 
     def route_jobs(self, exact: Names | None = None) -> list[RouteJob]:
         """The route matrices expanded, in file order: charts x algorithms x seeds. With
@@ -174,6 +245,19 @@ class Pipeline:
         if s is None:
             return []
         return [(f, c, seed) for f in s.scenarios for c in s.controllers for seed in s.seeds]
+
+    def family_jobs(self) -> list[FamilyJob]:
+        """The family entries expanded, in file order: kinds x scenes x controllers x seeds
+        (an entry's kinds must be known: read with the stages' names, or given)."""
+        jobs = []
+        for e in self.families:
+            if not e.kinds:
+                raise UsvError(f"{self.path}: families.{e.name}: its kinds are not known (read "
+                               "the pipeline with the stages' names)")  # fmt: skip
+            jobs += [FamilyJob(e.name, e.family, kind, scene, c, seed, e.options)
+                     for kind in e.kinds for scene in e.scenes for c in e.controllers
+                     for seed in e.seeds]  # fmt: skip
+        return jobs
 
     def function_jobs(self) -> list[tuple[str, str, int]]:
         """(function, algorithm, seed) for every cell of the function matrix."""
@@ -299,7 +383,8 @@ def load(path: str | Path = BUNDLED, names: Names | None = None) -> Pipeline:
 def _load(path: Path, names: Names | None, including: tuple[Path, ...]) -> Pipeline:
     r = _Reader(path)
     data = read_yaml(path)
-    r.mapping(data, "", {"root", "include", "charts", "routes", "simulation", "functions"})
+    r.mapping(data, "", {"root", "include", "charts", "routes", "simulation", "families",
+                         "functions"})  # fmt: skip
     root_field = data.get("root", ".")
     if not isinstance(root_field, str):
         r.fail("root", f"expected a directory, got {_show(root_field)}")
@@ -331,9 +416,10 @@ def _load(path: Path, names: Names | None, including: tuple[Path, ...]) -> Pipel
     functions = None
     if data.get("functions") is not None:
         functions = _functions(r, data["functions"], names)
-    if not including and not (routes or simulation or functions):
-        r.fail("routes", "missing: a pipeline needs routes, simulation or functions")
-    return Pipeline(path, root, charts, routes, simulation, functions)
+    families = _families(r, data["families"], names) if data.get("families") is not None else ()
+    if not including and not (routes or simulation or functions or families):
+        r.fail("routes", "missing: a pipeline needs routes, simulation, families or functions")
+    return Pipeline(path, root, charts, routes, simulation, functions, families)
 
 
 def _included_charts(r: _Reader, value, root: Path, names, including) -> dict[str, Chart]:
@@ -461,3 +547,66 @@ def _functions(r: _Reader, entry, names) -> FunctionMatrix:
         r.integer(fm.get("iters", 300), "functions.iters", 1),
         r.integer(fm.get("dim", 30), "functions.dim", 1),
     )
+
+
+def _families(r: _Reader, value, names: Names | None) -> tuple[FamilyEntry, ...]:
+    if not isinstance(value, list) or not value:
+        r.fail("families", f"expected a list of family entries, got {_show(value)}")
+    entries: dict[str, FamilyEntry] = {}
+    for i, item in enumerate(value):
+        where = f"families[{i}]"
+        e = r.mapping(item, where, {"family", "name", "kinds", "scenes", "controllers", "seeds",
+                                    "options"}, {"family", "controllers", "seeds"})  # fmt: skip
+        family = e["family"]
+        known = names.families if names is not None else None
+        if not isinstance(family, str) or not _NAME.match(family):
+            r.fail(f"{where}.family", f"not a valid family name: {_show(family)}")
+        if known is not None and family not in known:
+            r.fail(f"{where}.family", f"unknown scene family {family!r} (known: "
+                   f"{', '.join(known)})")  # fmt: skip
+        spec = known[family] if known is not None else None
+        name = e.get("name", family)
+        if not isinstance(name, str) or not _NAME.match(name):
+            r.fail(f"{where}.name", "not a valid entry name (letters, digits, _ . + -)")
+        if name in entries:
+            r.fail(f"{where}.name", f"{name!r} names two entries (give one another name)")
+        kinds = () if spec is None else spec.kinds
+        if "kinds" in e:
+            known_kinds = None if spec is None else (kinds.__contains__, ", ".join(kinds))
+            kinds = r.names(e["kinds"], f"{where}.kinds", "kind", known_kinds)
+        if spec is not None and not spec.seeded:
+            if "scenes" in e:
+                r.fail(f"{where}.scenes", f"family {family} is not seeded (each kind is one "
+                       "scene): give no scenes")  # fmt: skip
+            scenes: tuple[int, ...] = (0,)
+        elif "scenes" in e:
+            scenes = r.seeds(e["scenes"], f"{where}.scenes")
+        elif spec is not None:
+            r.fail(f"{where}.scenes", "missing (the scenes' seeds: a list or {first: F, count: N})")
+        else:
+            scenes = (0,)
+        controllers = r.names(e["controllers"], f"{where}.controllers", "controller",
+                              _known(names, "controller"))  # fmt: skip
+        seeds = r.seeds(e["seeds"], f"{where}.seeds")
+        options = _family_options(r, e.get("options"), f"{where}.options", spec)
+        entries[name] = FamilyEntry(name, family, kinds, scenes, controllers, seeds, options)
+    return tuple(entries.values())
+
+
+def _family_options(r: _Reader, value, field: str, spec: FamilySpec | None):
+    """A family's options (name: number or word), checked by the family when it is known."""
+    if value is None:
+        return ()
+    if not isinstance(value, dict):
+        r.fail(field, f"expected a mapping of option: value, got {_show(value)}")
+    for key, v in value.items():
+        if not isinstance(key, str) or not _FAMILY_OPTION.match(key):
+            r.fail(f"{field}.{key}", "not a family option name (lower case, e.g. own_speed)")
+        if isinstance(v, bool) or not isinstance(v, int | float | str):
+            r.fail(f"{field}.{key}", f"expected a number or a word, got {_show(v)}")
+    if spec is not None and spec.check is not None:
+        try:
+            spec.check(value, lambda key: f"{field}.{key}")
+        except UsvError as exc:
+            raise UsvError(f"{r.path}: {exc}") from None
+    return tuple(sorted(value.items()))

@@ -19,10 +19,12 @@ from collections.abc import Callable
 from pathlib import Path
 
 from usvtool.companions import companions
-from usvtool.pipeline import Chart, Ends, Options, RouteJob
+from usvtool.pipeline import Chart, Ends, FamilyJob, Options, RouteJob
 
 #: A grid job's output, in its directory (a route reads ``../../grids/<key>/grid.tif``).
 GRID = "grid.tif"
+#: A family run's scene, in its directory (with the rasters it names beside it).
+SCENE = "scenario.yaml"
 #: How a file an option names is given (:func:`option_args`).
 FileWord = Callable[[Path], str]
 
@@ -30,6 +32,16 @@ FileWord = Callable[[Path], str]
 def word(value: object) -> str:
     """A YAML scalar as a command-line word: 10 -> '10', 0.5 -> '0.5' (shortest repr)."""
     return repr(value) if isinstance(value, float) else str(value)
+
+
+def family_option_args(options: Options) -> list[str]:
+    """A family's options as ``--family-option NAME=VALUE`` words (the value as
+    :func:`word` gives it, which ``usvtool simulate`` reads back as the same number or word).
+
+    >>> family_option_args((("own_speed", 5), ("vessel", "udwa-usv")))
+    ['--family-option', 'own_speed=5', '--family-option', 'vessel=udwa-usv']
+    """
+    return [w for key, value in options for w in ("--family-option", f"{key}={word(value)}")]
 
 
 def option_args(options: Options, file: FileWord = str) -> list[str]:
@@ -76,6 +88,15 @@ def simulate_command(scenario: Path, controller: str, seed: int) -> tuple[str, .
     """A run job's ``usvtool simulate`` command line."""
     return ("simulate", str(scenario), "--controller", controller, "--seed", str(seed),
             "-o", "trace.csv", "--events", "trace.events.json")  # fmt: skip
+
+
+def family_command(job: FamilyJob) -> tuple[str, ...]:
+    """A family run's ``usvtool simulate --family`` command line: it writes the scene to
+    :data:`SCENE` in the job's directory and runs it."""
+    return ("simulate", "--family", job.family, "--kind", job.kind, "--scene", str(job.scene),
+            *family_option_args(job.options), "--controller", job.controller, "--seed",
+            str(job.seed), "-o", "trace.csv", "--events", "trace.events.json",
+            "--scenario-out", SCENE)  # fmt: skip
 
 
 def functions_command(function: str, algorithm: str, seed: int,

@@ -1,15 +1,17 @@
 """A pipeline's jobs: what each runs, and its key.
 
 A job is one ``usvtool`` command (``preprocess`` a chart, ``plan`` a route, ``simulate`` a
-scenario, one run of ``functions``) run in its own directory ``DIR/<kind>/<key>/``. Its
+scenario or a scene of a family, one run of ``functions``) run in its own directory
+``DIR/<kind>/<key>/``. Its
 arguments (:mod:`~usvtool.batch.commands` builds them) name its outputs relative to that
 directory (``route.geojson``), its grid as ``../../grids/<key>/grid.tif`` and its input files by
 absolute path. Its key is a short hash of its whole configuration, every byte the job reads
 included: the content of its input files (a grid's: a chart's source, extra inputs and the files
 its options name, :func:`~usvtool.batch.commands.chart_files`; a run's: a scenario and the files
 it names, its map, route, target tracks and wind field), each with its companions (GDAL's
-sidecars of a raster, an S-57 cell's update files: :mod:`usvtool.companions`); the options,
-the algorithm or controller, the seed, and the code of the stage that runs it (the stage's
+sidecars of a raster, an S-57 cell's update files: :mod:`usvtool.companions`); a family run's
+family, kind, scene and options (it reads no file: it makes its scene); the options, the
+algorithm or controller, the seed, and the code of the stage that runs it (the stage's
 package, its command module, the CLI basics and the contract modules), so that a change of any
 of them gives new keys and the jobs run again.
 """
@@ -26,6 +28,7 @@ from pathlib import Path
 
 from usvtool.batch.commands import (
     chart_inputs,
+    family_command,
     functions_command,
     option_args,
     plan_command,
@@ -51,7 +54,7 @@ class Job:
 
     kind: str  # grids, routes, runs, functions
     key: str
-    case: str  # the chart, the scenario file's stem, the benchmark function
+    case: str  # the chart, the scenario file's stem, family/kind/sNNN, the benchmark function
     method: str  # the algorithm, the controller; "preprocess" for a grid
     seed: int | None  # None: deterministic (a grid, an exact planner)
     args: tuple[str, ...]  # the usvtool command line, relative to the job's directory
@@ -123,8 +126,9 @@ def _key(config: dict) -> str:
 def expand(pipeline: Pipeline, names: Names,
            scenario_files: ScenarioFiles | None = None) -> list[Job]:  # fmt: skip
     """Every job of a pipeline: the grids of the charts that have routes, the routes, the runs
-    and the function runs. A job named by two matrices is one job; two different jobs of the
-    same case, method and seed are refused. ``scenario_files`` tells the files each scenario
+    (of the scenario files, then of the families' scenes) and the function runs. A job named
+    by two matrices is one job; two different jobs of the same case, method and seed are
+    refused. ``scenario_files`` tells the files each scenario
     names (None: none); a scenario that does not read is keyed by its own bytes (its run
     fails alone)."""
     root = pipeline.root
@@ -162,6 +166,13 @@ def expand(pipeline: Pipeline, names: Names,
         jobs.setdefault(key, Job("runs", key, Path(scenario).stem, controller, seed,
                                  simulate_command(path, controller, seed),
                                  info={"scenario": str(path)}))  # fmt: skip
+    for j in pipeline.family_jobs():
+        scene = {"family": j.family, "kind": j.kind, "scene": j.scene, "options": dict(j.options)}
+        key = _key({"kind": "runs", "scene": scene, "controller": j.controller, "seed": j.seed})
+        _claim(pipeline, owners, ("runs", j.case, j.controller, j.seed), key,
+               f"families.{j.entry}")  # fmt: skip
+        jobs.setdefault(key, Job("runs", key, j.case, j.controller, j.seed, family_command(j),
+                                 info={"scene": scene}))  # fmt: skip
     f = pipeline.functions
     for function, algorithm, seed in pipeline.function_jobs():
         sizes = {"pop": f.pop, "iters": f.iters, "dim": f.dim}

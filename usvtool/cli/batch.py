@@ -3,11 +3,11 @@
 
 The engine (:mod:`usvtool.batch`) imports no stage; this module gives it what it needs from
 them: :func:`run_command`, which its workers call to run one ``usvtool`` command line
-in-process; :func:`stage_names`, the algorithms, controllers and functions the stages know and
-the file options of the commands (:func:`file_options`), to check the pipeline against before
-anything runs; and :func:`scenario_files`, the files a scenario names, for the runs' keys.
-``--make-fragment FILE`` writes the pipeline's Make fragment instead (:mod:`usvtool.batch.make`)
-and runs nothing.
+in-process; :func:`stage_names`, the algorithms, controllers, scene families and functions the
+stages know and the file options of the commands (:func:`file_options`), to check the pipeline
+against before anything runs; and :func:`scenario_files`, the files a scenario names, for the
+runs' keys. ``--make-fragment FILE`` writes the pipeline's Make fragment instead
+(:mod:`usvtool.batch.make`) and runs nothing.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from pathlib import Path
 import click
 
 from usvtool.cli.options import MEMORY_SIZE, OutputPath, emit, write_summary
-from usvtool.pipeline import FileOptions, Names
+from usvtool.pipeline import FamilySpec, FileOptions, Names
 
 
 def run_command(args: list[str]) -> tuple[int, str, str]:
@@ -54,17 +54,21 @@ def file_options(command: click.Command) -> FileOptions:
 
 
 def stage_names() -> Names:
-    """The optimizers, exact planners, controllers and benchmark functions of the stages, and
-    the file options of the commands a pipeline gives options to."""
+    """The optimizers, exact planners, controllers, benchmark functions and scene families of
+    the stages, and the file options of the commands a pipeline gives options to."""
     from usvtool.cli.plan import plan
     from usvtool.cli.preprocess import preprocess
     from usvtool.plan.benchmark_functions import FUNCTIONS
     from usvtool.plan.optimizers import OPTIMIZERS
     from usvtool.plan.planners import EXACT
     from usvtool.sim.controllers import CONTROLLERS
+    from usvtool.sim.families import FAMILIES
 
     files = {"preprocess": file_options(preprocess), "plan": file_options(plan)}
-    return Names(tuple(OPTIMIZERS), tuple(EXACT), tuple(CONTROLLERS), tuple(FUNCTIONS), files)
+    families = {name: FamilySpec(cls.kinds, cls.seeded, cls().check_options)
+                for name, cls in FAMILIES.items()}  # fmt: skip
+    return Names(tuple(OPTIMIZERS), tuple(EXACT), tuple(CONTROLLERS), tuple(FUNCTIONS), files,
+                 families)  # fmt: skip
 
 
 def scenario_files(path: Path) -> list[Path]:
