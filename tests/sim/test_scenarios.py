@@ -15,14 +15,22 @@ Runs are cached for the module: each (scenario, controller) pair is simulated on
   window and on udwa+'s); in both wind runs udwa arrives before dwa.
 * Every run's trace is checked independently: the centre distances recomputed from it give the
   summary's minimum distances, and no run with touching hulls is reported arrived.
+* The outcomes of all 80 pairs (seed 1, as pipelines/full.yaml runs them) are those committed in
+  ``data/outcomes.csv`` (:func:`outcome`): arrival, collision, the closest distance and the
+  path length to 1 mm, the controller's events and the COLREGs verdicts. A change of the
+  controllers that keeps its decisions keeps the file; one that changes them shows here. After
+  a deliberate change, ``USVTOOL_WRITE_OUTCOMES=1`` writes the file anew from the runs (and the
+  test then fails, to be run again).
 """
 
 from __future__ import annotations
 
+import csv
 import dataclasses
 import importlib.util
 import json
 import os
+from collections import Counter
 from pathlib import Path
 
 import numpy as np
@@ -94,11 +102,67 @@ def run(scenario):
         if (name, controller) not in cache:
             base, *settings = controller.split(":")
             params = dict(item.split("=") for item in settings)
-            options = Options(controller=base, params=params)
+            options = Options(controller=base, params=params, seed=1)
             cache[name, controller] = simulate(scenario(name), options)
         return cache[name, controller]
 
     return get
+
+
+#: The committed outcomes of every (scenario, controller) pair: :func:`outcome`'s columns.
+OUTCOMES = Path(__file__).resolve().parent / "data" / "outcomes.csv"
+
+
+def outcome(summary: dict, events: dict) -> dict[str, str]:
+    """What a run decided, as text: arrival, collision, time, closest distance and path length
+    (1 mm), the controller's step events by kind, and the COLREGs verdicts (encounters judged,
+    how many compliant, the failed rules by name)."""
+    judged = [e for e in events["encounters"] if e["compliant"] is not None]
+    failed = Counter(rule for e in judged for rule in e["failed_rules"])
+    kinds = Counter(e["kind"] for e in events["steps"])
+    closest = summary["closest_distance_m"]
+
+    def counts(counter: Counter) -> str:
+        return " ".join(f"{k}:{n}" for k, n in sorted(counter.items()))
+
+    return {
+        "scenario": summary["scenario"],
+        "controller": summary["controller"],
+        "arrived": str(summary["arrived"]).lower(),
+        "collision": summary["collision"] or "",
+        "time_s": f"{summary['time_s']:.1f}",
+        "closest_distance_m": "" if closest is None else f"{closest:.3f}",
+        "path_length_m": f"{summary['path_length_m']:.3f}",
+        "controller_events": counts(kinds),
+        "judged": str(len(judged)),
+        "compliant": str(sum(bool(e["compliant"]) for e in judged)),
+        "failed_rules": counts(failed),
+    }
+
+
+def test_every_pair_keeps_its_committed_outcome(run):
+    """Every scenario with every controller of the committed table decides as committed."""
+    with OUTCOMES.open(newline="") as f:
+        committed = list(csv.DictReader(f))
+    assert {(r["scenario"], r["controller"]) for r in committed} == {
+        (n, c) for n in NAMES for c in CONTROLLERS
+    }
+    now = []
+    for row in committed:
+        result = run(row["scenario"], row["controller"])
+        now.append(outcome(result.summary(), result.events))
+    if os.environ.get("USVTOOL_WRITE_OUTCOMES"):
+        with OUTCOMES.open("w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=list(now[0]), lineterminator="\n")
+            writer.writeheader()
+            writer.writerows(now)
+        pytest.fail(f"{OUTCOMES} written anew: run the test again")
+    changed = [(c, n) for c, n in zip(committed, now, strict=True) if c != n]
+    assert not changed, "\n".join(
+        f"{c['scenario']}/{c['controller']}: "
+        + ", ".join(f"{k} {c[k]!r} -> {n[k]!r}" for k in c if c[k] != n[k])
+        for c, n in changed
+    )
 
 
 def test_every_yaml_is_listed():
