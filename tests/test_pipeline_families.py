@@ -47,7 +47,6 @@ def test_the_bundled_families_pipeline_is_every_family_at_full_size():
     assert len({j.case for j in head_on}) == 30
     assert {j.controller for j in head_on if j.case == "emergency/head-on/s029"} == set(
         CONTROLLERS)  # fmt: skip
-    assert not (ROOT / "pipelines" / "full.yaml").read_text().count("families")
 
 
 def test_an_entry_expands_into_kinds_x_scenes_x_controllers_x_seeds(tmp_path):
