@@ -7,8 +7,9 @@ A long-format CSV (UTF-8, ``\\n`` line ends), one row per metric of a job, with 
   in ``<the table's directory>/<kind>/<key>/`` (:func:`job_dir`, :data:`FILES`);
 - ``kind``: ``routes`` (a planned route), ``runs`` (a simulated encounter) or ``functions`` (one
   run of an optimizer on a benchmark function);
-- ``case``: what the job is about: the chart's name (routes), the scenario's name (runs) or
-  the benchmark function (functions, ``F1`` ... ``F10``);
+- ``case``: what the job is about: the chart's name (routes), the scenario file's stem or, for
+  a scene of a scene family, ``ENTRY/KIND/sNNN`` (runs: :func:`usvtool.pipeline.family_case`),
+  or the benchmark function (functions, ``F1`` ... ``F10``);
 - ``method``: the algorithm (routes, functions) or the controller (runs);
 - ``seed``: an integer, or empty for a deterministic job (the exact planners);
 - ``metric``: a column of ``usvtool metrics`` (docs/metrics.md), or ``final_cost`` for
