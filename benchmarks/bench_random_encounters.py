@@ -37,7 +37,7 @@ import numpy as np
 
 from usvtool.sim.families import make_scene
 from usvtool.sim.families.emergency import Emergency
-from usvtool.sim.run import Options, simulate
+from usvtool.sim.run import SimOptions, simulate
 from usvtool.sim.scenario import parse
 
 FAMILIES = {
@@ -82,7 +82,7 @@ def emergency_kind(seed: int) -> str:
 def one(job: tuple) -> tuple:
     family, seed, controller, params = job
     s = simulate(parse(scene(family, seed, controller), f"scene {seed}"),
-                 Options(params=params)).summary()  # fmt: skip
+                 SimOptions(params=params)).summary()  # fmt: skip
     return (controller, seed, s["collision"] is not None, s["arrived"], s["closest_distance_m"],
             s["time_s"])  # fmt: skip
 

@@ -25,7 +25,7 @@ import numpy as np
 from usvtool.clearance import Clearance
 from usvtool.grid import read_grid
 from usvtool.sim.controllers import CONTROLLERS, Own, Targets, World, make_controller
-from usvtool.sim.run import Options, simulate
+from usvtool.sim.run import SimOptions, simulate
 from usvtool.sim.scenario import read_scenario
 from usvtool.sim.vessel import preset
 
@@ -122,7 +122,7 @@ def scenarios() -> None:
     for path in sorted((ROOT / "charts" / "scenarios").glob("*.yaml")):
         scenario = read_scenario(path)
         t0 = time.perf_counter()
-        result = simulate(scenario, Options())
+        result = simulate(scenario, SimOptions())
         wall = time.perf_counter() - t0
         s = result.summary()
         n = len(result.trace.t) - 1

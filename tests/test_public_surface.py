@@ -38,7 +38,7 @@ def test_each_stage_gives_a_function_and_its_options_and_result():
         ("chart", "preprocess", "PreprocessOptions", "PreprocessResult"),
         ("chart", "render", "RenderOptions", "RenderResult"),
         ("plan", "plan_route", "PlanOptions", "PlanResult"),
-        ("sim", "simulate", "Options", "Result"),
+        ("sim", "simulate", "SimOptions", "SimResult"),
         ("metrics", "measure", "MetricsOptions", "MetricsResult"),
         ("batch", "run_batch", "BatchOptions", "BatchResult"),
         ("report", "make_report", "ReportOptions", "ReportResult"),

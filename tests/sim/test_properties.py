@@ -8,7 +8,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from usvtool.sim.run import Options, simulate
+from usvtool.sim.run import SimOptions, simulate
 from usvtool.sim.scenario import parse
 from usvtool.trace import format_trace
 
@@ -68,6 +68,6 @@ def test_the_summary_agrees_with_the_trace(targets, controller):
 
 def test_the_same_seed_gives_the_same_trace_bytes():
     noisy = scenario([(10, 80, 180, 2.0), (-40, 60, 90, 2.5)], "udwa", noise=5.0)
-    first = format_trace(simulate(noisy, Options(seed=7)).trace)
-    assert format_trace(simulate(noisy, Options(seed=7)).trace) == first
-    assert format_trace(simulate(noisy, Options(seed=8)).trace) != first
+    first = format_trace(simulate(noisy, SimOptions(seed=7)).trace)
+    assert format_trace(simulate(noisy, SimOptions(seed=7)).trace) == first
+    assert format_trace(simulate(noisy, SimOptions(seed=8)).trace) != first

@@ -39,7 +39,7 @@ import pytest
 from usvtool import angles, geodesy
 from usvtool.grid import NAVIGABLE, read_grid
 from usvtool.sim import controllers as registry
-from usvtool.sim.run import Options, simulate
+from usvtool.sim.run import SimOptions, simulate
 from usvtool.sim.scenario import read_scenario
 from usvtool.sim.vessel import vessel_from
 
@@ -102,7 +102,7 @@ def run(scenario):
         if (name, controller) not in cache:
             base, *settings = controller.split(":")
             params = dict(item.split("=") for item in settings)
-            options = Options(controller=base, params=params, seed=1)
+            options = SimOptions(controller=base, params=params, seed=1)
             cache[name, controller] = simulate(scenario(name), options)
         return cache[name, controller]
 
@@ -176,7 +176,7 @@ def test_every_controller_starts(scenario, name):
     assert sc.name == name
     short = dataclasses.replace(sc, sim=dataclasses.replace(sc.sim, duration=SMOKE_S))
     for controller in CONTROLLERS:
-        result = simulate(short, Options(controller=controller))
+        result = simulate(short, SimOptions(controller=controller))
         s = result.summary()
         assert s["controller"] == controller
         assert s["collision"] is None, (controller, s["collision"])

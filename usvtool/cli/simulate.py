@@ -91,7 +91,7 @@ def simulate(scenario_path: str | None, family: str | None, kind: str | None, sc
     from usvtool.errors import UsvError
     from usvtool.sim.controllers import make_controller
     from usvtool.sim.families import scene_files, write_scene
-    from usvtool.sim.run import Options
+    from usvtool.sim.run import SimOptions
     from usvtool.sim.run import simulate as run
     from usvtool.sim.scenario import controller_params, read_scenario
     from usvtool.trace import write_events, write_trace, write_tracks
@@ -125,8 +125,8 @@ def simulate(scenario_path: str | None, family: str | None, kind: str | None, sc
                  scenario_path, controller, scenario.controller["name"])  # fmt: skip
     log.info("%s: running %s for %g s in steps of %g s", scenario_path, name,
              scenario.sim.duration, scenario.sim.dt)  # fmt: skip
-    result = run(scenario, Options(controller=controller, params=params, seed=seed,
-                                   max_memory=max_memory))  # fmt: skip
+    result = run(scenario, SimOptions(controller=controller, params=params, seed=seed,
+                                      max_memory=max_memory))  # fmt: skip
     summary = result.summary()
     extra = {"output": output, "scenario_file": scenario_path}
     if scene is not None:

@@ -2,10 +2,10 @@
 
 Entry points (docs/api.md): :func:`read_scenario` reads a scenario file (docs/scenario.md,
 :mod:`.scenario`) and :func:`simulate` runs it (``usvtool simulate``, :mod:`.run`) as its
-:class:`Options` say; its :class:`Result` holds the trace, the events and the summary.
+:class:`SimOptions` say; its :class:`SimResult` holds the trace, the events and the summary.
 """
 
-from usvtool.sim.run import Options, Result, simulate
+from usvtool.sim.run import SimOptions, SimResult, simulate
 from usvtool.sim.scenario import Scenario, read_scenario
 
-__all__ = ["Options", "Result", "Scenario", "read_scenario", "simulate"]
+__all__ = ["Scenario", "SimOptions", "SimResult", "read_scenario", "simulate"]

@@ -12,7 +12,7 @@ The run ends when the own ship is within ``sim.goal_tolerance`` of the goal (*ar
 touches a target (centres closer than half the sum of the two lengths) or an obstacle cell of the
 map (*collision*), or at ``sim.duration``.
 
-Figures of a run (the summary; :meth:`Result.summary`): ``closest_distance_m`` the smallest
+Figures of a run (the summary; :meth:`SimResult.summary`): ``closest_distance_m`` the smallest
 centre distance to any target, ``average_distance_m`` the mean over the steps with a latched
 encounter of the distance to the nearest target (the UDWA paper's Table 1;
 :func:`usvtool.measures.run_distances`, as the metrics table),
@@ -50,7 +50,7 @@ from usvtool.trace import Trace
 
 
 @dataclass(frozen=True)
-class Options:
+class SimOptions:
     """What the command line adds to a scenario: another controller, parameters, the seed, the
     memory budget (bytes; None: :func:`usvtool.budget.default_budget`)."""
 
@@ -61,7 +61,7 @@ class Options:
 
 
 @dataclass
-class Result:
+class SimResult:
     """A finished run: its trace, its events and its figures."""
 
     scenario: Scenario
@@ -74,9 +74,9 @@ class Result:
         return dict(self.figures)
 
 
-def simulate(scenario: Scenario, options: Options | None = None) -> Result:
+def simulate(scenario: Scenario, options: SimOptions | None = None) -> SimResult:
     """Run ``scenario`` (see the module docstring)."""
-    opts = options or Options()
+    opts = options or SimOptions()
     name = opts.controller or scenario.controller["name"]
     params = {k: v for k, v in scenario.controller.items() if k != "name"}
     if opts.controller and opts.controller != scenario.controller["name"]:
@@ -294,7 +294,7 @@ def _name(scenario: Scenario, index: int) -> str:
 
 
 def _result(scenario, setup, opts, controller, times, own, ahead, motion, lengths,
-            controller_events, collision, arrived, step_time) -> Result:  # fmt: skip
+            controller_events, collision, arrived, step_time) -> SimResult:  # fmt: skip
     """The trace (the targets' yaw rates from their courses), the COLREGs evaluation and the
     figures."""
     n, dt = len(times), scenario.sim.dt
@@ -352,7 +352,7 @@ def _result(scenario, setup, opts, controller, times, own, ahead, motion, length
             **scenario_facts(scenario, setup.vessel.length),
         },
     }
-    return Result(scenario, trace, events, figures, setup.crs)
+    return SimResult(scenario, trace, events, figures, setup.crs)
 
 
 def scenario_facts(scenario: Scenario, own_length: float) -> dict:
