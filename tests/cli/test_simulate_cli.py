@@ -332,3 +332,17 @@ def test_the_events_run_object_holds_the_scenario_as_resolved(case, usv):
     assert run["route"] == str((directory / "route.geojson").resolve())
     assert run["tracks"] == [None, None, str((directory / "track.csv").resolve())]
     assert run["wind_field"] is None
+
+
+def test_files_beside_the_events_are_named_relative_to_them(case, usv):
+    """A run written with its scenario (a batch job's directory, renamed when done) names the
+    files below the events' folder relative to it, the others absolute."""
+    directory, out = case
+    (out / "map.tif").write_bytes((directory / "map.tif").read_bytes())
+    data = {**copy.deepcopy(BASE), "map": "map.tif", "sim": {"duration": 1}}
+    data["targets"][2]["track"] = "../track.csv"
+    r = simulate(usv, write_scenario(out, data), out)
+    assert r.exit_code == 0, r.stderr
+    run = read_events(out / "events.json")["run"]
+    assert (run["scenario_file"], run["map"]) == ("s.yaml", "map.tif")
+    assert run["tracks"][2] == str((directory / "track.csv").resolve())

@@ -125,8 +125,9 @@ def simulate(scenario_path: str | None, family: str | None, kind: str | None, sc
                  scenario_path, controller, scenario.controller["name"])  # fmt: skip
     log.info("%s: running %s for %g s in steps of %g s", scenario_path, name,
              scenario.sim.duration, scenario.sim.dt)  # fmt: skip
+    base = Path(events).resolve().parent if events else None
     result = run(scenario, SimOptions(controller=controller, params=params, seed=seed,
-                                      max_memory=max_memory))  # fmt: skip
+                                      max_memory=max_memory, files_base=base))  # fmt: skip
     summary = result.summary()
     extra = {"output": output, "scenario_file": scenario_path}
     if scene is not None:

@@ -52,12 +52,15 @@ from usvtool.trace import Trace
 @dataclass(frozen=True)
 class SimOptions:
     """What the command line adds to a scenario: another controller, parameters, the seed, the
-    memory budget (bytes; None: :func:`usvtool.budget.default_budget`)."""
+    memory budget (bytes; None: :func:`usvtool.budget.default_budget`), and the folder the
+    events are written to (``files_base``: the scenario's files below it are named relative to
+    it, so that a run moved with its files, as a batch job is, still names them)."""
 
     controller: str | None = None
     params: dict = field(default_factory=dict)
     seed: int = 0
     max_memory: int | None = None
+    files_base: Path | None = None  # the events file's folder: paths below it kept relative
 
 
 @dataclass
@@ -349,25 +352,36 @@ def _result(scenario, setup, opts, controller, times, own, ahead, motion, length
             "goal_tolerance": float(scenario.sim.goal_tolerance),
             "own_length": float(setup.vessel.length),
             "domain_intrusion_s": figures["domain_intrusion_s"],
-            **scenario_facts(scenario, setup.vessel.length),
+            **scenario_facts(scenario, setup.vessel.length, opts.files_base),
         },
     }
     return SimResult(scenario, trace, events, figures, setup.crs)
 
 
-def scenario_facts(scenario: Scenario, own_length: float) -> dict:
+def scenario_facts(scenario: Scenario, own_length: float, base: Path | None = None) -> dict:
     """The scenario as the run resolved it, for readers of its events (``usvtool metrics``,
     the report) that must not parse scenario YAML: its file, ``ships`` (name and length, in the
-    trace's order, the own ship first), and the absolute paths of its ``map``, ``route``,
-    ``tracks`` (per target, None when it sails a course) and ``wind_field`` (None when absent
-    or uniform)."""
+    trace's order, the own ship first), and the paths of its ``map``, ``route``, ``tracks``
+    (per target, None when it sails a course) and ``wind_field`` (None when absent or
+    uniform): absolute, or relative to ``base`` for a file below it.
+
+    >>> from usvtool.sim.scenario import parse
+    >>> s = parse({"name": "s", "own": {"start": [0, 0], "goal": [0, 9]}}, "/runs/a/s.yaml")
+    >>> scenario_facts(s, 2.5, Path("/runs/a"))["scenario_file"], scenario_facts(s, 2.5)["map"]
+    ('s.yaml', None)
+    """
 
     def path(p) -> str | None:
-        return None if p is None else str(p)
+        if p is None:
+            return None
+        p = Path(p).resolve()
+        if base is not None and p.is_relative_to(base.resolve()):
+            return p.relative_to(base.resolve()).as_posix()
+        return str(p)
 
     weather = scenario.weather
     return {
-        "scenario_file": str(Path(scenario.path).resolve()),
+        "scenario_file": path(scenario.path),
         "ships": [{"name": "own", "length": float(own_length)},
                   *({"name": t.name, "length": float(t.length)} for t in scenario.targets)],
         "map": path(scenario.map),

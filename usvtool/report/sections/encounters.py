@@ -97,17 +97,19 @@ def lengths(trace: Trace, events: dict, where: Path | str) -> dict[str, float]:
 
 
 def run_file(events: dict, key: str, where: Path | str) -> Path | None:
-    """The run's ``map`` or ``wind_field`` (``key``) as the run resolved it; None when it had
-    none. Refused when the file is gone since."""
+    """The run's ``map`` or ``wind_field`` (``key``) as the run resolved it (a relative path
+    is relative to the events file ``where``'s folder); None when it had none. Refused when
+    the file is gone since."""
     value = run_facts(events, where)[key]
     if value is None:
         return None
     if not isinstance(value, str):
         raise UsvError(f"{where}: run.{key} must be a path or null")
-    if not Path(value).is_file():
+    path = Path(where).parent / value  # a relative path is the events file's folder's
+    if not path.is_file():
         raise UsvError(f"{where}: run.{key} {value}: no such file (moved or removed since the "
                        "run?)")  # fmt: skip
-    return Path(value)
+    return path
 
 
 def primary(scenario: str, controllers: list[str]) -> str:
