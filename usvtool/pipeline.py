@@ -43,7 +43,8 @@ RESERVED_PLAN_OPTIONS = {"seed", "attempts", "algo", "start", "goal", "start-lon
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
 _OPTION = re.compile(r"^[a-z][a-z0-9-]*$")
 _FAMILY_OPTION = re.compile(r"^[a-z][a-z0-9_]*$")
-Options = tuple[tuple[str, object], ...]
+#: Options as (name, value) pairs: a command's as written, a family's sorted.
+OptionPairs = tuple[tuple[str, object], ...]
 
 
 @dataclass(frozen=True)
@@ -62,7 +63,7 @@ class Chart:
     name: str
     source: str  # relative to the pipeline's root, as written
     inputs: tuple[str, ...] = ()  # globs of further files the grid depends on
-    options: Options = ()  # usvtool preprocess options; a file it reads: its absolute Path
+    options: OptionPairs = ()  # usvtool preprocess options; a file it reads: its absolute Path
     ends: Ends | None = None
 
 
@@ -116,7 +117,7 @@ class RouteMatrix:
     algorithms: tuple[str, ...]
     seeds: tuple[int, ...]
     attempts: int
-    options: Options  # further usvtool plan options
+    options: OptionPairs  # further usvtool plan options
     ends: dict[str, Ends]  # the charts' start and goal
 
     @property
@@ -137,7 +138,7 @@ class RouteJob:
     ends: Ends
     seed: int | None
     attempts: int
-    options: Options  # the matrix's plan options
+    options: OptionPairs  # the matrix's plan options
 
 
 @dataclass(frozen=True)
@@ -323,7 +324,7 @@ class _Reader:
             self.fail(field, f"named twice: {', '.join(map(str, dup))}")
         return tuple(value)
 
-    def options(self, value, field: str, root: Path, files: FileOptions) -> Options:
+    def options(self, value, field: str, root: Path, files: FileOptions) -> OptionPairs:
         """A command's options; one naming a file it reads must name a file (relative to
         ``root``) and becomes its absolute :class:`Path`; one naming a file it writes is
         refused (``usvtool batch`` names a job's outputs, in the job's directory)."""

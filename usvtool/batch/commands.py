@@ -19,7 +19,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from usvtool.companions import companions
-from usvtool.pipeline import Chart, Ends, FamilyJob, Options, RouteJob
+from usvtool.pipeline import Chart, Ends, FamilyJob, OptionPairs, RouteJob
 
 #: A grid job's output, in its directory (a route reads ``../../grids/<key>/grid.tif``).
 GRID = "grid.tif"
@@ -34,7 +34,7 @@ def word(value: object) -> str:
     return repr(value) if isinstance(value, float) else str(value)
 
 
-def family_option_args(options: Options) -> list[str]:
+def family_option_args(options: OptionPairs) -> list[str]:
     """A family's options as ``--family-option NAME=VALUE`` words (the value as
     :func:`word` gives it, which ``usvtool simulate`` reads back as the same number or word).
 
@@ -44,7 +44,7 @@ def family_option_args(options: Options) -> list[str]:
     return [w for key, value in options for w in ("--family-option", f"{key}={word(value)}")]
 
 
-def option_args(options: Options, file: FileWord = str) -> list[str]:
+def option_args(options: OptionPairs, file: FileWord = str) -> list[str]:
     """``(("cell-size", 1), ("no-swell", True))`` -> ``["--cell-size", "1", "--no-swell"]``;
     a file (a :class:`Path`) as ``file(path)`` gives it."""
     out: list[str] = []
@@ -113,7 +113,7 @@ def chart_inputs(root: Path, chart: Chart) -> list[str]:
                   for p in root.glob(pattern) if p.is_file())  # fmt: skip
 
 
-def option_files(options: Options) -> list[Path]:
+def option_files(options: OptionPairs) -> list[Path]:
     """The files a command's options name (those the reader made a :class:`Path`)."""
     return [v for _, v in options if isinstance(v, Path)]
 
