@@ -46,7 +46,7 @@ class StraightToGoal(Controller):
 
     name = "straight"
 
-    def terms(self, own, r):
+    def critics(self):
         return []
 
     def decide(self, own, targets, encounter=None) -> Decision:

@@ -40,7 +40,9 @@ class Clearance:
         dist = cv2.distanceTransform(free, cv2.DIST_L2, cv2.DIST_MASK_PRECISE)[1:-1, 1:-1]
         #: the clearance of each cell (m), rows from the north as in the grid
         self.metres = np.where(dist > 0, (dist - 0.5) * grid.cell_size, 0.0).astype(float)
-        self._flat = np.pad(self.metres, 1).ravel()
+        #: the clearances with a zero border (everything outside), raveled in rows of width + 2:
+        #: the table :meth:`at` indexes
+        self.padded = np.pad(self.metres, 1).ravel()
 
     def at(self, x, y) -> np.ndarray:
         """Clearance in metres at the map points ``(x, y)`` (arrays of one shape)."""
@@ -51,4 +53,4 @@ class Clearance:
         # clipped to be >= 0 first, so truncation is the floor
         col = np.clip((np.asarray(x, float) - left) * scale + 1, 0, w + 1).astype(np.intp)
         row = np.clip((top - np.asarray(y, float)) * scale + 1, 0, h + 1).astype(np.intp)
-        return self._flat[row * (w + 2) + col]
+        return self.padded[row * (w + 2) + col]

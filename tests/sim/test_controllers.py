@@ -170,11 +170,12 @@ def test_udwa_prefers_starboard_and_departs_under_rule_2_when_it_is_blocked():
 
 def test_the_side_tables_read_the_papers():
     """Crossing from port: the UDWA paper turns to port, the COLREGs (Rule 17(c)) never."""
-    udwa = make_controller("udwa")
+    udwa = make_controller("udwa").side_rule
     assert udwa.side(Encounter("crossing-stand-on", 0)) == 1
-    assert make_controller("udwa", sides="colregs").side(Encounter("crossing-stand-on", 0)) == -1
+    colregs = make_controller("udwa", sides="colregs").side_rule
+    assert colregs.side(Encounter("crossing-stand-on", 0)) == -1
     assert udwa.side(Encounter("overtaken", 0)) == 0 and udwa.side(None) == 0
-    assert make_controller("dwa").side(Encounter("head-on", 0)) == 0
+    assert make_controller("dwa").side_rule.side(Encounter("head-on", 0)) == 0
 
 
 def test_the_weather_term_favours_the_heading_that_makes_more_speed():
@@ -183,7 +184,8 @@ def test_the_weather_term_favours_the_heading_that_makes_more_speed():
     c = controller("udwa", weather=uniform(7.0, 0.0))
     r = c.rollouts(Own(0, 0, 0.0, 4.0, 0.0), Targets.none())  # heading east
     r.psi_end[:] = np.where(r.omega > 0, NORTH, -NORTH)  # pretend: port samples end north
-    speed = c.velocity(r)
+    (velocity,) = [critic for critic in c.objective if critic.name == "velocity"]
+    speed = velocity.reward(None, r)
     same_v = r.v == r.v[0]
     assert speed[same_v & (r.omega > 0)].max() < speed[same_v & (r.omega < 0)].min()
     assert (speed[r.omega > 0] < r.v[r.omega > 0]).all()  # a head wind costs speed
@@ -193,9 +195,9 @@ def test_gdwa_follows_the_route_vertex_by_vertex():
     route = np.array([[0.0, 0.0], [0.0, 50.0], [50.0, 50.0]])
     c = make_controller("gdwa", reach=5.0)
     c.reset(World(SHIP, np.array([50.0, 100.0]), None, route, None, 0.1))
-    assert c.subgoal(Own(0, 0, NORTH, 4, 0)).tolist() == [0.0, 50.0]
-    assert c.subgoal(Own(0, 46, NORTH, 4, 0)).tolist() == [50.0, 50.0]  # within reach
-    assert c.subgoal(Own(60, 52, 0, 4, 0)).tolist() == [50.0, 100.0]  # passed: the goal
+    assert c.progress.subgoal(Own(0, 0, NORTH, 4, 0)).tolist() == [0.0, 50.0]
+    assert c.progress.subgoal(Own(0, 46, NORTH, 4, 0)).tolist() == [50.0, 50.0]  # within reach
+    assert c.progress.subgoal(Own(60, 52, 0, 4, 0)).tolist() == [50.0, 100.0]  # passed: the goal
 
 
 def test_the_domain_is_kept_clear_when_some_sample_can():
@@ -226,7 +228,8 @@ def test_a_rollout_through_the_goal_scores_the_full_heading():
     r = c.rollouts(Own(0, 0, NORTH, 4.0, 0.0), Targets.none())
     straight = r.omega == 0.0
     assert r.reached[straight].all() and np.abs(r.end[straight] - 6j).min() > 5  # ends beyond
-    assert (c.heading(r, math.pi)[straight] == math.pi).all()
+    (heading,) = [critic for critic in c.objective if critic.name == "heading"]
+    assert (heading.reward(None, r)[straight] == math.pi).all()
 
 
 def test_safe_priority_gives_the_bonus_only_where_nothing_comes_near():

@@ -2,19 +2,23 @@
 
 :data:`PROCESS` plus three parts:
 
-- the controller's rollouts, :data:`ROLLOUT_BYTES` per point: (v_samples + 1) x (omega_samples
-  + 2) samples (the window's grid, the current speed and yaw rate and straight on) x horizon
-  steps; the positions, the clearance gaps, contacts and one target's distances at a time, so
-  the number of targets does not count (measured: 2 and 6 targets, the same peak);
+- the controller's rollouts: (v_samples + 1) x (omega_samples + 2) samples (the window's grid,
+  the current speed and yaw rate and straight on), each :data:`POINT_BYTES` per horizon step
+  (its positions: the compiled checks keep no other (horizon, samples) array,
+  :mod:`usvtool.sim.rollout_kernels`) and :data:`SAMPLE_BYTES` (its speed, yaw rate, contact
+  time, clearance, the critics' rewards, the kernels' per-sample tables); the number of targets
+  does not count;
 - the run, per step :data:`STEP_BYTES` and per ship and step :data:`SHIP_STEP_BYTES`: the
   targets' predicted tracks, the own ship's states, the trace's columns and their CSV text, the
   COLREGs evaluation's tables, for a run that lasts its whole ``sim.duration``;
 - the map, :data:`MAP_CELL_BYTES` per cell: the grid and its clearance field.
 
-Measured peaks (benchmarks/bench_memory.py; docs/simulate.md): 75-114 bytes per rollout point
-(dwa to udwa+, 201^2-401^2 samples, horizons of 20-100 steps; the most with steps of 0.34 s or
-more, where the domain is checked at every point), 1012 bytes per step alone and 455-555 more
-per target, 21-22 per map cell, over a process of 47 MB (130 MB with a map or a wind field).
+Measured (tracemalloc of one step, NumPy's allocations: 51^2-201^2 samples, horizons of 20-100
+steps, every controller): 16 bytes per rollout point and 112-165 per sample, to which the
+kernels add about 100 per sample; peaks of whole runs (benchmarks/bench_memory.py;
+docs/simulate.md): 1012 bytes per step alone and 455-555 more per target, 21-22 per map cell,
+over a process of 47 MB (130 MB with a map or a wind field), and numba's, which the rollouts
+load.
 Every estimate lies above its measured peak: those over 500 MiB by 11-52 %, smaller ones by up
 to 2.4 times (the process's 128 MiB are counted for an open-water run's 47 MB).
 """
@@ -24,7 +28,8 @@ from __future__ import annotations
 from usvtool.budget import MiB, require
 
 PROCESS = 128 * MiB  # Python, NumPy (and with a map GDAL and OpenCV)
-ROLLOUT_BYTES = 128
+POINT_BYTES = 16
+SAMPLE_BYTES = 320
 STEP_BYTES = 450
 SHIP_STEP_BYTES = 600
 MAP_CELL_BYTES = 24
@@ -38,7 +43,7 @@ def run_parts(controller, steps: int, ships: int, map_size: tuple[int, int] | No
     n_v, n_omega = int(params["v_samples"]) + 1, int(params["omega_samples"]) + 2
     horizon = controller.times.size
     parts = [
-        (n_v * n_omega * horizon * ROLLOUT_BYTES,
+        (n_v * n_omega * (horizon * POINT_BYTES + SAMPLE_BYTES),
          f"its rollouts: {n_v} x {n_omega} samples x {horizon} horizon steps",
          "lower v_samples and omega_samples (--param) or the horizon"),
         (steps * (STEP_BYTES + ships * SHIP_STEP_BYTES),

@@ -8,7 +8,8 @@ speeds in m/s and angular figures in degrees (deg/s, deg/s²): :func:`vessel_fro
 once. Equation numbers are those of the IWSO-DWA paper (``/work/shared/papers/000_*``).
 
 Everything is vectorised: :func:`arcs` (and :func:`ramps`) move every velocity sample of the
-window's grid over a horizon of ``steps`` periods in a few broadcast NumPy expressions.
+window's grid over a horizon of ``steps`` periods, the work per yaw rate or speed in NumPy, the
+positions in a compiled loop (:mod:`usvtool.sim.rollout_kernels`).
 
 >>> ship = preset("udwa-usv")
 >>> ship.max_speed, round(math.degrees(ship.max_yaw_rate), 9)
@@ -203,6 +204,7 @@ class Fan(NamedTuple):
     x: np.ndarray  # (steps, V·R) the predicted positions, east
     y: np.ndarray  # (steps, V·R) and north
     u: np.ndarray  # (steps, R) complex: each period's unit chord direction, per yaw rate
+    radius: np.ndarray  # (steps,) the farthest any rollout is from the start at each time
 
 
 def arcs(x0, y0, psi0, speeds, rates, dt: float, steps: int) -> Fan:
@@ -219,6 +221,8 @@ def arcs(x0, y0, psi0, speeds, rates, dt: float, steps: int) -> Fan:
     >>> fan.x.round(6).tolist(), fan.y.round(6).tolist()
     ([[0.5, 0.31831], [1.0, 0.0]], [[0.0, 0.31831], [0.0, 0.63662]])
     """
+    from usvtool.sim.rollout_kernels import arc_points
+
     speeds, rates = _grid_axes(speeds, rates)
     turn = rates * dt
     u = np.empty((steps, rates.size), complex)
@@ -227,11 +231,9 @@ def arcs(x0, y0, psi0, speeds, rates, dt: float, steps: int) -> Fan:
     np.cumprod(u, axis=0, out=u)
     summed = np.cumsum(u, axis=0)
     chord = speeds[:, None] * dt * np.sinc(turn / (2 * np.pi))  # (V, R)
-    x = (chord * summed.real[:, None, :]).reshape(steps, -1)
-    y = (chord * summed.imag[:, None, :]).reshape(steps, -1)
-    x += float(x0)
-    y += float(y0)
-    return Fan(x, y, u)
+    x, y = np.empty((2, steps, speeds.size * rates.size))
+    radius = arc_points(float(x0), float(y0), chord, summed, x, y)
+    return Fan(x, y, u, radius)
 
 
 def toward(now, target, down, up, t):
@@ -273,17 +275,16 @@ def ramps(x0, y0, psi0, v0, omega0, speeds, rates, vessel: Vessel, dt: float, st
     >>> ramps(0, 0, 0, 3.0, 0.0, [7.0], [0.0], ship, 0.5, 5).x.round(6).T.tolist()
     [[1.75, 4.0, 6.75, 10.0, 13.5]]
     """
+    from usvtool.sim.rollout_kernels import ramp_points
+
     speeds, rates = _grid_axes(speeds, rates)
     t_mid = dt * (np.arange(steps) + 0.5)[:, None]
     chord = dt * toward(v0, speeds, vessel.max_decel, vessel.max_accel, t_mid)  # (steps, V)
     turned = travelled(omega0, rates, vessel.max_yaw_accel, vessel.max_yaw_accel, t_mid)
     u = np.exp(1j * (psi0 + turned))  # (steps, R)
-    x = chord[:, :, None] * u.real[:, None, :]
-    y = chord[:, :, None] * u.imag[:, None, :]
-    x, y = (np.cumsum(a, axis=0).reshape(steps, -1) for a in (x, y))
-    x += float(x0)
-    y += float(y0)
-    return Fan(x, y, u)
+    x, y = np.empty((2, steps, speeds.size * rates.size))
+    radius = ramp_points(float(x0), float(y0), chord, u, x, y)
+    return Fan(x, y, u, radius)
 
 
 def _grid_axes(speeds, rates) -> tuple[np.ndarray, np.ndarray]:
@@ -320,12 +321,14 @@ def window(vessel: Vessel, v, omega, dt: float) -> Window:
     """
     if not dt > 0:
         raise ValueError("dt must be > 0")
-    v = np.asarray(v, float)
-    omega = np.asarray(omega, float)
+    scalar = isinstance(v, float) and isinstance(omega, float)
+    if not scalar:
+        v, omega = np.asarray(v, float), np.asarray(omega, float)
     v_down, v_up = v - vessel.max_decel * dt, v + vessel.max_accel * dt
     w_down, w_up = omega - vessel.max_yaw_accel * dt, omega + vessel.max_yaw_accel * dt
-    def clip(limit, lo, hi):  # np.clip's dispatch costs more than the work on scalars
-        return _out(np.minimum(np.maximum(limit, lo), hi))
+
+    def clip(limit, lo, hi):  # NumPy's dispatch costs more than the work on one ship's floats
+        return min(max(limit, lo), hi) if scalar else _out(np.minimum(np.maximum(limit, lo), hi))
 
     return Window(
         clip(vessel.min_speed, v_down, v_up),
@@ -392,13 +395,15 @@ def _axis(lo: float, hi: float, n: int, extra) -> np.ndarray:
     >>> float(np.linspace(-0.3, 0.2, 6)[3]), float(_axis(-0.3, 0.2, 6, [0.0])[3])
     (5.551115123125783e-17, 0.0)
     """
-    axis = np.linspace(lo, hi, n)
     if lo == hi:
-        return axis[:1]
-    inside = [e for e in extra if e is not None and lo <= e <= hi]
-    axis = np.concatenate([axis, inside])
-    axis[np.abs(axis) <= ZERO_TOLERANCE * (hi - lo)] = 0.0
-    return np.unique(axis)
+        return np.array([lo])
+    # np.linspace's values, in floats (its dispatch costs more than 21 values): i times the
+    # step (i / (n - 1) times the width when the step underflows to zero) plus lo, hi last
+    step = (hi - lo) / (n - 1)
+    axis = [i * step + lo if step else i / (n - 1) * (hi - lo) + lo for i in range(n - 1)]
+    axis += [hi, *(e for e in extra if e is not None and lo <= e <= hi)]
+    tolerance = ZERO_TOLERANCE * (hi - lo)
+    return np.array(sorted({0.0 if abs(a) <= tolerance else a for a in axis}))
 
 
 def _out(a: np.ndarray):

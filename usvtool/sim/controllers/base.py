@@ -1,25 +1,31 @@
-"""The Dynamic Window Approach core that every controller shares.
+"""The Dynamic Window Approach core that every controller shares, and the parts it is made of.
 
-One control step, all velocity samples at once (no per-sample Python loop):
+A controller is a composition, in the manner of Nav2's DWB: a *trajectory generator* (the
+window strategy, :mod:`.windows`: one control period's window or the horizon's), named
+*critics* each with a scale (:mod:`.critics`), a *side rule* (:mod:`.side_rule`) and the
+*fallback* below. Each controller of the papers is a configuration of these parts
+(docs/controllers.md); the core runs them. One control step, all velocity samples at once:
 
-1. the dynamic window: the vessel's limits (IWSO-DWA eq. 18) intersected with what its
-   accelerations reach in one control period (eq. 19), sampled on a regular grid of
-   ``v_samples`` x ``omega_samples`` pairs (:func:`usvtool.sim.vessel.samples`);
-2. every pair is rolled out at constant (v, omega) over ``horizon`` seconds in steps of
-   ``step`` (eq. 16, :func:`usvtool.sim.vessel.arcs`). With ``window: horizon`` (the variant
-   ``udwa+``) the window is what the accelerations reach within the horizon, each rollout
-   ramps toward its pair at the limits (:func:`usvtool.sim.vessel.ramps`), and the command is
-   the ramp's first period;
+1. the generator samples the dynamic window: the vessel's limits (IWSO-DWA eq. 18) intersected
+   with what its accelerations reach in one control period (eq. 19), or within the horizon
+   (``window: horizon``), on a regular grid of ``v_samples`` x ``omega_samples`` pairs
+   (:func:`usvtool.sim.vessel.samples`);
+2. and rolls every pair out over ``horizon`` seconds in steps of ``step``: held at constant
+   (v, omega) on exact arcs (eq. 16, :func:`usvtool.sim.vessel.arcs`), or ramping toward the
+   pair at the limits (:func:`usvtool.sim.vessel.ramps`), the command then the ramp's first
+   period;
 3. the rollouts are checked against the grid's clearance field (:mod:`usvtool.clearance`: a
    contact where the clearance falls to the own ship's radius, half her length) and against
    every target's predicted positions (constant velocity; a contact where the centres come
-   within half the sum of the two lengths). A sample's *time to contact* is the first predicted
-   time of either, infinite when there is none in the horizon. A sample is *admissible* (eq. 20,
+   within half the sum of the two lengths), compiled (:mod:`usvtool.sim.rollout_kernels`;
+   targets and horizon rows that cannot come within ``dist_max`` of a contact are skipped by a
+   distance bound). A sample's *time to contact* is the first predicted time of either,
+   infinite when there is none in the horizon. A sample is *admissible* (eq. 20,
    :func:`usvtool.sim.vessel.admissible`) when it can brake to a stop before its contact, the
    paper's "dist" read as Fox et al.'s distance along the trajectory to the contact;
-4. the controller's terms are computed for each sample, each normalised by its sum over the
-   candidates (the UDWA paper's eqs. 2-4) and combined with the controller's weights (eq. 1,
-   eq. 21, eq. 25); every term is a reward (larger is better);
+4. each critic rewards every sample (larger is better); the rewards are normalised by their
+   sums over the candidates (the UDWA paper's eqs. 2-4) and added with the critics' scales
+   (eq. 1, eq. 21, eq. 25);
 5. the candidates are the contact-free samples, less those the side rule removes (CCDWA), and,
    when some remain, less those that bring a target into the own ship's domain (the UDWA
    paper's 7 L x 3 L ellipse: "the predicted trajectory is discarded" within the safe
@@ -32,7 +38,7 @@ No controller picks a sample with a contact while a contact-free one exists: whe
 the side rule keeps meets a contact, the removed side's free samples are the candidates after
 all, and the step logs a ``side-rule-overridden`` event (CCDWA stays rigid until then: it turns
 away from its side only once that side holds no free sample within the horizon). When every
-sample has one, the controller takes, in order: an admissible one (it can still stop), the
+sample has one, the fallback takes, in order: an admissible one (it can still stop), the
 longest time to contact, the most starboard yaw rate, the lowest speed (COLREGs Rules 8 and
 17(b): a clear turn to starboard and slowing), and logs an ``all-samples-collide`` event with the
 number of samples each check rejected, the way Nav2's DWB reports which critic rejected the
@@ -50,16 +56,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from usvtool.angles import wrap_pi
-from usvtool.encounter import domain_ellipse, domain_semi_axes
+from usvtool.encounter import domain_semi_axes
 from usvtool.errors import UsvError
 from usvtool.sim import sides as side_rules
 from usvtool.sim import vessel as vessel_model
-
-#: The dynamic windows: ``period``, what one control period's accelerations reach, every sample
-#: held from now on (IWSO-DWA eq. 19 with the control period, Fox et al. 1997); ``horizon``,
-#: what they reach within the horizon, each sample approached at the limits and then held
-#: (trajectory rollout, Gerkey and Konolige 2008: :func:`usvtool.sim.vessel.ramps`).
-WINDOWS = ("period", "horizon")
+from usvtool.sim.controllers.critics import Critic
+from usvtool.sim.controllers.side_rule import SideRule
+from usvtool.sim.controllers.windows import WINDOWS
 
 #: Seconds between the rollout points at which the ship domain is checked (a target moves a
 #: few metres in that time, the domain is 7 ship lengths long).
@@ -130,7 +133,8 @@ class Rollouts:
     psi_end: np.ndarray  # (N,) the predicted final headings (rad)
     contact: np.ndarray  # (N,) time to the first contact, inf when none
     static_hit: np.ndarray  # (N,) bool: the first contact is with the grid
-    clearance: np.ndarray  # (N,) smallest distance to anything over the horizon (m)
+    clearance: np.ndarray  # (N,) smallest distance to anything over the horizon (m): exact
+    # below dist_max, at least dist_max elsewhere (what lies farther is not measured)
     intrudes: np.ndarray  # (N,) bool: some target enters the own ship's domain
     x: np.ndarray  # (T, N) the predicted positions, east
     y: np.ndarray  # (T, N) and north
@@ -140,16 +144,18 @@ class Rollouts:
 
 
 class Controller(ABC):
-    """A DWA controller: the core above, its terms and weights, and its side rule.
+    """A DWA controller: a trajectory generator, critics with scales, a side rule, the fallback.
 
     Parameters common to all (keyword arguments, each controller adding its own ``defaults``):
     ``horizon`` (s), ``step`` (s, the rollout's time step), ``v_samples`` and
-    ``omega_samples`` (the window's grid), ``dist_max`` (m, the clearance term's cap),
-    ``weather`` (use the attainable speed of UDWA eq. 5 in the velocity term), ``sides`` (a
-    table of :mod:`usvtool.sim.sides`, or ``none``), ``priority`` (the preferred side's score
+    ``omega_samples`` (the window's grid), ``window`` (the generator:
+    :data:`~usvtool.sim.controllers.windows.WINDOWS`), ``dist_max`` (m, the clearance term's
+    cap), ``weather`` (use the attainable speed of UDWA eq. 5 in the velocity term), ``sides``
+    (a table of :mod:`usvtool.sim.sides`, or ``none``), ``priority`` (the preferred side's score
     bonus, for the controllers that prefer rather than remove), ``safe_priority`` (the bonus
-    only for samples whose clearance reaches ``dist_max``), ``domain`` (keep the targets out
-    of the own ship's domain when some sample can) and ``window`` (:data:`WINDOWS`).
+    only for samples whose clearance reaches ``dist_max``) and ``domain`` (keep the targets out
+    of the own ship's domain when some sample can). A controller names its critics
+    (:meth:`critics`) and whether its side rule removes the other side (``removes_side``).
     """
 
     name: str = ""
@@ -192,22 +198,45 @@ class Controller(ABC):
         if not p["priority"] >= 0:
             raise UsvError(f"{self.name}: priority must be >= 0, not {p['priority']}")
         self.times = p["step"] * np.arange(1, int(round(p["horizon"] / p["step"])) + 1)
+        self.objective = self.critics()
+        self.side_rule = SideRule(p["sides"], self.removes_side, p["priority"],
+                                  p["safe_priority"], p["dist_max"])  # fmt: skip
         self.world: World | None = None
+
+    @abstractmethod
+    def critics(self) -> list[Critic]:
+        """The terms of the objective, each with its scale (:mod:`.critics`)."""
 
     def reset(self, world: World) -> None:
         """Start a run in ``world``."""
         self.world = world
+        self.generator = WINDOWS[self.params["window"]](world, self.times)
+        for critic in self.objective:
+            critic.reset(world)
+        p, length = self.params, float(world.vessel.length)
+        if world.clearance is not None:
+            grid = world.clearance.grid
+            left, _, _, top = grid.bounds
+            field = (world.clearance.padded, grid.width, float(left), float(top),
+                     1.0 / grid.cell_size, float(grid.cell_size))  # fmt: skip
+        else:
+            field = (_OPEN_WATER, 0, 0.0, 0.0, 1.0, 1.0)
+        along, across = domain_semi_axes(length)
+        # the domain, a soft rule, is looked at every DOMAIN_EVERY seconds of the horizon
+        every = max(1, int(round(DOMAIN_EVERY / p["step"]))) if p["domain"] else 0
+        #: the checks' constants of the run (rollout_kernels.contacts)
+        self._checks = (*field, length, every, float(along), float(across),
+                        along * along * (1 + 1e-9), float(p["dist_max"]))  # fmt: skip
 
     # -- the core --------------------------------------------------------------------------
 
     def decide(self, own: Own, targets: Targets, encounter: Encounter | None = None) -> Decision:
         """The velocity pair for the next control period."""
         r = self.rollouts(own, targets)
-        side = self.side(encounter)
+        rule = self.side_rule
+        side = rule.side(encounter)
         free = ~np.isfinite(r.contact)
-        removed = np.zeros_like(free)
-        if side != side_rules.EITHER and self.removes_side:
-            removed = np.sign(r.omega) == -side
+        removed = rule.removed(side, r.omega)
         candidates = free & ~removed
         if (candidates & ~r.intrudes).any():  # keep the targets out of the domain when one can
             candidates &= ~r.intrudes
@@ -218,201 +247,72 @@ class Controller(ABC):
         events = []
         if not candidates.any() and free.any():  # safety first: the removed side after all
             candidates = free
-            events.append({
-                "kind": "side-rule-overridden",
-                "preferred": side_rules.NAMES[side],
-                "reason": f"every {side_rules.NAMES[side]} sample meets a contact within "
-                f"{self.times[-1]:g} s",
-            })  # fmt: skip
+            events.append(rule.overridden(side, self.times[-1]))
         if not candidates.any():
             return self._fallback(own, r, removed)
-        score = self.score(own, r, candidates)
-        if side != side_rules.EITHER and self.params["priority"] > 0:
-            bonus = np.sign(r.omega) == side
-            if self.params["safe_priority"]:  # only where no target or shore comes near
-                bonus &= r.clearance >= self.params["dist_max"]
-            score = np.where(bonus, score * (1 + self.params["priority"]), score)
+        score = rule.favour(side, r, self.score(own, r, candidates))
         score = np.where(candidates, score, -np.inf)
         best = int(np.argmax(score))
         decision = self._command(own, r, best, events)
         if side != side_rules.EITHER and np.sign(r.omega[best]) == -side and not events:
-            decision.events.append(self._departure(encounter, side, r, score, free))
+            decision.events.append(rule.departure(encounter, side, r, score, free))
         return decision
 
     def _command(self, own: Own, r: Rollouts, best: int, events: list[dict]) -> Decision:
-        """The velocity pair for the next period from sample ``best``: the sample itself (a
-        ``period`` window holds only what one period reaches), or, with a ``horizon`` window,
-        the first period of the ramp toward it."""
-        v, omega = float(r.v[best]), float(r.omega[best])
-        if self.params["window"] == "horizon":
-            vessel, dt = self.world.vessel, self.world.period
-            v = float(vessel_model.toward(own.v, v, vessel.max_decel, vessel.max_accel, dt))
-            omega = float(vessel_model.toward(own.omega, omega, vessel.max_yaw_accel,
-                                              vessel.max_yaw_accel, dt))  # fmt: skip
+        """The velocity pair for the next period from sample ``best``, as the generator
+        commands it."""
+        v, omega = self.generator.command(own, float(r.v[best]), float(r.omega[best]))
         return Decision(v, omega, events)
 
     def _crosses_ahead(self, own: Own, r: Rollouts, targets: Targets, j: int) -> np.ndarray:
         """(N,) bool: the rollout crosses target ``j``'s course line ahead of her (the side of
         her line the own ship is on changes while she is ahead of the target's bow)."""
+        from usvtool.sim.rollout_kernels import crosses_ahead
+
         vel = targets.vel[j]
         speed = float(np.hypot(*vel))
         if speed < 1e-9:
             return np.zeros(r.v.size, bool)
         hx, hy = vel / speed
-        px = targets.pos[j, 0] + vel[0] * self.times
-        py = targets.pos[j, 1] + vel[1] * self.times
-        rx, ry = r.x - px[:, None], r.y - py[:, None]
         now = hx * (own.y - targets.pos[j, 1]) - hy * (own.x - targets.pos[j, 0])
-        across = hx * ry - hy * rx
-        return ((np.sign(across) != np.sign(now)) & (hx * rx + hy * ry > 0)).any(axis=0)
+        return crosses_ahead(r.x, r.y, self.times, float(targets.pos[j, 0]),
+                             float(targets.pos[j, 1]), float(vel[0]), float(vel[1]), float(hx),
+                             float(hy), float(now))  # fmt: skip
 
     def rollouts(self, own: Own, targets: Targets) -> Rollouts:
         """Sample the window, roll every sample out and find its contacts."""
-        world, p = self.world, self.params
-        vessel = world.vessel
-        ramped = p["window"] == "horizon"
-        span = self.times[-1] if ramped else world.period
-        window = vessel_model.window(vessel, own.v, own.omega, span)
-        speeds, rates = vessel_model.samples(
-            window, int(p["v_samples"]), int(p["omega_samples"]), current=(own.v, own.omega)
-        )
+        from usvtool.sim.rollout_kernels import closest, contacts
+
+        world, p, generator = self.world, self.params, self.generator
+        speeds, rates = generator.axes(own, int(p["v_samples"]), int(p["omega_samples"]))
         v, omega = np.repeat(speeds, rates.size), np.tile(rates, speeds.size)
-        if ramped:
-            fan = vessel_model.ramps(own.x, own.y, own.psi, own.v, own.omega, speeds, rates,
-                                     vessel, p["step"], len(self.times))  # fmt: skip
-        else:
-            fan = vessel_model.arcs(own.x, own.y, own.psi, speeds, rates, p["step"],
-                                    len(self.times))  # fmt: skip
-        radius = vessel.length / 2
-        n, t = v.size, self.times.size
+        fan = generator.fan(own, speeds, rates)
         x, y = fan.x, fan.y  # (T, N)
-        # hit: (T, N) contacts, made only when some rollout has one (most steps have none)
-        hit = static = None
-        if world.clearance is not None:
-            static_gap = world.clearance.at(x, y)
-            static_gap -= radius
-            clearance = static_gap.min(axis=0)
-            if clearance.min() <= 0:
-                static = static_gap <= 0
-                hit = static.copy()
-        else:
-            clearance = np.full(n, np.inf)
-        # one target at a time: (T, N) temporaries, small enough to stay in the allocator's
-        # cache (fresh (k, T, N) arrays cost more in page faults than in arithmetic)
-        ahead = targets.pos[:, None, :] + targets.vel[:, None, :] * self.times[:, None]
-        intrudes = np.zeros(n, bool)
-        a = domain_semi_axes(vessel.length)[0]  # the domain's longer semi-axis
-        # the domain, a soft rule, is looked at every DOMAIN_EVERY seconds of the horizon
-        rows = slice(None, None, max(1, int(round(DOMAIN_EVERY / p["step"]))))
-        ux = uy = None  # each period's direction per sample, made when a domain test needs it
-        for j, length in enumerate(targets.length):
-            dx, dy = ahead[j, :, 0, None] - x, ahead[j, :, 1, None] - y
-            d2 = np.square(dx)
-            d2 += np.square(dy)
-            closest2 = d2.min(axis=0)
-            nearest2 = closest2.min()
-            reach = (vessel.length + length) / 2
-            if nearest2 <= reach * reach:
-                touch = d2 <= reach * reach
-                hit = touch if hit is None else np.logical_or(hit, touch, out=hit)
-            np.minimum(clearance, np.sqrt(closest2) - reach, out=clearance)
-            # the target in the own ship's domain, along and across her heading: never farther
-            # than a (the margin keeps the skip clear of round-off in the ellipse's terms)
-            if p["domain"] and nearest2 <= a * a * (1 + 1e-9):
-                if ux is None:  # (T', N)
-                    u = np.tile(fan.u[rows], speeds.size)
-                    ux, uy = np.ascontiguousarray(u.real), np.ascontiguousarray(u.imag)
-                inside = domain_ellipse(dx[rows], dy[rows], ux, uy, vessel.length) <= 1
-                intrudes |= inside.any(axis=0)
-        columns = np.arange(n)
-        if hit is None:
-            contact = np.full(n, np.inf)
-            static_first = np.zeros(n, bool)
-        else:
-            first = np.where(hit.any(axis=0), hit.argmax(axis=0), t)
-            at = np.minimum(first, t - 1)
-            contact = np.where(first < t, self.times[at], np.inf)
-            static_first = (first < t) & (static[at, columns] if static is not None else False)
-        to_goal = np.square(x - world.goal[0])
-        to_goal += np.square(y - world.goal[1])
-        closest = to_goal.argmin(axis=0)
-        reached = to_goal[closest, columns] <= world.goal_tolerance**2
-        near = x[closest, columns] + 1j * y[closest, columns]
-        if ramped:  # the heading turned while the yaw rate ramps toward the sample's
-            yaw = vessel.max_yaw_accel
-            psi_end = own.psi + vessel_model.travelled(own.omega, omega, yaw, yaw, self.times[-1])
-            psi_end = wrap_pi(psi_end)
-            psi_near = own.psi + vessel_model.travelled(own.omega, omega, yaw, yaw,
-                                                        self.times[closest])  # fmt: skip
-        else:
-            psi_end = wrap_pi(own.psi + omega * self.times[-1])
-            psi_near = own.psi + omega * self.times[closest]
+        contact, static_first, clearance, intrudes = contacts(
+            x, y, fan.radius, fan.u, self.times, float(own.x), float(own.y), _rows(targets.pos),
+            _rows(targets.vel), np.ascontiguousarray(targets.length, float), *self._checks
+        )  # fmt: skip
+        row, to_goal, near = closest(x, y, float(world.goal[0]), float(world.goal[1]))
+        reached = to_goal <= world.goal_tolerance**2
+        psi_end = wrap_pi(generator.heading(own, omega, self.times[-1]))
+        psi_near = generator.heading(own, omega, self.times[row])
         end = x[-1] + 1j * y[-1]
         return Rollouts(v, omega, end, psi_end, contact, static_first, clearance, intrudes, x, y,
                         reached, near, psi_near)  # fmt: skip
 
-    def side(self, encounter: Encounter | None) -> int:
-        """The side the rule asks for in ``encounter``."""
-        table = self.params["sides"]
-        if encounter is None or table == "none":
-            return side_rules.EITHER
-        return side_rules.side_for(table, encounter.cls)
-
     def score(self, own: Own, r: Rollouts, candidates: np.ndarray) -> np.ndarray:
-        """The weighted sum of the normalised terms (eqs. 2-4), over ``candidates``."""
+        """The sum of the critics' normalised rewards (eqs. 2-4) times their scales, over
+        ``candidates``."""
         total = np.zeros(r.v.size)
-        for weight, values in self.terms(own, r):
-            total += weight * normalise(values, candidates)
+        for critic in self.objective:
+            total += critic.scale * normalise(critic.reward(own, r), candidates)
         return total
-
-    @abstractmethod
-    def terms(self, own: Own, r: Rollouts) -> list[tuple[float, np.ndarray]]:
-        """(weight, reward per sample) of each term of the controller's objective."""
-
-    # -- shared terms ----------------------------------------------------------------------
-
-    def velocity(self, r: Rollouts) -> np.ndarray:
-        """The speed term: the sampled speed, or with ``weather`` the speed it makes good in
-        the wind and waves at the own ship (UDWA eq. 5) on the rollout's final heading."""
-        world = self.world
-        if not self.params["weather"] or world.weather is None:
-            return r.v
-        return world.weather.attainable_speed(
-            r.v, r.psi_end, r.end.real, r.end.imag, world.vessel.deadweight
-        )
-
-    def distance(self, r: Rollouts) -> np.ndarray:
-        """The clearance term: the smallest distance to the grid or a target over the horizon,
-        capped at ``dist_max``."""
-        return np.clip(r.clearance, 0.0, self.params["dist_max"])
-
-    @staticmethod
-    def heading(r: Rollouts, bearing: np.ndarray | float) -> np.ndarray:
-        """The heading term: pi less the angle between the rollout's final heading and
-        ``bearing`` (rad); pi for a rollout that reaches the goal (its end may lie beyond it,
-        looking away)."""
-        return np.where(r.reached, np.pi, np.pi - np.abs(wrap_pi(bearing - r.psi_end)))
-
-    def toward_goal(self, r: Rollouts) -> np.ndarray:
-        """Fox et al.'s heading term toward the goal, taken where the rollout comes closest to
-        it (its end, unless it passes the goal on the way): pi less the angle between the
-        heading there and the bearing from there to the goal; pi for a rollout that reaches the
-        goal. Taken at the end, the rollouts of a ship near the goal end beyond it looking away,
-        and the best score goes to turning back: with a 10 s horizon the ship circled the goal."""
-        goal = self.world.goal[0] + 1j * self.world.goal[1]
-        off = wrap_pi(np.angle(goal - r.near) - r.psi_near)
-        return np.where(r.reached, np.pi, np.pi - np.abs(off))
 
     # -- when no sample is free ------------------------------------------------------------
 
     def _fallback(self, own: Own, r: Rollouts, removed: np.ndarray) -> Decision:
-        vessel = self.world.vessel
-        if self.params["window"] == "horizon":  # the distance run on the speed's ramp
-            run = vessel_model.travelled(own.v, r.v, vessel.max_decel, vessel.max_accel,
-                                         r.contact)  # fmt: skip
-        else:
-            run = r.v * r.contact
-        admissible = vessel_model.admissible(r.v, r.omega, run, vessel)
+        admissible = vessel_model.admissible(r.v, r.omega, self.generator.run(own, r.v, r.contact),
+                                             self.world.vessel)  # fmt: skip
         # np.lexsort sorts by the last key first: admissible, contact time, starboard, slow
         order = np.lexsort((r.v, r.omega, -r.contact, ~admissible))
         best = int(order[0])
@@ -429,24 +329,14 @@ class Controller(ABC):
         }
         return self._command(own, r, best, [event])
 
-    def _departure(self, encounter, side, r, score, free) -> dict:
-        """A Rule 2 departure: the step turned away from the side the rule prefers."""
-        own_side = np.sign(r.omega) == side
-        if not (own_side & free).any():
-            reason = f"every {side_rules.NAMES[side]} sample meets a contact within the horizon"
-        else:
-            best_own = float(np.max(np.where(own_side, score, -np.inf)))
-            reason = (
-                f"best {side_rules.NAMES[side]} score {best_own:.4g} below "
-                f"{float(np.max(score)):.4g} on the other side"
-            )
-        return {
-            "kind": "rule2-departure",
-            "target": encounter.target,
-            "class": encounter.cls,
-            "preferred": side_rules.NAMES[side],
-            "reason": reason,
-        }
+
+#: The clearance field of open water: none (the kernel looks nothing up in an empty field).
+_OPEN_WATER = np.zeros(0)
+
+
+def _rows(a: np.ndarray) -> np.ndarray:
+    """``a`` as a C-ordered float array of (x, y) rows (no copy when it is one)."""
+    return np.ascontiguousarray(a, float).reshape(-1, 2)
 
 
 def normalise(values: np.ndarray, candidates: np.ndarray) -> np.ndarray:

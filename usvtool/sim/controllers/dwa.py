@@ -4,25 +4,24 @@ F(v, omega) = alpha vel + beta head + gamma dist, with the IWSO-DWA paper's sect
 (alpha 0.3 on the speed, beta 0.06 on the heading, gamma 0.4 on the clearance), each term
 normalised as in the UDWA paper's eqs. 2-4. ``head`` is pi less the angle between the heading
 and the bearing to the goal where the rollout comes closest to the goal (its end unless it
-passes the goal; Fox et al. 1997: :meth:`Controller.toward_goal`). No side rule.
+passes the goal; Fox et al. 1997: :class:`~usvtool.sim.controllers.critics.GoalHeading`). The
+one-period window, no side rule.
 """
 
 from __future__ import annotations
 
-import numpy as np
-
-from usvtool.sim.controllers.base import Controller, Own, Rollouts
+from usvtool.sim.controllers.base import Controller
+from usvtool.sim.controllers.critics import Critic, Distance, GoalHeading, Velocity
 
 
 class DWA(Controller):
     name = "dwa"
     defaults = {"w_velocity": 0.3, "w_heading": 0.06, "w_distance": 0.4}
 
-    def terms(self, own: Own, r: Rollouts) -> list[tuple[float, np.ndarray]]:
+    def critics(self) -> list[Critic]:
         p = self.params
         return [
-            (p["w_velocity"], self.velocity(r)),
-            (p["w_heading"], self.toward_goal(r)),
-            (p["w_distance"], self.distance(r)),
+            Velocity(p["w_velocity"], p["weather"]),
+            GoalHeading(p["w_heading"]),
+            Distance(p["w_distance"], p["dist_max"]),
         ]
-

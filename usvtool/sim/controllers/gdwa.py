@@ -2,6 +2,12 @@
 
 F'(v, omega) = sigma (alpha vel + beta head' + gamma dist + eta path)   (eq. 25)
 
+Its critics: :class:`~usvtool.sim.controllers.critics.Velocity`, ``head'``
+(:class:`~usvtool.sim.controllers.critics.SubgoalHeading`), the clearance
+(:class:`~usvtool.sim.controllers.critics.Distance`) and ``path``
+(:class:`~usvtool.sim.controllers.critics.SubgoalPath`), the two of the sub-goal sharing the
+route's progress (:class:`~usvtool.sim.controllers.critics.RouteProgress`):
+
 - the sub-goal: the first vertex of the global route not yet reached (within ``reach`` metres,
   by default the distance the ship covers in one horizon at full speed, or passed: the ship's
   projection on the route leg beyond it); the goal once the route is done. Without a route the
@@ -23,10 +29,16 @@ with ``priority`` 0.5.
 
 from __future__ import annotations
 
-import numpy as np
-
 from usvtool.errors import UsvError
-from usvtool.sim.controllers.base import Controller, Own, Rollouts, World
+from usvtool.sim.controllers.base import Controller
+from usvtool.sim.controllers.critics import (
+    Critic,
+    Distance,
+    RouteProgress,
+    SubgoalHeading,
+    SubgoalPath,
+    Velocity,
+)
 
 
 class GDWA(Controller):
@@ -37,41 +49,21 @@ class GDWA(Controller):
         "w_distance": 0.4,
         "w_path": 0.06,
         "reach": None,
+        "sides": "iwso",
+        "priority": 0.5,
     }
 
     def __init__(self, **params):
-        super().__init__(**{"sides": "iwso", "priority": 0.5, **params})
+        super().__init__(**params)
         if self.params["reach"] is not None and not self.params["reach"] > 0:
             raise UsvError(f"gdwa: reach must be > 0, not {self.params['reach']}")
 
-    def reset(self, world: World) -> None:
-        super().reset(world)
-        route = world.route if world.route is not None else np.zeros((1, 2))
-        self.route = np.vstack([route, world.goal])  # the goal closes the route
-        self.next = min(1, len(self.route) - 1)
-        reach = self.params["reach"]
-        self.reach = reach if reach is not None else world.vessel.max_speed * self.params["horizon"]
-
-    def subgoal(self, own: Own) -> np.ndarray:
-        """The current sub-goal, advancing past the vertices reached or passed."""
-        here = np.array([own.x, own.y])
-        while self.next < len(self.route) - 1:
-            a, b = self.route[self.next - 1], self.route[self.next]
-            leg = b - a
-            passed = np.dot(here - a, leg) >= np.dot(leg, leg)
-            if np.linalg.norm(b - here) > self.reach and not passed:
-                break
-            self.next += 1
-        return self.route[self.next]
-
-    def terms(self, own: Own, r: Rollouts) -> list[tuple[float, np.ndarray]]:
+    def critics(self) -> list[Critic]:
         p = self.params
-        sub = self.subgoal(own)
-        theta_c = np.arctan2(sub[1] - own.y, sub[0] - own.x)  # eq. 22
-        path = np.sqrt((np.square(r.x - sub[0]) + np.square(r.y - sub[1])).min(axis=0))  # eq. 24
+        self.progress = RouteProgress(p["reach"], p["horizon"])  # shared by heading and path
         return [
-            (p["w_velocity"], self.velocity(r)),
-            (p["w_heading"], self.heading(r, theta_c)),  # eq. 23
-            (p["w_distance"], self.distance(r)),
-            (p["w_path"], path.max() - path),
+            Velocity(p["w_velocity"], p["weather"]),
+            SubgoalHeading(p["w_heading"], self.progress),  # eqs. 22-23
+            Distance(p["w_distance"], p["dist_max"]),
+            SubgoalPath(p["w_path"], self.progress),  # eq. 24
         ]

@@ -1,0 +1,272 @@
+"""Compiled kernels of the controllers' rollouts (:mod:`usvtool.sim.controllers`), with numba.
+
+One control step rolls some 460 velocity samples out over 30-50 horizon points and checks every
+point against the grid's clearance field and every target: those loops over (horizon point,
+sample) run here, with no (horizon, samples) temporaries, while the work per yaw rate or per
+speed (complex exponentials, the ramps) stays in NumPy (:mod:`usvtool.sim.vessel`). Each kernel
+repeats the NumPy expressions it stands for operation by operation (the same products, sums and
+comparisons in the same order, and no fused multiply-add: numba contracts none without
+``fastmath``), so positions, contacts and clearances are the same bits as NumPy's
+(tests/sim/test_rollout_kernels.py compares them). The inner loops run over samples in
+contiguous memory, branch-free where it counts, so that LLVM vectorises them.
+
+Layout: positions ``x``, ``y`` are ``(T, N)``, time-major, sample ``n = i·R + k`` the speed ``i``
+and the yaw rate ``k`` of the window's grid (:class:`usvtool.sim.vessel.Fan`).
+
+Signatures are given, so that importing this module compiles the kernels or loads them from
+numba's cache in ``__pycache__`` (docs/controllers.md, "Speed", gives what that costs), not at
+a first call inside a timing. Imported lazily, by :mod:`usvtool.sim.vessel` when it rolls a fan
+out, so that reading a scenario or building the command line does not import numba.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+from numba import types as nt
+
+_B, _F, _I, _C = nt.boolean, nt.float64, nt.int64, nt.complex128
+_ROWS = _F[:, ::1]  # a C-ordered 2-D array: (T, N), (V, R), (T, V), (k, 2)
+_TURNS = _C[:, ::1]  # (T, R) complex: a direction or a sum of them per time and yaw rate
+_OPTIONS = {"cache": True, "nogil": True}
+
+#: Relative margin of the distance bounds that skip work: a bound within it of its limit is not
+#: trusted and the work is done (the round-off in a bound is some 1e-15 of it).
+MARGIN = 1e-6
+
+
+@njit(_F[::1](_F, _F, _ROWS, _TURNS, _ROWS, _ROWS), **_OPTIONS)
+def arc_points(x0, y0, chord, summed, x, y) -> np.ndarray:
+    """The arcs' positions (:func:`usvtool.sim.vessel.arcs`): ``x[t, i·R + k] = chord[i, k] ·
+    summed[t, k].real + x0`` (and ``y`` with the imaginary part), ``chord`` ``(V, R)`` the chord
+    lengths (>= 0), ``summed`` ``(T, R)`` the summed unit chords; written into ``x`` and ``y``.
+    Returns a bound on the distance of every point from ``(x0, y0)`` at each time ``(T,)``: the
+    longest chord of each rate times the length of its summed chords."""
+    steps, rates = summed.shape
+    speeds = chord.shape[0]
+    sum_x, sum_y = np.empty(rates), np.empty(rates)
+    for t in range(steps):
+        for k in range(rates):
+            sum_x[k], sum_y[k] = summed[t, k].real, summed[t, k].imag
+        for i in range(speeds):
+            base = i * rates
+            for k in range(rates):
+                x[t, base + k] = chord[i, k] * sum_x[k] + x0
+        for i in range(speeds):
+            base = i * rates
+            for k in range(rates):
+                y[t, base + k] = chord[i, k] * sum_y[k] + y0
+    longest = np.zeros(rates)
+    for i in range(speeds):
+        for k in range(rates):
+            longest[k] = max(longest[k], chord[i, k])
+    radius = np.zeros(steps)
+    for t in range(steps):
+        far = 0.0
+        for k in range(rates):
+            far = max(far, longest[k] ** 2 * (summed[t, k].real ** 2 + summed[t, k].imag ** 2))
+        radius[t] = math.sqrt(far)
+    return radius
+
+
+@njit(_F[::1](_F, _F, _ROWS, _TURNS, _ROWS, _ROWS), **_OPTIONS)
+def ramp_points(x0, y0, chord, u, x, y) -> np.ndarray:
+    """The ramps' positions (:func:`usvtool.sim.vessel.ramps`): the running sums over the periods
+    of ``chord[t, i] · u[t, k].real`` (and the imaginary part) plus the start, ``chord`` ``(T,
+    V)`` each period's chord length per speed (>= 0), ``u`` ``(T, R)`` its direction per yaw
+    rate; written into ``x`` and ``y``. Returns a bound on the distance of every point from
+    ``(x0, y0)`` at each time: the longest distance run."""
+    steps, rates = u.shape
+    u_x, u_y = u.real, u.imag
+    speeds = chord.shape[1]
+    sx = np.empty(speeds * rates)
+    sy = np.empty(speeds * rates)
+    for i in range(speeds):  # as np.cumsum: the first term, then each sum
+        base = i * rates
+        for k in range(rates):
+            sx[base + k] = chord[0, i] * u_x[0, k]
+            sy[base + k] = chord[0, i] * u_y[0, k]
+            x[0, base + k] = sx[base + k] + x0
+            y[0, base + k] = sy[base + k] + y0
+    for t in range(1, steps):
+        for i in range(speeds):
+            base = i * rates
+            for k in range(rates):
+                sx[base + k] += chord[t, i] * u_x[t, k]
+                sy[base + k] += chord[t, i] * u_y[t, k]
+                x[t, base + k] = sx[base + k] + x0
+                y[t, base + k] = sy[base + k] + y0
+    run = np.zeros(speeds)
+    radius = np.zeros(steps)
+    for t in range(steps):
+        for i in range(speeds):
+            run[i] += chord[t, i]
+        radius[t] = run.max()
+    return radius
+
+
+@njit(_I(_F, _F, _I, _I, _F, _F, _F), inline="always", **_OPTIONS)
+def _cell_index(x, y, width, height, left, top, scale) -> int:
+    """The index of the point's cell in :attr:`usvtool.clearance.Clearance.padded`, the field of
+    ``width`` x ``height`` cells with a zero border (:meth:`usvtool.clearance.Clearance.at`)."""
+    col = min(max((x - left) * scale + 1, 0.0), width + 1.0)
+    row = min(max((top - y) * scale + 1, 0.0), height + 1.0)
+    return int(row) * (width + 2) + int(col)
+
+
+@njit(_F(_F, _F, _F, _F, _F, _F, _F, _F), inline="always", **_OPTIONS)
+def _segment_distance(px, py, vx, vy, t0, t1, x0, y0) -> float:
+    """The distance from ``(x0, y0)`` to the track ``(px, py) + (vx, vy) · t``, ``t0 <= t <=
+    t1``."""
+    ax, ay = px + vx * t0 - x0, py + vy * t0 - y0
+    dx, dy = vx * (t1 - t0), vy * (t1 - t0)
+    length2 = dx * dx + dy * dy
+    f = min(max(-(ax * dx + ay * dy) / length2, 0.0), 1.0) if length2 > 0 else 0.0
+    return math.hypot(ax + f * dx, ay + f * dy)
+
+
+_CONTACTS = nt.Tuple((_F[::1], _B[::1], _F[::1], _B[::1]))
+
+
+@njit(_CONTACTS(_ROWS, _ROWS, _F[::1], _TURNS, _F[::1], _F, _F,  # the fan, times, start
+                _ROWS, _ROWS, _F[::1],  # the targets: positions, velocities, lengths
+                _F[::1], _I, _F, _F, _F, _F,  # the padded field, its width, left, top, scale, cell
+                _F, _I, _F, _F, _F, _F),  # own length, the domain's rows, axes, reach; the cap
+      **_OPTIONS)  # fmt: skip
+def contacts(x, y, radius, u, times, x0, y0, pos, vel, length, padded, width, left, top, scale,
+             cell, own_length, every, along, across, trigger, cap):  # fmt: skip
+    """The checks of :meth:`usvtool.sim.controllers.base.Controller.rollouts`, per sample:
+    ``(contact, static_first, clearance, intrudes)``.
+
+    - the grid (``padded`` and ``width``: :attr:`usvtool.clearance.Clearance.padded`, an empty
+      array on open water): a point's clearance is its cell's, 0 outside the grid; a contact
+      where it is at most the own ship's radius (``own_length / 2``);
+    - the targets at ``pos + vel · t`` (``(k, 2)``, ``length`` ``(k,)``): a contact where the
+      centres come within half the sum of the two lengths; the domain test (``every`` > 0: at
+      the rows ``0, every, 2·every, ...``) when the target comes within ``sqrt(trigger)`` of some
+      point: inside the ellipse of semi-axes ``along`` and ``across`` along the period's
+      direction ``u[t, k]`` (complex, ``(T, R)``: :func:`usvtool.encounter.domain_ellipse`);
+    - ``contact``: the first time of either, ``inf`` without; ``static_first``: the first
+      contact is with the grid; ``clearance``: the smallest gap to the grid or a target over the
+      horizon; ``intrudes``: some target enters the domain.
+
+    Work that cannot matter is skipped by distance bounds (``radius``: how far any rollout is
+    from the start at each time): a target whose track over the horizon stays farther from the
+    start than that spread plus ``far`` (the larger of half the sum of the lengths plus ``cap``
+    and ``sqrt(trigger)``), and for the others each such row; the grid's rows where the start's
+    clearance less the spread and two cells (the field is a distance transform of cell centres,
+    1-Lipschitz up to a cell's diagonal) leaves more than ``cap``. So ``clearance`` is exact
+    where below ``cap`` and at least ``cap`` elsewhere, and the rest is exact.
+    """
+    steps, n = x.shape
+    rates = u.shape[1]
+    half = own_length / 2
+    static_at = np.full(n, steps)  # the first row of a contact with the grid; steps: none
+    clearance = np.full(n, np.inf)
+    spread = radius.max()
+    if padded.size > 0:
+        height = padded.size // (width + 2) - 2
+        start = padded[_cell_index(x0, y0, width, height, left, top, scale)]
+        cells = np.empty(n, np.int64)
+        for t in range(steps):
+            if start - radius[t] - 2 * cell - half > cap * (1 + MARGIN) + MARGIN:
+                continue  # every point of the row is farther than the cap from the grid
+            for s in range(n):  # apart from the lookups: this loop vectorises, they do not
+                cells[s] = _cell_index(x[t, s], y[t, s], width, height, left, top, scale)
+            for s in range(n):
+                gap = padded[cells[s]] - half
+                clearance[s] = min(clearance[s], gap)
+                static_at[s] = min(static_at[s], t if gap <= 0 else steps)
+    contact_at = static_at.copy()  # the first row of any contact
+    intrudes = np.zeros(n, np.bool_)
+    closest2 = np.empty(n)
+    active = np.empty(steps, np.bool_)
+    nearby = np.empty(steps, np.int64)
+    u_x, u_y = np.empty(rates), np.empty(rates)
+    for j in range(pos.shape[0]):
+        reach = (own_length + length[j]) / 2
+        reach2 = reach * reach
+        far = max(reach + cap, math.sqrt(trigger)) * (1 + MARGIN) + MARGIN
+        px, py, vx, vy = pos[j, 0], pos[j, 1], vel[j, 0], vel[j, 1]
+        if _segment_distance(px, py, vx, vy, times[0], times[-1], x0, y0) > far + spread:
+            continue  # her whole track over the horizon
+        rows = 0
+        for t in range(steps):
+            dx, dy = px + vx * times[t] - x0, py + vy * times[t] - y0
+            active[t] = dx * dx + dy * dy <= (far + radius[t]) ** 2
+            rows += active[t]
+        if rows == 0:
+            continue
+        closest2[:] = np.inf
+        for t in range(steps):
+            near = 0  # the row's points within the domain's reach of her
+            if active[t]:
+                tx, ty = px + vx * times[t], py + vy * times[t]
+                for s in range(n):
+                    dx, dy = tx - x[t, s], ty - y[t, s]
+                    d2 = dx * dx + dy * dy
+                    closest2[s] = min(closest2[s], d2)
+                    contact_at[s] = min(contact_at[s], t if d2 <= reach2 else steps)
+                    near += d2 <= trigger
+            nearby[t] = near
+        for s in range(n):
+            clearance[s] = min(clearance[s], math.sqrt(closest2[s]) - reach)
+        if every > 0 and nearby.any():
+            for t in range(0, steps, every):
+                if nearby[t]:
+                    tx, ty = px + vx * times[t], py + vy * times[t]
+                    for k in range(rates):
+                        u_x[k], u_y[k] = u[t, k].real, u[t, k].imag
+                    for i in range(n // rates):
+                        base = i * rates
+                        for k in range(rates):
+                            dx, dy = tx - x[t, base + k], ty - y[t, base + k]
+                            a = (dx * u_x[k] + dy * u_y[k]) / along
+                            c = (dx * u_y[k] - dy * u_x[k]) / across
+                            intrudes[base + k] |= a * a + c * c <= 1
+    contact = np.full(n, np.inf)
+    static_first = np.zeros(n, np.bool_)
+    for s in range(n):
+        if contact_at[s] < steps:
+            contact[s] = times[contact_at[s]]
+            static_first[s] = static_at[s] == contact_at[s]
+    return contact, static_first, clearance, intrudes
+
+
+@njit(nt.Tuple((_I[::1], _F[::1], _C[::1]))(_ROWS, _ROWS, _F, _F), **_OPTIONS)
+def closest(x, y, px, py) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Each rollout's point closest to ``(px, py)``: its row (the first of equals), its squared
+    distance and the point ``x + iy``, ``(N,)`` each."""
+    steps, n = x.shape
+    row = np.zeros(n, np.int64)
+    best = np.full(n, np.inf)
+    for t in range(steps):
+        for s in range(n):
+            dx, dy = x[t, s] - px, y[t, s] - py
+            d2 = dx * dx + dy * dy
+            closer = d2 < best[s]
+            best[s] = d2 if closer else best[s]
+            row[s] = t if closer else row[s]
+    point = np.empty(n, np.complex128)
+    for s in range(n):
+        point[s] = complex(x[row[s], s], y[row[s], s])
+    return row, best, point
+
+
+@njit(_B[::1](_ROWS, _ROWS, _F[::1], _F, _F, _F, _F, _F, _F, _F), **_OPTIONS)
+def crosses_ahead(x, y, times, px, py, vx, vy, hx, hy, now) -> np.ndarray:
+    """Whether each rollout crosses the course line of a target at ``(px, py)`` moving at
+    ``(vx, vy)`` (unit direction ``(hx, hy)``) ahead of her: at some time the side of her line
+    it is on (the sign of ``hx·ry - hy·rx``, ``r`` the offset from the target) differs from
+    ``now``'s while it is ahead of her bow (``hx·rx + hy·ry > 0``)."""
+    steps, n = x.shape
+    out = np.zeros(n, np.bool_)
+    side = np.sign(now)
+    for t in range(steps):
+        tx, ty = px + vx * times[t], py + vy * times[t]
+        for s in range(n):
+            rx, ry = x[t, s] - tx, y[t, s] - ty
+            out[s] |= (np.sign(hx * ry - hy * rx) != side) & (hx * rx + hy * ry > 0)
+    return out
