@@ -1,33 +1,60 @@
-"""Encounter simulation: the cost of one control step, and the wall time of the bundled scenarios.
+"""Encounter simulation: the cost of one control step, against the number of targets, numba's
+start-up, and the wall time of the bundled scenarios.
 
 1. One control step of each controller with three targets close by, on env1's grid: the dynamic
-   window sampled at 21 x 21 (+ the current values: 462 pairs), a 3 s horizon at 0.1 s (30
-   rollout steps; the target's configuration) and the defaults (10 s at 0.2 s). Beside it the
-   plain way, the same objective one sample at a time in Python (tests/sim/plain_dwa.py,
-   PythonRobotics' style), and the ratio. Median of repeated runs.
-2. Every scenario in charts/scenarios/ with its own controller: simulated and wall time, steps,
-   mean step time.
+   window sampled at 21 x 21 (+ the current values: 462 pairs; udwa+ 441), at the defaults
+   (a 10 s horizon at 0.2 s) and at 3 s at 0.1 s. Beside it, in the same process and
+   alternating, the previous revision's NumPy core (``--base``, loaded by benchmarks/revision.py
+   with its own vessel module) and the ratio; then the plain way, the same objective one sample
+   at a time in Python (tests/sim/plain_dwa.py, PythonRobotics' style). Each figure is the best
+   of ``--runs`` runs of 50 steps (this shared 2-core machine's timings vary by up to two times
+   between runs; the best is the repeatable one).
+2. One udwa step at the defaults against the number of targets (1, 3, 10, 30, 50, 100, 300),
+   now and at ``--base``: targets within 100 m (every one within reach of the rollouts: the
+   worst case) and spread over a 2 km disc (most beyond reach, skipped by the distance bound).
+3. numba's start-up (``--startup``): importing numba, loading the compiled kernels from the cache,
+   compiling them afresh; and ``usvtool simulate`` on bundled scenarios from the command line:
+   wall time, the time its decisions took, and the rest (start-up, reading, evaluation,
+   writing) three times each.
+4. Many ships (``--ships``): scenes of 30, 100 and 300 replayed tracks (AIS-like CSVs, a fix
+   every 10 s, straight courses through a 3 km square around the own ship's route) of 60, 120
+   and 240 s at 0.1 s: the peak resident size of ``usvtool simulate`` (``VmHWM``, as
+   benchmarks/bench_memory.py measures it) beside the guard's estimate, a least-squares fit of
+   the peak to ``a + b x ships x steps`` with its worst residual, the mean step time, and the
+   guard's one-line refusal of the longest scene under a small ``--max-memory``.
+5. Every scenario in charts/scenarios/ with its own controller (``--scenarios``): simulated and
+   wall time, steps, mean step time.
 
-Usage: python benchmarks/bench_simulate.py [--repeats 300] [--scenarios] [--no-steps]
+Usage: python benchmarks/bench_simulate.py [--runs 7] [--base REV] [--no-steps] [--targets]
+       [--startup] [--ships] [--scenarios]
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib.util
+import json
 import math
+import os
+import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
+import yaml
 
 from usvtool.clearance import Clearance
 from usvtool.grid import read_grid
+from usvtool.sim import memory
 from usvtool.sim.controllers import CONTROLLERS, Own, Targets, World, make_controller
 from usvtool.sim.run import SimOptions, simulate
 from usvtool.sim.scenario import read_scenario
 from usvtool.sim.vessel import preset
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import revision  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 OWN = Own(250.0, 20.0, math.pi / 2, 4.0, 0.0)  # env1's open water south of the islands
@@ -36,6 +63,123 @@ TARGETS = Targets(
     np.array([[0.0, -3.0], [-2.0, 0.0], [2.0, 0.0]]),
     np.full(3, 2.5),
 )
+#: The last revision with the NumPy core (before the compiled kernels and the parts).
+BASE = "6480c82"
+#: The configuration of the issue's second speed figure: 3 s at 0.1 s (the defaults: 10 s at 0.2).
+SPEC = {"horizon": 3.0, "step": 0.1}
+COUNTS = (1, 3, 10, 30, 50, 100, 300)
+
+
+def previous_controllers(base: str, tmp: Path):
+    """The controllers module of revision ``base`` (its base, the five controllers and its own
+    vessel module, loaded under other names beside the current package): its ``make`` and its
+    ``World``, ``Own``, ``Targets``."""
+    renames = {
+        "from usvtool.sim import vessel as vessel_model": "import prev_vessel as vessel_model",
+        "usvtool.sim.controllers.base": "prev_base",
+        "usvtool.sim.controllers.dwa": "prev_dwa",
+        "usvtool.sim.controllers.udwa": "prev_udwa",
+    }
+    modules = {}
+    for name in ("vessel", "base", "dwa", "ccdwa", "gdwa", "udwa", "udwa_plus"):
+        path = "usvtool/sim/vessel.py" if name == "vessel" else f"usvtool/sim/controllers/{name}.py"
+        source = revision.source_at(base, path)
+        for old, new in renames.items():
+            source = source.replace(old, new)
+        modules[name] = revision.load_module(f"prev_{name}", source, tmp)
+    classes = {m.__dict__[c].name: m.__dict__[c] for m, c in (
+        (modules["dwa"], "DWA"), (modules["gdwa"], "GDWA"), (modules["ccdwa"], "CCDWA"),
+        (modules["udwa"], "UDWA"), (modules["udwa_plus"], "UDWAPlus"))}  # fmt: skip
+    base_module = modules["base"]
+    return (lambda name, **params: classes[name](**params)), base_module, modules["vessel"]
+
+
+def best_ms(fn, runs: int, calls: int = 50) -> float:
+    """The mean time of one call in the fastest of ``runs`` runs of ``calls`` calls (ms)."""
+    fn()
+    best = math.inf
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        for _ in range(calls):
+            fn()
+        best = min(best, (time.perf_counter() - t0) / calls)
+    return best * 1e3
+
+
+def side_by_side(now, before, runs: int) -> tuple[float, float]:
+    """(now, before): each the best of ``runs`` runs, the two alternating run by run (the
+    machine's load falls on both alike)."""
+    a = b = math.inf
+    for _ in range(runs):
+        a = min(a, best_ms(now, 1))
+        b = min(b, best_ms(before, 1))
+    return a, b
+
+
+class Step:
+    """One controller's step in one world, now and at the base revision."""
+
+    def __init__(self, prev, name: str, params: dict, clearance, ship, goal, targets):
+        make, old, _ = prev
+        self.now = make_controller(name, **params)
+        self.now.reset(World(ship, goal, clearance))
+        self.before = make(name, **params)
+        self.before.reset(old.World(ship, goal, clearance))
+        self.own_now, self.own_before = OWN, old.Own(*vars(OWN).values())
+        self.targets = targets
+        self.targets_before = old.Targets(targets.pos, targets.vel, targets.length)
+
+    def samples(self) -> int:
+        return self.now.rollouts(self.own_now, self.targets).v.size
+
+    def same_choice(self) -> bool:
+        a = self.now.decide(self.own_now, self.targets)
+        b = self.before.decide(self.own_before, self.targets_before)
+        return (a.v, a.omega, a.events) == (b.v, b.omega, b.events)
+
+    def times(self, runs: int) -> tuple[float, float]:
+        return side_by_side(lambda: self.now.decide(self.own_now, self.targets),
+                            lambda: self.before.decide(self.own_before, self.targets_before),
+                            runs)  # fmt: skip
+
+
+def steps(prev, runs: int) -> None:
+    field = Clearance(read_grid(ROOT / "charts" / "env1.tif"))
+    ship, goal = preset("iwso-dwa-usv"), np.array([250.0, 480.0])
+    print("one control step: 3 targets, env1's grid (ms, best of runs of 50 steps; now, the "
+          "base revision's NumPy core in the same process, and the ratio)")  # fmt: skip
+    print(f"{'controller':10} {'samples':>7} | {'defaults: now':>13} {'before':>7} {'x':>5} | "
+          f"{'3 s at 0.1 s: now':>17} {'before':>7} {'x':>5} | same choice")  # fmt: skip
+    for name in CONTROLLERS:
+        cells, same = [], True
+        for params in ({}, SPEC):
+            step = Step(prev, name, params, field, ship, goal, TARGETS)
+            same &= step.same_choice()
+            now, before = step.times(runs)
+            cells.append(f"{now:7.3f} {before:7.3f} {before / now:5.1f}")
+        print(f"{name:10} {step.samples():7d} | {cells[0]:>27} | {cells[1]:>31} | {same}")
+    plain = plain_module()
+    c = make_controller("dwa", **SPEC, domain=False)  # the plain loop knows no domain
+    c.reset(World(ship, goal, field))
+    r = c.rollouts(OWN, TARGETS)
+    samples = list(zip(r.v, r.omega, strict=True))
+    grid, metres = field.grid, field.metres.tolist()
+    left, _, _, top = grid.bounds
+
+    def lookup(x, y):  # the plain way: one cell at a time, in Python
+        col, row = int((x - left) // grid.cell_size), int((top - y) // grid.cell_size)
+        inside = 0 <= row < grid.height and 0 <= col < grid.width
+        return metres[row][col] if inside else 0.0
+
+    def loop():
+        return plain.choose(OWN, TARGETS, samples, goal=goal, length=ship.length,
+                            times=c.times, weights=c.params, clearance=lookup)  # fmt: skip
+
+    assert loop()[0] is not None  # the plain loop finds a free sample, as the core does
+    fast = best_ms(lambda: c.decide(OWN, TARGETS), runs)
+    slow = best_ms(loop, 3, calls=2)
+    print(f"dwa, 3 s at 0.1 s, no domain: plain per-sample loop {slow:.1f} ms, compiled "
+          f"{fast:.3f} ms: {slow / fast:.0f} x")  # fmt: skip
 
 
 def plain_module():
@@ -46,73 +190,127 @@ def plain_module():
     return module
 
 
-def median_ms(fn, repeats: int) -> float:
-    start = time.perf_counter()
-    while time.perf_counter() - start < 0.5:  # warm up: the first calls grow the heap
-        fn()
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return float(np.median(times)) * 1e3
+def crowd(k: int, radius: float, rng) -> Targets:
+    """``k`` targets of 15 m spread uniformly over a disc of ``radius`` metres around the own
+    ship (none within 20 m), at 0-6 m/s on random courses."""
+    r = np.sqrt(rng.uniform((20 / radius) ** 2, 1, k)) * radius
+    bearing = rng.uniform(0, 2 * np.pi, k)
+    pos = np.column_stack([OWN.x + r * np.cos(bearing), OWN.y + r * np.sin(bearing)])
+    course, speed = rng.uniform(0, 2 * np.pi, k), rng.uniform(0, 6, k)
+    return Targets(pos, np.column_stack([speed * np.cos(course), speed * np.sin(course)]),
+                   np.full(k, 15.0))  # fmt: skip
 
 
-#: The configuration of the speed target: a 3 s horizon at 0.1 s (the controllers' defaults
-#: look further, 10 s at 0.2 s: measured beside it).
-SPEC = {"horizon": 3.0, "step": 0.1}
+def many_targets(prev, runs: int) -> None:
+    ship, goal = preset("udwa-usv"), np.array([250.0, 900.0])
+    print("\none udwa step at the defaults (462 samples, 10 s at 0.2 s; the UDWA boat at 4 m/s, "
+          "open water) against the number of targets (ms, best of runs of 50 steps)")  # fmt: skip
+    print(f"{'targets':>7} | {'within 100 m: now':>17} {'before':>7} | "
+          f"{'over 2 km: now':>14} {'before':>7} | same choice")  # fmt: skip
+    for k in COUNTS:
+        cells, same = [], True
+        for radius in (100.0, 2000.0):
+            targets = crowd(k, radius, np.random.default_rng(k))
+            step = Step(prev, "udwa", {}, None, ship, goal, targets)
+            same &= step.same_choice()
+            now, before = step.times(max(2, runs // (1 + k // 30)))
+            cells.append(f"{now:7.3f} {before:7.3f}")
+        print(f"{k:7d} | {cells[0]:>25} | {cells[1]:>22} | {same}")
 
 
-def best_ms(fn, runs: int = 7, calls: int = 100) -> float:
-    best = np.inf
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        for _ in range(calls):
-            fn()
-        best = min(best, (time.perf_counter() - t0) / calls)
-    return float(best) * 1e3
+def run(code: str, env=None) -> float:
+    """Wall seconds of ``python -c code`` in a fresh process."""
+    t0 = time.perf_counter()
+    subprocess.run([sys.executable, "-c", code], check=True, env=env, cwd=ROOT)
+    return time.perf_counter() - t0
 
 
-def steps(repeats: int) -> None:
-    field = Clearance(read_grid(ROOT / "charts" / "env1.tif"))
-    ship = preset("iwso-dwa-usv")
-    world = World(ship, np.array([250.0, 480.0]), field)
-    print("one control step: 3 targets, env1 grid (ms: median of single steps, and the mean "
-          "over the fastest of 7 runs of 100 steps)")  # fmt: skip
-    print(f"{'controller':10} {'samples':>7} {'3 s at 0.1 s':>15} {'defaults':>15}")
-    for name in CONTROLLERS:
-        cells = []
-        for params in (SPEC, {}):
-            c = make_controller(name, **params)
-            c.reset(world)
-            n = c.rollouts(OWN, TARGETS).v.size
-            step = median_ms(lambda c=c: c.decide(OWN, TARGETS), repeats)
-            cells.append(f"{step:7.3f} {best_ms(lambda c=c: c.decide(OWN, TARGETS)):7.3f}")
-        print(f"{name:10} {n:7d} {cells[0]:>15} {cells[1]:>15}")
-    plain = plain_module()
-    c = make_controller("dwa", **SPEC, domain=False)  # the plain loop knows no domain
-    c.reset(world)
-    r = c.rollouts(OWN, TARGETS)
-    samples = list(zip(r.v, r.omega, strict=True))
+def startup() -> None:
+    print("\nnumba's start-up (a fresh process each, best of 3; s)")
+    numpy_s = min(run("import numpy") for _ in range(3))
+    numba_s = min(run("import numpy, numba") for _ in range(3))
+    cached = min(run("import usvtool.sim.rollout_kernels") for _ in range(3))
+    with tempfile.TemporaryDirectory() as cache:  # an empty cache: every kernel compiled
+        env = {**os.environ, "NUMBA_CACHE_DIR": cache}
+        fresh = run("import usvtool.sim.rollout_kernels", env)
+    print(f"python + numpy {numpy_s:.2f}; + numba {numba_s:.2f} (numba's import "
+          f"{numba_s - numpy_s:.2f}); + the kernels from the cache {cached:.2f} "
+          f"({cached - numba_s:.2f} more); compiled afresh {fresh:.2f}")  # fmt: skip
+    print("\nusvtool simulate from the command line (s: wall, its decisions, the rest)")
+    for name in ("emergency-head-on", "env1-crossing-port", "rudee-inlet-channel"):
+        rows = []
+        with tempfile.TemporaryDirectory() as tmp:
+            for _ in range(3):
+                t0 = time.perf_counter()
+                out = subprocess.run(
+                    [sys.executable, "-c", "from usvtool.cli import main; main()", "simulate",
+                     str(ROOT / "charts" / "scenarios" / f"{name}.yaml"), "-o",
+                     str(Path(tmp) / "t.csv")], check=True, capture_output=True, text=True,
+                )  # fmt: skip
+                wall = time.perf_counter() - t0
+                s = json.loads(out.stdout)
+                dt = read_scenario(ROOT / "charts" / "scenarios" / f"{name}.yaml").sim.dt
+                deciding = s["step_time_ms"] * round(s["time_s"] / dt) / 1e3
+                rows.append(f"{wall:.2f} {deciding:.2f} {wall - deciding:.2f}")
+        print(f"{name:24} " + " | ".join(rows))
 
-    grid, metres = field.grid, field.metres.tolist()
-    left, _, _, top = grid.bounds
 
-    def lookup(x, y):  # the plain way: one cell at a time, in Python
-        col, row = int((x - left) // grid.cell_size), int((top - y) // grid.cell_size)
-        inside = 0 <= row < grid.height and 0 <= col < grid.width
-        return metres[row][col] if inside else 0.0
+def tracks_scene(d: Path, ships: int, duration: float, seed: int = 0) -> Path:
+    """A scene of ``ships`` replayed tracks in ``d`` (see the module docstring): the UDWA boat
+    from (0, 0) north at 5 m/s toward a goal out of reach, on open water."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, duration + 10.0, 10.0)
+    targets = []
+    for i in range(ships):
+        mid = rng.uniform(-1500, 1500, 2) + (0, 2.5 * duration)  # the square rides along
+        course, speed = rng.uniform(0, 2 * np.pi), rng.uniform(1, 8)
+        ahead = (t - duration / 2) * speed
+        xy = mid + np.column_stack([ahead * np.cos(course), ahead * np.sin(course)])
+        rows = "\n".join(f"{a:g},{x:.2f},{y:.2f}" for a, (x, y) in zip(t, xy, strict=True))
+        (d / f"t{i}.csv").write_text("t,x,y\n" + rows + "\n")
+        targets.append({"name": f"t{i}", "track": f"t{i}.csv", "speed": 0, "length": 15})
+    scene = {"name": f"tracks-{ships}", "sim": {"dt": 0.1, "duration": duration,
+                                                "goal_tolerance": 5},
+             "own": {"start": [0, 0], "goal": [0, 100000], "heading": 0, "speed": 5,
+                     "vessel": "udwa-usv"},
+             "targets": targets, "controller": {"name": "udwa"}}  # fmt: skip
+    path = d / f"tracks-{ships}-{duration:g}.yaml"
+    path.write_text(yaml.safe_dump(scene))
+    return path
 
-    def loop():
-        return plain.choose(OWN, TARGETS, samples, goal=world.goal, length=ship.length,
-                            times=c.times, weights=c.params, clearance=lookup)  # fmt: skip
 
-    assert loop()[0] is not None  # the plain loop finds a free sample, as the core does
+def many_ships() -> None:
+    import bench_memory
 
-    fast = median_ms(lambda: c.decide(OWN, TARGETS), repeats)
-    slow = median_ms(loop, max(3, repeats // 50))
-    print(f"dwa, 3 s at 0.1 s, no domain: plain per-sample loop {slow:.1f} ms, vectorised "
-          f"{fast:.3f} ms: {slow / fast:.0f} x")  # fmt: skip
+    print("\nmany ships: replayed tracks (MiB: the peak resident size, the guard's estimate)")
+    print(f"{'ships':>5} {'steps':>6} | {'peak':>6} {'estimate':>8} | {'ms/step':>7} {'wall s':>6}")
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        d = Path(tmp)
+        for ships in (30, 100, 300):
+            for duration in (60.0, 120.0, 240.0):
+                path = tracks_scene(d, ships, duration)
+                t0 = time.perf_counter()
+                peak, s = bench_memory.measure("simulate", path, "-o", d / "t.csv")
+                wall = time.perf_counter() - t0
+                steps = round(duration / 0.1)
+                need = memory.run_need(memory.run_parts(make_controller("udwa"), steps, ships + 1))
+                rows.append((ships + 1, steps, peak))
+                print(f"{ships:5d} {steps:6d} | {peak / 2**20:6.0f} {need / 2**20:8.0f} | "
+                      f"{s['step_time_ms']:7.3f} {wall:6.2f}")  # fmt: skip
+        a = np.array([[1.0, k * n] for k, n, _ in rows])
+        peaks = np.array([p for *_, p in rows], float)
+        (fixed, per), *_ = np.linalg.lstsq(a, peaks, rcond=None)
+        worst = np.abs(a @ (fixed, per) - peaks).max()
+        print(f"peak = {fixed / 2**20:.0f} MiB + {per:.0f} B x ships x steps; worst residual "
+              f"{worst / 2**20:.1f} MiB")  # fmt: skip
+        refused = subprocess.run(
+            [sys.executable, "-c", "from usvtool.cli import main; main()", "simulate",
+             str(tracks_scene(d, 300, 3600.0)), "-o", str(d / "t.csv"), "--max-memory", "1G"],
+            capture_output=True, text=True,
+        )  # fmt: skip
+        print(f"300 tracks for an hour under --max-memory 1G: exit {refused.returncode}, "
+              f"{refused.stderr.strip()}")  # fmt: skip
 
 
 def scenarios() -> None:
@@ -132,12 +330,25 @@ def scenarios() -> None:
 
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--repeats", type=int, default=300)
+    ap.add_argument("--runs", type=int, default=7)
+    ap.add_argument("--base", default=BASE, help="the revision to compare with (the NumPy core)")
     ap.add_argument("--no-steps", action="store_true")
+    ap.add_argument("--targets", action="store_true", help="the step against the targets")
+    ap.add_argument("--startup", action="store_true", help="numba's start-up, the command line")
+    ap.add_argument("--ships", action="store_true", help="memory and time of many replayed tracks")
     ap.add_argument("--scenarios", action="store_true", help="also run the bundled scenarios")
     args = ap.parse_args(argv)
-    if not args.no_steps:
-        steps(args.repeats)
+    with tempfile.TemporaryDirectory() as tmp:
+        prev = previous_controllers(args.base, Path(tmp)) if not args.no_steps or args.targets \
+            else None  # fmt: skip
+        if not args.no_steps:
+            steps(prev, args.runs)
+        if args.targets:
+            many_targets(prev, args.runs)
+    if args.startup:
+        startup()
+    if args.ships:
+        many_ships()
     if args.scenarios:
         scenarios()
 

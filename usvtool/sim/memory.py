@@ -15,23 +15,24 @@
 
 Measured (tracemalloc of one step, NumPy's allocations: 51^2-201^2 samples, horizons of 20-100
 steps, every controller): 16 bytes per rollout point and 112-165 per sample, to which the
-kernels add about 100 per sample; peaks of whole runs (benchmarks/bench_memory.py;
-docs/simulate.md): 1012 bytes per step alone and 455-555 more per target, 21-22 per map cell,
-over a process of 47 MB (130 MB with a map or a wind field), and numba's, which the rollouts
-load.
-Every estimate lies above its measured peak: those over 500 MiB by 11-52 %, smaller ones by up
-to 2.4 times (the process's 128 MiB are counted for an open-water run's 47 MB).
+kernels add about 100 per sample. Peaks of whole runs (``VmHWM``; benchmarks/bench_memory.py,
+benchmarks/bench_simulate.py ``--ships``; docs/simulate.md): a process of 160-170 MB with
+numba's kernels (47 MB before them; 190-230 MB with a map, a wind field or lon/lat points: the
+bundled rudee-inlet-channel 229 MiB, estimated 248), 520-590 bytes per target and step on
+courses, 684 with replayed tracks (30-300 tracks of 600-2400 steps: linear in ships x steps,
+within 4 MiB), 21-22 per map cell. Every estimate lies above its measured peak, by 1.08-1.5
+times (the process's 240 MiB are counted for an open-water run's 165 MB).
 """
 
 from __future__ import annotations
 
 from usvtool.budget import MiB, require
 
-PROCESS = 128 * MiB  # Python, NumPy (and with a map GDAL and OpenCV)
+PROCESS = 240 * MiB  # Python, NumPy, numba's kernels (and with a map GDAL, OpenCV, PROJ)
 POINT_BYTES = 16
 SAMPLE_BYTES = 320
 STEP_BYTES = 450
-SHIP_STEP_BYTES = 600
+SHIP_STEP_BYTES = 768
 MAP_CELL_BYTES = 24
 
 

@@ -208,7 +208,11 @@ class Controller(ABC):
         """The terms of the objective, each with its scale (:mod:`.critics`)."""
 
     def reset(self, world: World) -> None:
-        """Start a run in ``world``."""
+        """Start a run in ``world`` (and load the compiled kernels, numba's start-up, here rather
+        than in the run's first step)."""
+        from usvtool.sim import rollout_kernels
+
+        self.kernels = rollout_kernels
         self.world = world
         self.generator = WINDOWS[self.params["window"]](world, self.times)
         for critic in self.objective:
@@ -267,32 +271,28 @@ class Controller(ABC):
     def _crosses_ahead(self, own: Own, r: Rollouts, targets: Targets, j: int) -> np.ndarray:
         """(N,) bool: the rollout crosses target ``j``'s course line ahead of her (the side of
         her line the own ship is on changes while she is ahead of the target's bow)."""
-        from usvtool.sim.rollout_kernels import crosses_ahead
-
         vel = targets.vel[j]
         speed = float(np.hypot(*vel))
         if speed < 1e-9:
             return np.zeros(r.v.size, bool)
         hx, hy = vel / speed
         now = hx * (own.y - targets.pos[j, 1]) - hy * (own.x - targets.pos[j, 0])
-        return crosses_ahead(r.x, r.y, self.times, float(targets.pos[j, 0]),
+        return self.kernels.crosses_ahead(r.x, r.y, self.times, float(targets.pos[j, 0]),
                              float(targets.pos[j, 1]), float(vel[0]), float(vel[1]), float(hx),
                              float(hy), float(now))  # fmt: skip
 
     def rollouts(self, own: Own, targets: Targets) -> Rollouts:
         """Sample the window, roll every sample out and find its contacts."""
-        from usvtool.sim.rollout_kernels import closest, contacts
-
-        world, p, generator = self.world, self.params, self.generator
+        world, p, generator, kernels = self.world, self.params, self.generator, self.kernels
         speeds, rates = generator.axes(own, int(p["v_samples"]), int(p["omega_samples"]))
         v, omega = np.repeat(speeds, rates.size), np.tile(rates, speeds.size)
         fan = generator.fan(own, speeds, rates)
         x, y = fan.x, fan.y  # (T, N)
-        contact, static_first, clearance, intrudes = contacts(
+        contact, static_first, clearance, intrudes = kernels.contacts(
             x, y, fan.radius, fan.u, self.times, float(own.x), float(own.y), _rows(targets.pos),
             _rows(targets.vel), np.ascontiguousarray(targets.length, float), *self._checks
         )  # fmt: skip
-        row, to_goal, near = closest(x, y, float(world.goal[0]), float(world.goal[1]))
+        row, to_goal, near = kernels.closest(x, y, float(world.goal[0]), float(world.goal[1]))
         reached = to_goal <= world.goal_tolerance**2
         psi_end = wrap_pi(generator.heading(own, omega, self.times[-1]))
         psi_near = generator.heading(own, omega, self.times[row])
