@@ -3,7 +3,6 @@ they stand for, bit for bit, on seeded random fans, grids and targets; and what 
 bounds skip (far targets, at no cost and with no effect on any decision)."""
 
 import math
-import time
 import tracemalloc
 
 import numpy as np
@@ -236,47 +235,6 @@ def test_far_targets_change_no_decision():
     np.testing.assert_array_equal(np.minimum(a.clearance, 30), np.minimum(b.clearance, 30))
     crowded, alone = c.decide(own, crowd), c.decide(own, close)
     assert (crowded.v, crowded.omega) == (alone.v, alone.omega)
-
-
-def best_ms(fn, runs: int = 15) -> float:
-    fn()
-    best = math.inf
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best * 1e3
-
-
-def test_far_targets_cost_almost_nothing():
-    """A step with 300 targets beyond reach of the horizon costs at most 30 % more than one
-    with none (the NumPy core took a pass over every rollout point per target: 300 times one
-    target's cost, some 25 ms)."""
-    rng = np.random.default_rng(3)
-    own = Own(0.0, 0.0, math.pi / 2, 6.0, 0.0)
-    c = open_water()
-    crowd = scattered(rng, 300)
-    alone = best_ms(lambda: c.decide(own, Targets.none()))
-    many = best_ms(lambda: c.decide(own, crowd))
-    assert many < 1.3 * alone + 0.02, (many, alone)
-
-
-def test_one_step_at_the_defaults_is_fast(charts):
-    """The bench's step (benchmarks/bench_simulate.py: 462 samples, the defaults' 10 s at
-    0.2 s, three targets close by, env1's grid): well under 0.5 ms at best (the NumPy core took
-    1.5-2 ms on this 2-core machine; compiled, 0.2 ms)."""
-    from usvtool.grid import read_grid
-
-    field = Clearance(read_grid(charts / "env1.tif"))
-    c = make_controller("udwa")
-    c.reset(World(vessel_model.preset("iwso-dwa-usv"), np.array([250.0, 480.0]), field))
-    own = Own(250.0, 20.0, math.pi / 2, 4.0, 0.0)
-    targets = Targets(
-        np.array([[250.0, 60.0], [280.0, 40.0], [220.0, 40.0]]),
-        np.array([[0.0, -3.0], [-2.0, 0.0], [2.0, 0.0]]),
-        np.full(3, 2.5),
-    )
-    assert best_ms(lambda: c.decide(own, targets), runs=30) < 0.5
 
 
 def test_a_step_holds_no_horizon_by_samples_array_but_the_positions():
