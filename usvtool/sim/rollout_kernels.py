@@ -24,7 +24,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, vectorize
 from numba import types as nt
 
 _B, _F, _I, _C = nt.boolean, nt.float64, nt.int64, nt.complex128
@@ -35,6 +35,28 @@ _OPTIONS = {"cache": True, "nogil": True}
 #: Relative margin of the distance bounds that skip work: a bound within it of its limit is not
 #: trusted and the work is done (the round-off in a bound is some 1e-15 of it).
 MARGIN = 1e-6
+
+
+@njit(_F(_F, _F, _F, _F, _F), **_OPTIONS)
+def toward_one(now, target, down, up, t) -> float:
+    """:func:`usvtool.sim.vessel.toward` (its definition) of one value."""
+    return now + min(max(target - now, -down * t), up * t)
+
+
+@vectorize([_F(_F, _F, _F, _F, _F)], cache=True)
+def toward(now, target, down, up, t):
+    """:func:`toward_one` as a ufunc: one compiled pass where the NumPy expression made five
+    arrays."""
+    return toward_one(now, target, down, up, t)
+
+
+@vectorize([_F(_F, _F, _F, _F, _F)], cache=True)
+def travelled(now, target, down, up, t):
+    """:func:`usvtool.sim.vessel.travelled` (its definition), a ufunc."""
+    change = target - now
+    rate = up if up == down or change > 0 else down
+    ramp = min(t, abs(change) / rate)
+    return now * t + change * (t - ramp) + math.copysign(rate / 2 * ramp * ramp, change)
 
 
 @njit(_F[::1](_F, _F, _ROWS, _TURNS, _ROWS, _ROWS), **_OPTIONS)
@@ -79,24 +101,32 @@ def ramp_points(x0, y0, chord, u, x, y) -> np.ndarray:
     rate; written into ``x`` and ``y``. Returns a bound on the distance of every point from
     ``(x0, y0)`` at each time: the longest distance run."""
     steps, rates = u.shape
-    u_x, u_y = u.real, u.imag
     speeds = chord.shape[1]
+    u_x, u_y = np.empty(rates), np.empty(rates)
     sx = np.empty(speeds * rates)
     sy = np.empty(speeds * rates)
-    for i in range(speeds):  # as np.cumsum: the first term, then each sum
-        base = i * rates
+    for t in range(steps):
         for k in range(rates):
-            sx[base + k] = chord[0, i] * u_x[0, k]
-            sy[base + k] = chord[0, i] * u_y[0, k]
-            x[0, base + k] = sx[base + k] + x0
-            y[0, base + k] = sy[base + k] + y0
-    for t in range(1, steps):
+            u_x[k], u_y[k] = u[t, k].real, u[t, k].imag
+        for i in range(speeds):  # as np.cumsum: the first term, then each sum
+            base = i * rates
+            if t == 0:
+                for k in range(rates):
+                    sx[base + k] = chord[0, i] * u_x[k]
+            else:
+                for k in range(rates):
+                    sx[base + k] += chord[t, i] * u_x[k]
+            for k in range(rates):
+                x[t, base + k] = sx[base + k] + x0
         for i in range(speeds):
             base = i * rates
+            if t == 0:
+                for k in range(rates):
+                    sy[base + k] = chord[0, i] * u_y[k]
+            else:
+                for k in range(rates):
+                    sy[base + k] += chord[t, i] * u_y[k]
             for k in range(rates):
-                sx[base + k] += chord[t, i] * u_x[t, k]
-                sy[base + k] += chord[t, i] * u_y[t, k]
-                x[t, base + k] = sx[base + k] + x0
                 y[t, base + k] = sy[base + k] + y0
     run = np.zeros(speeds)
     radius = np.zeros(steps)
@@ -114,6 +144,44 @@ def _cell_index(x, y, width, height, left, top, scale) -> int:
     col = min(max((x - left) * scale + 1, 0.0), width + 1.0)
     row = min(max((top - y) * scale + 1, 0.0), height + 1.0)
     return int(row) * (width + 2) + int(col)
+
+
+_ROW = (_F[::1], _F[::1], _F, _F, _F[::1], _F[::1], _F, _F, _B[::1])
+
+
+@njit(_B(*_ROW), inline="always", **_OPTIONS)
+def _domain_fast(x, y, tx, ty, u_x, u_y, along, across, intrudes) -> bool:
+    """The domain test of one row (:func:`usvtool.encounter.domain_ellipse`, into ``intrudes``)
+    with the divisions by the semi-axes as multiplications by their reciprocals, which vectorise:
+    marks the points whose form lies below ``1 - 1e-9`` (a few ulps off the exact form: surely
+    inside) and returns whether some point's lies within 1e-9 of 1 (:func:`_domain_exact`
+    decides those)."""
+    rates = u_x.shape[0]
+    to_along, to_across = 1.0 / along, 1.0 / across
+    unsure = 0
+    for i in range(x.shape[0] // rates):
+        base = i * rates
+        for k in range(rates):
+            dx, dy = tx - x[base + k], ty - y[base + k]
+            a = (dx * u_x[k] + dy * u_y[k]) * to_along
+            c = (dx * u_y[k] - dy * u_x[k]) * to_across
+            form = a * a + c * c
+            intrudes[base + k] |= form <= 1 - 1e-9
+            unsure += abs(form - 1) <= 1e-9
+    return unsure > 0
+
+
+@njit(nt.void(*_ROW), inline="always", **_OPTIONS)
+def _domain_exact(x, y, tx, ty, u_x, u_y, along, across, intrudes) -> None:
+    """The domain test of one row as :func:`usvtool.encounter.domain_ellipse` computes it."""
+    rates = u_x.shape[0]
+    for i in range(x.shape[0] // rates):
+        base = i * rates
+        for k in range(rates):
+            dx, dy = tx - x[base + k], ty - y[base + k]
+            a = (dx * u_x[k] + dy * u_y[k]) / along
+            c = (dx * u_y[k] - dy * u_x[k]) / across
+            intrudes[base + k] |= a * a + c * c <= 1
 
 
 @njit(_F(_F, _F, _F, _F, _F, _F, _F, _F), inline="always", **_OPTIONS)
@@ -219,13 +287,8 @@ def contacts(x, y, radius, u, times, x0, y0, pos, vel, length, padded, width, le
                     tx, ty = px + vx * times[t], py + vy * times[t]
                     for k in range(rates):
                         u_x[k], u_y[k] = u[t, k].real, u[t, k].imag
-                    for i in range(n // rates):
-                        base = i * rates
-                        for k in range(rates):
-                            dx, dy = tx - x[t, base + k], ty - y[t, base + k]
-                            a = (dx * u_x[k] + dy * u_y[k]) / along
-                            c = (dx * u_y[k] - dy * u_x[k]) / across
-                            intrudes[base + k] |= a * a + c * c <= 1
+                    if _domain_fast(x[t], y[t], tx, ty, u_x, u_y, along, across, intrudes):
+                        _domain_exact(x[t], y[t], tx, ty, u_x, u_y, along, across, intrudes)
     contact = np.full(n, np.inf)
     static_first = np.zeros(n, np.bool_)
     for s in range(n):

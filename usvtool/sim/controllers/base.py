@@ -51,7 +51,9 @@ to port (:mod:`usvtool.sim.sides`).
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -125,12 +127,11 @@ class Decision:
 
 @dataclass
 class Rollouts:
-    """The velocity samples of one step and what the core computed for them."""
+    """The velocity samples of one step and what the core computed for them; the headings and
+    the final positions are worked out when a critic first asks for them (most use none)."""
 
     v: np.ndarray  # (N,)
     omega: np.ndarray  # (N,)
-    end: np.ndarray  # (N,) complex: the predicted final positions x + iy
-    psi_end: np.ndarray  # (N,) the predicted final headings (rad)
     contact: np.ndarray  # (N,) time to the first contact, inf when none
     static_hit: np.ndarray  # (N,) bool: the first contact is with the grid
     clearance: np.ndarray  # (N,) smallest distance to anything over the horizon (m): exact
@@ -140,7 +141,24 @@ class Rollouts:
     y: np.ndarray  # (T, N) and north
     reached: np.ndarray  # (N,) bool: the rollout passes within the goal tolerance of the goal
     near: np.ndarray  # (N,) complex: the rollout's point closest to the goal
-    psi_near: np.ndarray  # (N,) the heading there (rad)
+    near_time: np.ndarray  # (N,) the time it is reached (s)
+    horizon: float  # the last rollout time (s)
+    heading: Callable[[np.ndarray | float], np.ndarray]  # the headings at times, unwrapped
+
+    @cached_property
+    def end(self) -> np.ndarray:
+        """(N,) complex: the predicted final positions x + iy."""
+        return self.x[-1] + 1j * self.y[-1]
+
+    @cached_property
+    def psi_end(self) -> np.ndarray:
+        """(N,) the predicted final headings (rad, in [-pi, pi))."""
+        return wrap_pi(self.heading(self.horizon))
+
+    @cached_property
+    def psi_near(self) -> np.ndarray:
+        """(N,) the heading at :attr:`near` (rad)."""
+        return self.heading(self.near_time)
 
 
 class Controller(ABC):
@@ -294,11 +312,9 @@ class Controller(ABC):
         )  # fmt: skip
         row, to_goal, near = kernels.closest(x, y, float(world.goal[0]), float(world.goal[1]))
         reached = to_goal <= world.goal_tolerance**2
-        psi_end = wrap_pi(generator.heading(own, omega, self.times[-1]))
-        psi_near = generator.heading(own, omega, self.times[row])
-        end = x[-1] + 1j * y[-1]
-        return Rollouts(v, omega, end, psi_end, contact, static_first, clearance, intrudes, x, y,
-                        reached, near, psi_near)  # fmt: skip
+        return Rollouts(v, omega, contact, static_first, clearance, intrudes, x, y, reached, near,
+                        self.times[row], self.times[-1],
+                        lambda t: generator.heading(own, omega, t))  # fmt: skip
 
     def score(self, own: Own, r: Rollouts, candidates: np.ndarray) -> np.ndarray:
         """The sum of the critics' normalised rewards (eqs. 2-4) times their scales, over

@@ -73,8 +73,8 @@ class GoalHeading(Critic):
     name = "heading"
 
     def reward(self, own, r) -> np.ndarray:
-        goal = self.world.goal[0] + 1j * self.world.goal[1]
-        off = wrap_pi(np.angle(goal - r.near) - r.psi_near)
+        gx, gy = self.world.goal
+        off = wrap_pi(np.arctan2(gy - r.near.imag, gx - r.near.real) - r.psi_near)  # the angle
         return np.where(r.reached, np.pi, np.pi - np.abs(off))
 
 
