@@ -23,9 +23,22 @@ from usvtool.cli.options import (
     write_summary,
 )
 from usvtool.sim.controllers import CONTROLLERS
-from usvtool.sim.families import FAMILIES
 
 log = logging.getLogger(__name__)
+
+
+class FamilyChoice(click.Choice):
+    """The scene families' names, their registry imported when first asked for (it brings the
+    families' raster writers, which a scenario file's run does not need)."""
+
+    def __init__(self) -> None:
+        self.case_sensitive = True
+
+    @property
+    def choices(self) -> tuple[str, ...]:
+        from usvtool.sim.families import FAMILIES
+
+        return tuple(FAMILIES)
 
 
 def family_options(f):
@@ -36,15 +49,13 @@ def family_options(f):
                      show_default=True, help="The scene's seed (a family that is not seeded "
                      "has only scene 0).")(f)  # fmt: skip
     f = click.option("--kind", help="The kind of scene (usvtool scene --list names them).")(f)
-    return click.option("--family", type=click.Choice(list(FAMILIES)),
+    return click.option("--family", type=FamilyChoice(),
                         help="A scene family (docs/families.md).")(f)  # fmt: skip
 
 
 def make_family_scene(family: str | None, kind: str | None, scene: int, options: dict):
     """The scene the family options name (:func:`usvtool.sim.families.make_scene`); None without
     ``--family``. Usage errors for options given without it or ``--kind`` missing."""
-    from usvtool.sim.families import make_scene
-
     if family is None:
         given = [o for o, v in (("--kind", kind), ("--family-option", options)) if v]
         if given or scene:
@@ -52,6 +63,8 @@ def make_family_scene(family: str | None, kind: str | None, scene: int, options:
         return None
     if kind is None:
         raise click.UsageError("--family: needs --kind")
+    from usvtool.sim.families import make_scene
+
     return make_scene(family, kind, scene, options, lambda key: f"--family-option {key}")
 
 
@@ -90,7 +103,6 @@ def simulate(scenario_path: str | None, family: str | None, kind: str | None, sc
     from usvtool.atomic import check_outputs, staged
     from usvtool.errors import UsvError
     from usvtool.sim.controllers import make_controller
-    from usvtool.sim.families import scene_files, write_scene
     from usvtool.sim.run import SimOptions
     from usvtool.sim.run import simulate as run
     from usvtool.sim.scenario import controller_params, read_scenario
@@ -101,7 +113,11 @@ def simulate(scenario_path: str | None, family: str | None, kind: str | None, sc
     if (scenario_out is None) != (family is None):
         raise click.UsageError("--scenario-out: with --family, and --family needs it")
     scene = make_family_scene(family, kind, scene_number, family_options)
-    written = [] if scene is None else scene_files(scene, scenario_out)
+    written = []
+    if scene is not None:  # the families' writers, only for a scene
+        from usvtool.sim.families import scene_files, write_scene
+
+        written = scene_files(scene, scenario_out)
     scene_outputs = [("--scenario-out", p) for p in written]
     outputs = [("-o", output), ("--events", events), ("--tracks", tracks),
                ("--summary", summary_path)]  # fmt: skip
