@@ -37,6 +37,35 @@ _OPTIONS = {"cache": True, "nogil": True}
 MARGIN = 1e-6
 
 
+@njit(_F[::1](_F, _F, _I, _F[::1], _F), **_OPTIONS)
+def axis(lo, hi, n, extra, tolerance) -> np.ndarray:
+    """:func:`usvtool.sim.vessel._axis` (its definition): ``n`` values from ``lo`` to ``hi`` as
+    ``np.linspace`` makes them (``i`` times the step plus ``lo``, ``i / (n - 1)`` times the
+    width when the step underflows to zero, ``hi`` last), and the ``extra`` ones between them,
+    those within ``tolerance`` of zero made zero, sorted, without repeats."""
+    if lo == hi:
+        return np.full(1, lo)
+    step = (hi - lo) / (n - 1)
+    values = np.empty(n + extra.size)
+    for i in range(n - 1):
+        values[i] = i * step + lo if step else i / (n - 1) * (hi - lo) + lo
+    values[n - 1] = hi
+    count = n
+    for e in extra:
+        if lo <= e <= hi:
+            values[count] = e
+            count += 1
+    values = values[:count]
+    for i in range(count):
+        if abs(values[i]) <= tolerance:
+            values[i] = 0.0
+    values.sort()
+    keep = np.ones(count, np.bool_)
+    for i in range(1, count):
+        keep[i] = values[i] != values[i - 1]
+    return values[keep]
+
+
 @njit(_F(_F, _F, _F, _F, _F), **_OPTIONS)
 def toward_one(now, target, down, up, t) -> float:
     """:func:`usvtool.sim.vessel.toward` (its definition) of one value."""

@@ -397,15 +397,10 @@ def _axis(lo: float, hi: float, n: int, extra) -> np.ndarray:
     >>> float(np.linspace(-0.3, 0.2, 6)[3]), float(_axis(-0.3, 0.2, 6, [0.0])[3])
     (5.551115123125783e-17, 0.0)
     """
-    if lo == hi:
-        return np.array([lo])
-    # np.linspace's values, in floats (its dispatch costs more than 21 values): i times the
-    # step (i / (n - 1) times the width when the step underflows to zero) plus lo, hi last
-    step = (hi - lo) / (n - 1)
-    axis = [i * step + lo if step else i / (n - 1) * (hi - lo) + lo for i in range(n - 1)]
-    axis += [hi, *(e for e in extra if e is not None and lo <= e <= hi)]
-    tolerance = ZERO_TOLERANCE * (hi - lo)
-    return np.array(sorted({0.0 if abs(a) <= tolerance else a for a in axis}))
+    from usvtool.sim.rollout_kernels import axis  # np.linspace's values, compiled
+
+    inside = np.array([e for e in extra if e is not None], float)
+    return axis(float(lo), float(hi), int(n), inside, ZERO_TOLERANCE * (hi - lo))
 
 
 def _out(a: np.ndarray):
