@@ -62,6 +62,9 @@ def test_the_registry_names_every_controller():
                 {"window": "step"}):
         with pytest.raises(UsvError):
             make_controller("udwa", **bad)
+    # a horizon shorter than half a rollout step rolls nothing out (was an internal IndexError)
+    with pytest.raises(UsvError, match=r"horizon \(0.05\) must be at least half a step \(0.2\)"):
+        make_controller("udwa", horizon=0.05)
 
 
 def test_open_water_heads_for_the_goal_at_full_speed():

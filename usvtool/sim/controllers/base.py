@@ -216,6 +216,9 @@ class Controller(ABC):
         if not p["priority"] >= 0:
             raise UsvError(f"{self.name}: priority must be >= 0, not {p['priority']}")
         self.times = p["step"] * np.arange(1, int(round(p["horizon"] / p["step"])) + 1)
+        if not self.times.size:
+            raise UsvError(f"{self.name}: horizon ({p['horizon']}) must be at least half a step "
+                           f"({p['step']})")  # fmt: skip
         self.objective = self.critics()
         self.side_rule = SideRule(p["sides"], self.removes_side, p["priority"],
                                   p["safe_priority"], p["dist_max"])  # fmt: skip
