@@ -103,6 +103,17 @@ def job_walls(out: Path) -> list[tuple[str, float]]:
             if r.metric == "wall_time_s"]  # fmt: skip
 
 
+def same_table(a: bytes, b: bytes) -> str:
+    """Whether two metrics tables are the same bytes, and if not, whether their keys differ (the
+    code changed between the batches: a job's key hashes its stage's code)."""
+    if a == b:
+        return "the same bytes"
+    keys = [{line.split(b",")[0] for line in t.splitlines()[1:]} for t in (a, b)]
+    if keys[0] != keys[1]:
+        return "DIFFERENT keys (did the code change between the two batches?)"
+    return "DIFFERENT values"
+
+
 def one_process_per_run(out: Path, count: int = 10) -> tuple[float, float]:
     """The plain way: ``count`` of the batch's runs, each its own ``usvtool simulate`` process
     in a fresh directory (its command line from its job.json): (the median wall of a process,
@@ -113,8 +124,10 @@ def one_process_per_run(out: Path, count: int = 10) -> tuple[float, float]:
     for record in records:
         with tempfile.TemporaryDirectory() as tmp:
             t0 = time.perf_counter()
-            subprocess.run([*USV, *record["args"]], cwd=tmp, check=True, capture_output=True)
+            proc = subprocess.run([*USV, *record["args"]], cwd=tmp, capture_output=True, text=True)
             alone.append(time.perf_counter() - t0)
+            if proc.returncode != 0:
+                sys.exit(f"bench_montecarlo: {' '.join(record['args'])}: {proc.stderr.strip()}")
     return statistics.median(alone), statistics.median(r["wall_time_s"] for r in records)
 
 
@@ -139,8 +152,7 @@ def batches(scenes: int | None) -> None:
                   f"{summary['stage_time_s']['table']:7.2f} | {TARGET_RUNS / rate:10.0f} "
                   f"{1460 / rate:11.0f}")  # fmt: skip
             tables[workers] = (out / "metrics.csv").read_bytes()
-        same = "the same bytes" if tables[1] == tables[2] else "DIFFERENT"
-        print(f"metrics.csv of -j 1 and -j 2: {same}")
+        print(f"metrics.csv of -j 1 and -j 2: {same_table(tables[1], tables[2])}")
         alone, in_worker = one_process_per_run(tmp / "j1")
         print(f"the plain way, a new usvtool simulate process per run (10 of the runs): median "
               f"{alone:.3f} s a run, {in_worker:.3f} s in the batch's worker: "

@@ -199,14 +199,17 @@ def _run_jobs(executor, run: _Run, out: Path, command: Command) -> None:
         raise
 
 
-def _measure(executor, pipeline, out: Path, jobs: list[Job], command: Command) -> str:
-    """``usvtool metrics`` of the routes and runs done, run by a worker
-    (:func:`results_tables.measure`)."""
+def _measure(executor, pipeline, out: Path, jobs: list[Job], command: Command) -> dict:
+    """The ``usvtool metrics`` rows of the routes and runs done, by view name: a command per
+    part (:func:`results_tables.parts`), as many at once as the executor runs."""
     sim = pipeline.simulation
     reference = sim.reference_controller if sim is not None else None
-    future = executor.submit("table", results_tables.measure, str(out), jobs, command, reference)
+    parts = results_tables.parts(out, jobs, executor.capacity)
+    futures = [executor.submit("table", results_tables.measure, str(out), part, command,
+                               reference) for part in parts]  # fmt: skip
     try:
-        return future.result()
+        tables = [(part, future.result()) for part, future in zip(parts, futures, strict=True)]
+        return results_tables.joined(tables)
     except UsvError:
         raise
     except Exception as exc:
@@ -256,16 +259,16 @@ def run_batch(pipeline_path, options: BatchOptions) -> BatchResult:
             table_started = time.monotonic()
             done = [j for j in jobs if _state(j, out)]
             measured = [j for j in done if j.kind in results_tables.METHOD_COLUMN]
-            wide = None
-            if measured:
-                wide = _measure(executor, pipeline, out, measured, options.command)
-            metrics, timings = results_tables.rows(done, wide, out)
+            table = _measure(executor, pipeline, out, measured, options.command) if measured else {}
+            metrics, timings = results_tables.rows(done, table, out)
             parquet = results_tables.write(out / "metrics.csv", metrics, timings)
             run.stage_time["table"] = time.monotonic() - table_started
             _remove_temporaries(out)
     finally:
         executor.close()
     failed = run.failed
+    failures = [{"kind": j.kind, "key": j.key, "case": j.case, "method": j.method,
+                 "seed": j.seed, "error": run.errors[j.key]} for j in failed]  # fmt: skip
     figures = {
         "output": str(out),
         "metrics": str(out / "metrics.csv"),
@@ -276,8 +279,7 @@ def run_batch(pipeline_path, options: BatchOptions) -> BatchResult:
         "done": len(todo) - len(failed),
         "skipped": len(skipped),
         "failed": len(failed),
-        "failures": [{"kind": j.kind, "key": j.key, "case": j.case, "method": j.method,
-                      "seed": j.seed, "error": run.errors[j.key]} for j in failed],  # fmt: skip
+        "failures": failures,
         "wall_time_s": round(time.monotonic() - started, 3),
         "stage_time_s": {k: round(v, 3) for k, v in sorted(run.stage_time.items())},
     }

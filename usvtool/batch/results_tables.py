@@ -1,13 +1,16 @@
 """The batch's results tables: ``metrics.csv`` and ``timings.csv`` (the :mod:`usvtool.results`
 contract), and ``metrics.parquet`` when pyarrow is installed.
 
-Routes and runs are measured by one ``usvtool metrics`` command over all of them
-(:func:`measure`, run by a worker like a job), so that its cross-job figures hold: a route's
+Routes and runs are measured by ``usvtool metrics`` commands (:func:`measure`, run by the
+workers like jobs, as many at once as the executor runs), each over every route and the runs
+of whole scenarios (:func:`parts`), so that its cross-job figures hold: a route's
 ``length_ratio`` against the any-angle route of the same grid and ends, a run's optimisation
-rates against the reference controller's run of the same scenario and seed. It sees them
-through a hidden directory of symbolic links, one subdirectory per grid and ends (the
-directory is what ``usvtool metrics`` takes as a route's chart), removed afterwards. A function
-run's ``final_cost`` is the ``best`` of its ``usvtool functions --runs 1`` summary.
+rates against the reference controller's run of the same scenario and seed; every route in
+each part also gives each command the columns one command over all of them would, so the
+table is the same whatever the number of parts. A command sees its jobs through a hidden
+directory of symbolic links, one subdirectory per grid and ends (the directory is what
+``usvtool metrics`` takes as a route's chart), removed afterwards. A function run's
+``final_cost`` is the ``best`` of its ``usvtool functions --runs 1`` summary.
 
 Each job's metrics become rows (key, kind, case, method, seed, metric, value) in the command's
 column order, without the columns that name the job (chart, algorithm, run, scenario,
@@ -22,6 +25,7 @@ import hashlib
 import io
 import json
 import shutil
+from collections import defaultdict
 from pathlib import Path
 
 from usvtool.batch.jobs import Job
@@ -42,6 +46,23 @@ def _view_name(job: Job) -> str:
         return f"runs/{job.key}.csv"
     ends = json.dumps([job.needs, job.info["frame"], job.info["start"], job.info["goal"]])
     return f"{hashlib.sha256(ends.encode()).hexdigest()[:12]}/{job.key}.geojson"
+
+
+def parts(out: Path, jobs: list[Job], count: int) -> list[list[Job]]:
+    """The routes and runs ``jobs`` (done, in ``out``) as at most ``count`` parts to measure at
+    once: the runs by scenario (the name in a run's ``summary.json``), each scenario's runs in
+    one part, the largest first to the part with the fewest runs; every route in every part.
+    One part when there are no runs."""
+    routes = [j for j in jobs if j.kind == "routes"]
+    scenarios: dict[str, list[Job]] = defaultdict(list)
+    for job in jobs:
+        if job.kind == "runs":
+            summary = json.loads((out / job.kind / job.key / "summary.json").read_text())
+            scenarios[str(summary.get("scenario"))].append(job)
+    runs: list[list[Job]] = [[] for _ in range(max(1, min(count, len(scenarios))))]
+    for name in sorted(scenarios, key=lambda n: (-len(scenarios[n]), n)):
+        min(runs, key=len).extend(scenarios[name])
+    return [routes + part for part in runs]
 
 
 def measure(out: str, jobs: list[Job], command: Command, reference_controller: str | None) -> str:
@@ -76,17 +97,28 @@ def view_order(jobs: list[Job]) -> list[str]:
     return sorted(_view_name(j) for j in jobs)
 
 
-def rows(jobs: list[Job], wide_csv: str | None, out: Path) -> tuple[list[Row], list[Row]]:
-    """The metrics and timings rows of every done job of :data:`KINDS` in ``jobs``."""
+def joined(measured: list[tuple[list[Job], str]]) -> dict[str, dict[str, str]]:
+    """The rows of the ``usvtool metrics`` tables of some parts (each part's jobs and its CSV
+    text, :func:`measure`), by view name (a route measured in several parts has the same row
+    in each)."""
+    table = {}
+    for jobs, text in measured:
+        rows = list(csv.DictReader(io.StringIO(text)))
+        if len(rows) != len(jobs):
+            raise UsvError(f"usvtool metrics: {len(rows)} rows for {len(jobs)} routes and runs")
+        table.update(zip(view_order(jobs), rows, strict=True))
+    return table
+
+
+def rows(jobs: list[Job], table: dict[str, dict], out: Path) -> tuple[list[Row], list[Row]]:
+    """The metrics and timings rows of every done job of :data:`KINDS` in ``jobs``, those of
+    the routes and runs from their ``usvtool metrics`` rows (:func:`joined`)."""
     measured = [j for j in jobs if j.kind in METHOD_COLUMN]
     by_name = {_view_name(j): j for j in measured}
     metrics: list[Row] = []
     timings: list[Row] = []
-    table = list(csv.DictReader(io.StringIO(wide_csv))) if wide_csv else []
-    if len(table) != len(measured):
-        raise UsvError(f"usvtool metrics: {len(table)} rows for {len(measured)} routes and runs")
-    for name, values in zip(view_order(measured), table, strict=True):
-        job = by_name[name]
+    for name in view_order(measured):
+        job, values = by_name[name], table[name]
         if values[METHOD_COLUMN[job.kind]] != job.method:
             raise UsvError(f"usvtool metrics: the row of {name} is not {job.label}'s")
         for metric, value in values.items():
