@@ -1,6 +1,7 @@
 """The compiled rollout kernels (usvtool/sim/rollout_kernels.py) against the NumPy expressions
 they stand for, bit for bit, on seeded random fans, grids and targets; and what their distance
-bounds skip (far targets, at no cost and with no effect on any decision)."""
+bounds skip (far targets: no effect on any decision; what skipping saves, benchmarks/
+bench_simulate.py measures)."""
 
 import math
 import tracemalloc
