@@ -55,6 +55,7 @@ class ReportResult:
     pdf_pages: int | None
     hint: str | None = None
     verdicts: dict[str, int] = field(default_factory=dict)
+    main_pages: int | None = None  # the PDF's pages before the appendix
 
     def summary(self) -> dict:
         return {
@@ -63,6 +64,7 @@ class ReportResult:
             "html_bytes": self.html_bytes,
             "pdf_bytes": self.pdf_bytes,
             "pdf_pages": self.pdf_pages,
+            "main_pages": self.main_pages,
             "sections": [s.id for s in self.sections],
             "figures": sum(len(s.figures()) for s in self.sections),
             "tables": sum(len(s.tables()) for s in self.sections),
@@ -105,10 +107,10 @@ def make_report(options: ReportOptions) -> ReportResult:
                 "every optimizer on every chart, every controller in every encounter, beside "
                 "the published figures of the three papers.")  # fmt: skip
     page = html(TITLE, subtitle, parts)
-    document, pages, hint = None, None, None
+    document, pages, main_pages, hint = None, None, None, None
     if options.pdf:
         try:
-            document, pages = pdf(page)
+            document, pages, main_pages = pdf(html(TITLE, subtitle, parts, "print"))
         except PdfUnavailable as e:
             hint = str(e)
     figures = [f for s in parts for f in s.figures()]
@@ -128,4 +130,4 @@ def make_report(options: ReportOptions) -> ReportResult:
     verdicts = claims.counts(parts)
     return ReportResult(out, parts, len(files[out / "index.html"]),
                         None if document is None else len(document), pages, hint,
-                        verdicts)  # fmt: skip
+                        verdicts, main_pages)  # fmt: skip

@@ -2,12 +2,20 @@
 
 Building the document (:mod:`.sections`) is kept apart from writing it (:mod:`.page`), so
 that the HTML and the PDF come from one document and the tests can look at it directly.
+
+Each section, subsection, table and figure has a **placement**: :data:`MAIN` (the default: the
+report's main body), :data:`APPENDIX` (after the main body, under "Appendix", in the HTML and
+the PDF) or :data:`HTML` (the HTML only, folded in a ``<details>``; left out of the PDF).
+:func:`layout` splits the sections into the main body and the appendix for the templates.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+
+MAIN, APPENDIX, HTML = "main", "appendix", "html"
+PLACEMENTS = (MAIN, APPENDIX, HTML)
 
 
 @dataclass(frozen=True)
@@ -25,6 +33,7 @@ class Table:
     caption: str
     columns: list[str]
     rows: list[list[Cell]]
+    placement: str = MAIN
 
 
 @dataclass(frozen=True)
@@ -37,6 +46,7 @@ class Figure:
     caption: str
     png: bytes
     data: str
+    placement: str = MAIN
 
 
 @dataclass
@@ -46,6 +56,7 @@ class Section:
     paragraphs: list[str] = field(default_factory=list)
     blocks: list[Table | Figure] = field(default_factory=list)
     subsections: list[Section] = field(default_factory=list)
+    placement: str = MAIN
 
     def figures(self) -> list[Figure]:
         own = [b for b in self.blocks if isinstance(b, Figure)]
@@ -54,6 +65,40 @@ class Section:
     def tables(self) -> list[Table]:
         own = [b for b in self.blocks if isinstance(b, Table)]
         return own + [t for s in self.subsections for t in s.tables()]
+
+
+def _check(placement: str, what: str) -> None:
+    if placement not in PLACEMENTS:
+        raise ValueError(f"{what}: placement {placement!r} is not one of {', '.join(PLACEMENTS)}")
+
+
+def _split(s: Section) -> tuple[Section | None, Section | None]:
+    """The section's main-body part and its appendix part (None when empty). A main section's
+    appendix blocks and subsections go to a section of the same title in the appendix (id
+    ``<id>-appendix``); HTML-only ones stay where they are (the templates fold them)."""
+    _check(s.placement, f"section {s.id}")
+    for b in s.blocks:
+        _check(b.placement, f"{s.id}: {b.id}")
+    if s.placement == APPENDIX:
+        return None, s
+    if s.placement == HTML:
+        return s, None
+    parts = [_split(sub) for sub in s.subsections]
+    main = replace(s, blocks=[b for b in s.blocks if b.placement != APPENDIX],
+                   subsections=[m for m, _ in parts if m is not None])  # fmt: skip
+    later = [b for b in s.blocks if b.placement == APPENDIX]
+    later_subs = [a for _, a in parts if a is not None]
+    if not later and not later_subs:
+        return main, None
+    return main, Section(f"{s.id}-appendix", s.title, blocks=later, subsections=later_subs,
+                         placement=APPENDIX)  # fmt: skip
+
+
+def layout(sections: list[Section]) -> tuple[list[Section], list[Section]]:
+    """The main body and the appendix: the top-level sections placed in the appendix, and the
+    appendix parts of the others (:func:`_split`), in reading order."""
+    parts = [_split(s) for s in sections]
+    return [m for m, _ in parts if m is not None], [a for _, a in parts if a is not None]
 
 
 def number(value: float | None, digits: int = 2) -> Cell:
