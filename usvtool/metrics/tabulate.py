@@ -39,9 +39,12 @@ ROUTE_COLUMNS = ("chart", "algorithm", "length_m", "length_ratio", "turns", "mot
                  "planning_time_s", "collision_free", "attempt")  # fmt: skip
 RUN_COLUMNS = ("run", "scenario", "controller", "seed", "arrived", "collision", "length_m",
                "turns", "mot", "arrival_time_s", "closest_distance_m", "average_distance_m",
-               "domain_intrusion_s", "encounters", "judged", "compliant", "failed_rules",
+               "domain_intrusion_s", "encounters", "judged", "compliant", "compliant_excused",
+               "noncompliant", "not_judged", "failed_rules", "excused_rules",
                "reference_controller", "closest_distance_rate",
                "average_distance_rate")  # fmt: skip
+#: The COLREGs counts of a run (:func:`colregs_counts`): every encounter in exactly one.
+VERDICTS = ("compliant", "compliant_excused", "noncompliant", "not_judged")
 #: Decimals of each real-valued column (written as Python writes the rounded number).
 DECIMALS = {"length_m": 2, "length_ratio": 4, "mot": 4, "fitness": 2, "planning_time_s": 3,
             "arrival_time_s": 3, "closest_distance_m": 3, "average_distance_m": 3,
@@ -220,9 +223,8 @@ def _run_row(path: str, events_path: str) -> dict:
     tx, ty = trace.x[:, 1:], trace.y[:, 1:]
     track = np.column_stack([own_x, own_y])
     sampled = measures.track_samples(track, dt)
-    judged = [e["compliant"] for e in encounters if e.get("compliant") is not None]
-    failed = sorted({rule for e in encounters for rule in (e.get("failed_rules") or [])})
     arrived = run.get("arrived")
+    completed = bool(arrived) and not run.get("collision")
     return {
         "_kind": "run",
         "_path": path,
@@ -242,10 +244,39 @@ def _run_row(path: str, events_path: str) -> dict:
         ),
         "domain_intrusion_s": run.get("domain_intrusion_s"),
         "encounters": len(intervals),
-        "judged": len(judged),
-        "compliant": sum(bool(c) for c in judged),
-        "failed_rules": failed,
+        **colregs_counts(encounters, completed),
     }
+
+
+def verdict(encounter: dict, completed: bool) -> str:
+    """The count of :data:`VERDICTS` an encounter of a run falls in: ``not_judged`` when the
+    run did not arrive or collided (``completed`` false) or the encounter has no verdict
+    (``compliant`` null); else ``noncompliant`` when a rule failed, ``compliant_excused`` when
+    it is compliant only because a Rule 2 departure record excused failed rules
+    (``excused_rules`` not empty), else ``compliant`` (docs/colregs.md, "Counting")."""
+    if not completed or encounter.get("compliant") is None:
+        return "not_judged"
+    if not encounter["compliant"]:
+        return "noncompliant"
+    return "compliant_excused" if encounter.get("excused_rules") else "compliant"
+
+
+def colregs_counts(encounters: list[dict], completed: bool) -> dict:
+    """A run's COLREGs columns from its events' encounters (those of class ``none`` are
+    targets without one, not counted): the :data:`VERDICTS` counts, ``judged`` (the first
+    three), and the rules failed and excused in its judged encounters (sorted, unique)."""
+    counts = dict.fromkeys(VERDICTS, 0)
+    failed, excused = set(), set()
+    for e in encounters:
+        if e.get("class", "none") == "none":
+            continue
+        judged = verdict(e, completed)
+        counts[judged] += 1
+        if judged != "not_judged":
+            failed.update(e.get("failed_rules") or [])
+            excused.update(e.get("excused_rules") or [])
+    return {"judged": sum(counts.values()) - counts["not_judged"], **counts,
+            "failed_rules": sorted(failed), "excused_rules": sorted(excused)}  # fmt: skip
 
 
 def _run_rates(rows: list[dict], controller: str | None) -> None:

@@ -27,13 +27,14 @@ NUMBER, BOOLEAN, WORD = "number", "boolean", "word"
 NUMBERS = frozenset({
     "length_m", "length_ratio", "turns", "mot", "fitness", "planning_time_s", "attempt",
     "arrival_time_s", "closest_distance_m", "average_distance_m", "domain_intrusion_s",
-    "encounters", "judged", "compliant", "closest_distance_rate", "average_distance_rate",
+    "encounters", "judged", "compliant", "compliant_excused", "noncompliant", "not_judged",
+    "closest_distance_rate", "average_distance_rate",
     "final_cost", "wall_time_s", "seed",
 })  # fmt: skip
 BOOLEANS = frozenset({"collision_free", "arrived"})
 #: ``collision`` names what was hit (a target's name may be anything, ``12`` or ``nan``).
-WORDS = frozenset({"collision", "failed_rules", "reference_controller", "chart", "algorithm",
-                   "run", "scenario", "controller"})  # fmt: skip
+WORDS = frozenset({"collision", "failed_rules", "excused_rules", "reference_controller",
+                   "chart", "algorithm", "run", "scenario", "controller"})  # fmt: skip
 #: What :func:`refusal` says each kind must be: (one value, several).
 EXPECTED = {NUMBER: ("a finite number", "finite numbers"), BOOLEAN: ("True/False", "True/False")}
 
