@@ -50,6 +50,7 @@ ISSA_TABLE_3 = PaperTable(
     "right-angle turn + 0.2 per obtuse one (section 3). PSO is the paper's (c1 = c2 = 2.5, "
     "w = 1), usvtool's pso-issa. Our grid20 is drawn in the spirit of its Figure 10, which the "
     "text lacks (charts/make_synthetic.py): compare trends, not the values.",
+    runs=50,
     notes=(
         "The table is transposed (metrics down, algorithms across); rows here are algorithms.",
         "'the 2020 grid environment model' is the 20 x 20 grid (the '\\times' lost).",

@@ -135,6 +135,7 @@ IWSO_DWA_TABLE_1 = PaperTable(
     "docs/optimizers.md); the dimension is not stated (30 fits: IWSO's F8 mean -1.23e4 is near "
     "the 30-D minimum -12569.5 and BOA's, GWO's and WOA's F5 near Rosenbrock's 30-D plateau "
     "of 25-29). Our cases: usvtool.plan.benchmark_functions F1-F10 by the same names; F6 differs.",
+    runs=25,
     notes=(
         "Every cell is printed as $m \\times 10^{e}$, in the converted text mostly as "
         "'m  imes 10^{e}' (the '\\t' of '\\times' lost); transcribed here as 'me e'.",

@@ -74,6 +74,7 @@ class PaperTable:
     rows: tuple[PaperRow, ...]
     setup: str
     notes: tuple[str, ...] = ()
+    runs: int | None = None  # the runs behind each of the paper's figures, when it says
 
     def column(self, name: str) -> Column:
         """The column called ``name``; KeyError when the table has none."""
@@ -101,14 +102,38 @@ class Quote:
     text: str
 
 
+#: The checks a claim's preconditions may name (:class:`Precondition`; the report makes them,
+#: :mod:`usvtool.report.sections.claims`).
+CHECKS = ("turns-reachable",)
+
+
+@dataclass(frozen=True)
+class Precondition:
+    """What our set-up must allow for the claim's metric to move at all, else the claim is
+    *not testable*. ``check`` is one of :data:`CHECKS`: ``turns-reachable``, every route of the
+    claim's method and rivals has enough vertices (its ``summary.json``'s ``points``, less the
+    two ends) for as many turns as the paper's table gives any of them in the claim's cases.
+    ``reason``: what the set-up would need, in words."""
+
+    check: str
+    reason: str
+
+
 @dataclass(frozen=True)
 class Claim:
-    """A claim of a paper (:mod:`usvtool.report.papers` says when one holds). ``paper_change``:
-    per case, the relative change of the method against the (first) rival that the paper states,
-    in per cent as printed (a decrease for ``better == "lower"``, an increase for ``"higher"``),
-    None where it states none; empty when it states none at all. ``table``: the id of the
-    paper's table of these cases, if any (it may have no column of the claim's metric: the text
-    states the claim alone)."""
+    """A claim of a paper (:mod:`usvtool.report.papers` says how one is judged).
+
+    ``cases``: a results case (``env1``), or a scene family's kind, ``ENTRY/KIND``, standing
+    for every run of that kind (``emergency/head-on``: ``emergency/head-on/s000`` ...).
+    ``paper_cases``: per case, the cases of the paper's table (``table``) it stands for
+    (``emergency/head-on``: the paper's ``emergency-head-on``; empty: the paper's table has no
+    row of it); empty altogether when they are the cases themselves. ``paper_change``: per
+    case, the relative change of the method against the (first) rival that the paper states,
+    in per cent as printed (a decrease for ``better == "lower"``, an increase for
+    ``"higher"``), None where it states none; empty when it states none at all. ``table``: the
+    id of the paper's table of these cases, if any (it may have no column of the claim's
+    metric: the text states the claim alone). ``preconditions``: what the set-up must allow
+    (:class:`Precondition`)."""
 
     id: str
     paper: str
@@ -124,7 +149,14 @@ class Claim:
     paper_change: tuple[str | None, ...] = ()
     target: float | str | None = None
     note: str = ""
+    paper_cases: tuple[tuple[str, ...], ...] = ()
+    preconditions: tuple[Precondition, ...] = ()
 
+    def table_cases(self, case: str) -> tuple[str, ...]:
+        """The cases of the paper's table that ``case`` (one of :attr:`cases`) stands for."""
+        if not self.paper_cases:
+            return (case,)
+        return self.paper_cases[self.cases.index(case)]
 
 
 def printed_row(method: str, paper_method: str, case: str, paper_case: str,

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from usvtool.report.data import Results, stats
 from usvtool.report.document import Cell, Section, Table, number
+from usvtool.report.papers import TABLES
 from usvtool.report.sections import published
 
 STATS = ("best", "worst", "mean", "std")
@@ -33,9 +34,17 @@ def section(results: Results) -> Section | None:
     if not results.cases("functions"):
         return None
     s = Section("functions", "Benchmark functions")
+    counts = sorted({len(results.select("functions", f, a)) for f in results.cases("functions")
+                     for a in results.methods("functions", f)})  # fmt: skip
+    runs = " or ".join(map(str, counts))
+    theirs = ", ".join(f"{t.label} {t.runs}" for t in TABLES.values()
+                       if t.kind == "functions" and t.runs)  # fmt: skip
     s.paragraphs.append(
         "Each optimizer minimises F1-F10 (unimodal F1-F7, multimodal F8-F10; "
-        "usvtool/plan/benchmark_functions.py) from its own seeds.")
+        f"usvtool/plan/benchmark_functions.py) from its own seeds: {runs} run(s) each (the "
+        f"paper's {theirs}: the runs columns set ours beside it). Figures below 1 that two "
+        "significant digits would not survive at the table's decimals are printed in "
+        "scientific notation, so no non-zero figure reads 0.00.")
     s.blocks += published.tables(results, "functions")
     s.blocks.append(table(results))
     return s

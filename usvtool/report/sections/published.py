@@ -4,9 +4,11 @@ For each row of a :class:`~usvtool.report.papers.PaperTable` (a method in a case
 column with a counterpart metric, our figure is the column's statistic over our seeds
 (:func:`usvtool.report.data.statistic`) times its ``scale`` (the paper's unit), set beside the
 paper's printed figure. A row whose setup is not ours (``comparable`` false) shows the paper's
-figure alone. An optimisation rate (``*_rate``) that the runs do not carry is computed from our
-medians against the reference controller's, as :func:`usvtool.measures.optimisation_rate`
-defines it (UDWA Table 1: (UDWA - CCDWA) / CCDWA of the average distance).
+figure alone. A table whose paper states its number of runs (``runs``) has a runs column: ours
+(the runs behind our figures, from the results) beside the paper's. An optimisation rate
+(``*_rate``) that the runs do not carry is computed from our medians against the reference
+controller's, as :func:`usvtool.measures.optimisation_rate` defines it (UDWA Table 1: (UDWA -
+CCDWA) / CCDWA of the average distance).
 """
 
 from __future__ import annotations
@@ -43,6 +45,9 @@ def table(results: Results, paper_table: PaperTable) -> Table:
     rows = []
     for r in t.rows:
         cells = [Cell(r.method), Cell(r.case)]
+        if t.runs is not None:
+            n = len(results.values(t.kind, r.case, r.method, columns[0].metric))
+            cells += [Cell(str(n), "num"), Cell(str(t.runs), "num paper")]
         for c in columns:
             i = t.columns.index(c)
             printed = r.printed[i]
@@ -51,12 +56,14 @@ def table(results: Results, paper_table: PaperTable) -> Table:
                          else Cell("n/c", "num untested"))  # fmt: skip
             cells.append(Cell(printed or "-", "num paper"))
         rows.append(cells)
-    headings = ["method", "case"]
+    headings = ["method", "case", *(["runs", "paper"] if t.runs is not None else [])]
     for c in columns:
         unit = f" ({c.unit})" if c.unit else ""
         headings += [f"{c.heading}{unit}", "paper"]
     paper = PAPERS[t.paper]
-    caption = (f"{t.caption} Ours (statistics over our seeds, in the paper's units) beside the "
+    runs = (f" over the runs of the runs column (the paper's: {t.runs} each)"
+            if t.runs is not None else " over our seeds")  # fmt: skip
+    caption = (f"{t.caption} Ours (statistics{runs}, in the paper's units) beside the "
                f"paper's printed figures (grey); n/c: our setup is not the paper's. Setup: "
                f"{t.setup}")  # fmt: skip
     return Table(f"paper-{t.id}", f"{t.label} of the {paper.id.upper()} paper", caption,

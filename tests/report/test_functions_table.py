@@ -1,0 +1,58 @@
+"""The benchmark functions' tables (usvtool/report/sections/benchmark_functions.py, published.py)
+on a hand-made results table: small figures never print as 0.00, and our number of runs stands
+beside the paper's."""
+
+from __future__ import annotations
+
+from usvtool.report.data import load
+from usvtool.report.document import number
+from usvtool.report.papers import TABLES
+from usvtool.report.sections import benchmark_functions, published
+from usvtool.results import Row, write_results
+
+#: GWO's F3 over 5 seeds: mean (0.001 + 0.002 + 0.003 + 0.0035 + 0.00415) / 5 = 0.00273.
+GWO_F3 = ("0.001", "0.002", "0.003", "0.0035", "0.00415")
+
+
+def results(tmp_path):
+    rows = [Row(f"g{s}", "functions", "F3", "gwo", s, "final_cost", v)
+            for s, v in enumerate(GWO_F3)]  # fmt: skip
+    write_results(tmp_path / "metrics.csv", rows)
+    return load([tmp_path / "metrics.csv"])
+
+
+def cells(table, method: str, case: str) -> dict[str, list[str]]:
+    """The row's texts by heading (repeated headings, "paper", in order)."""
+    row = next(r for r in table.rows if r[0].text == method and r[1].text == case)
+    out: dict[str, list[str]] = {}
+    for heading, cell in zip(table.columns, row, strict=True):
+        out.setdefault(heading, []).append(cell.text)
+    return out
+
+
+def test_the_number_rule_never_prints_a_non_zero_as_zero():
+    # two significant digits at the decimals asked, else scientific with three
+    assert [number(v, 2).text for v in (0.00273, 0.1, 0.0999, 0.0, 1.5)] == [
+        "2.73e-03", "0.10", "9.99e-02", "0.00", "1.50"]  # fmt: skip
+    assert [number(v, 3).text for v in (0.0273, 0.00999, 2.5e6)] == ["0.027", "9.99e-03",
+                                                                      "2.50e+06"]  # fmt: skip
+    for digits in range(5):
+        for v in (1e-9, 3e-4, 0.004, 0.04, 0.4, -0.004):
+            shown = number(v, digits).text
+            assert float(shown) != 0 and abs(float(shown) - v) <= 0.01 * abs(v), (v, digits)
+
+
+def test_table_1_shows_our_mean_in_scientific_notation_and_our_runs_beside_the_papers(tmp_path):
+    table = published.table(results(tmp_path), TABLES["iwso-dwa-table-1"])
+    row = cells(table, "gwo", "F3")
+    assert row["runs"] == ["5"] and row["paper"][0] == "25"
+    assert row["Mean"] == ["2.73e-03"] and row["paper"][3] == "2.73e-3"  # ours, the paper's
+    assert row["Best"] == ["1.00e-03"] and row["Worst"] == ["4.15e-03"]
+    assert "the paper's: 25 each" in table.caption
+
+
+def test_the_section_says_how_many_runs_we_have_and_the_paper_had(tmp_path):
+    section = benchmark_functions.section(results(tmp_path))
+    assert "5 run(s) each (the paper's Table 1 25" in section.paragraphs[0]
+    ours = cells(section.blocks[-1], "F3", "gwo")  # function, algorithm, runs, best, ...
+    assert ours["runs"] == ["5"] and ours["mean"] == ["2.73e-03"]
