@@ -26,6 +26,7 @@ from usvtool.report import papers
 from usvtool.report.papers import CLAIMS, PAPERS, TABLES
 from usvtool.results import KINDS
 from usvtool.sim.controllers import CONTROLLERS
+from usvtool.sim.families import FAMILIES, family
 
 ROOT = Path(__file__).resolve().parents[2]
 CHARTS = ROOT / "charts"
@@ -247,6 +248,9 @@ def registry(kind: str) -> dict:
 def case_exists(kind: str, case: str) -> bool:
     if kind == "routes":
         return (CHARTS / f"{case}.geojson").is_file() and (CHARTS / f"{case}.tif").is_file()
+    if kind == "runs" and case.count("/") == 1:  # a scene family's kind (docs/families.md)
+        name, kind_name = case.split("/")
+        return name in FAMILIES and kind_name in family(name).kinds
     if kind == "runs":
         path = SCENARIOS / f"{case}.yaml"
         return path.is_file() and yaml.safe_load(path.read_text(encoding="utf-8"))["name"] == case
@@ -294,10 +298,13 @@ def test_claims_are_well_formed_and_name_what_exists():
         if isinstance(claim.target, str):
             assert claim.target in METRICS[claim.kind]
         assert len(claim.paper_change) in (0, len(claim.cases))
+        assert len(claim.paper_cases) in (0, len(claim.cases))
+        assert all(p.check in papers.CHECKS and p.reason for p in claim.preconditions)
         if claim.table:
             table = TABLES[claim.table]
             assert table.paper == claim.paper and table.kind == claim.kind
-            assert set(claim.cases) <= {r.case for r in table.rows}, claim.id
+            cases = {c for case in claim.cases for c in claim.table_cases(case)}
+            assert cases <= {r.case for r in table.rows}, claim.id
 
 
 def test_each_paper_is_one_module_holding_its_own_tables_and_claims():
@@ -344,10 +351,19 @@ def test_the_claims_the_brief_asks_for_are_there():
         ("mean", ("ssa",)), ("variance", ("ssa",))}  # fmt: skip
     closest = by_id["udwa-larger-closest-distance"]
     assert closest.better == "higher" and closest.rivals == ("ccdwa",)
-    assert closest.cases == ("emergency-head-on", "emergency-crossing", "emergency-overtaking")
+    # the encounter claims rest on the scene families, their figures on the paper's runs
+    assert closest.cases == ("emergency/head-on", "emergency/crossing", "emergency/overtaking")
+    assert closest.table_cases("emergency/crossing") == ("emergency-crossing",)
     wind = by_id["udwa-earlier-arrival"]
     assert (wind.metric, wind.method, wind.rivals) == ("arrival_time_s", "udwa", ("dwa",))
-    assert wind.cases == ("wind-southeast-strong", "wind-northwest-strong")
+    assert wind.cases == ("wind/halves",)
+    assert wind.table_cases("wind/halves") == ("wind-southeast-strong", "wind-northwest-strong")
+    assert by_id["gdwa-colregs"].cases == tuple(f"iwso/{k}" for k in (
+        "head-on", "crossing-port", "crossing-starboard", "overtaking"))  # fmt: skip
+    assert by_id["gdwa-no-collision"].cases[-1] == "iwso/static"
+    # the turn claims say what lets them move (the report checks it on the routes)
+    assert [c.id for c in CLAIMS if c.preconditions] == [
+        "iwso-fewer-turns", "issa-fewer-turns", "issa-vs-pso-fewer-turns"]
 
 
 # --- claims against the texts and the papers' own figures ----------------------------------
@@ -405,6 +421,7 @@ def test_stated_changes_agree_with_the_papers_tables_or_are_noted():
         table = TABLES[claim.table]
         for case, printed in zip(claim.cases, claim.paper_change, strict=True):
             assert f"{printed}%" in quotes or f"{printed} percent" in quotes, claim.id
+            (case,) = claim.table_cases(case)  # a stated change is of one of the paper's cases
             ours = table.value(claim.method, case, column)
             theirs = table.value(claim.rivals[0], case, column)
             change = abs(ours - theirs) / abs(theirs) * 100
@@ -422,8 +439,8 @@ def holds_on_the_papers_figures(claim) -> list[tuple[str, str]]:
     """The (case, rival) pairs where the paper's own figures do not bear the claim out."""
     table, column = TABLES[claim.table], published_column(claim)
     sign = 1 if claim.better == "lower" else -1
-    return [(case, rival) for case in claim.cases for rival in claim.rivals
-            if not sign * table.value(claim.method, case, column)
+    return [(case, rival) for group in claim.cases for case in claim.table_cases(group)
+            for rival in claim.rivals if not sign * table.value(claim.method, case, column)
             < sign * table.value(rival, case, column)]  # fmt: skip
 
 

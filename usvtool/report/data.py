@@ -97,10 +97,41 @@ class Results:
         found = {j.method for j in self.select(kind, case)}
         return sorted(found, key=lambda m: method_order(m, self.order))
 
+    def group(self, kind: str, group: str, method: str) -> list[JobResults]:
+        """The jobs of (kind, method) in ``group`` (:func:`in_group`), by (case, seed)."""
+        jobs = [j for j in self.jobs if j.kind == kind and j.method == method
+                and in_group(j.case, group)]  # fmt: skip
+        return sorted(jobs, key=pairing_key)
+
+    def pairs(self, kind: str, group: str, method: str,
+              rival: str) -> list[tuple[JobResults, JobResults]]:  # fmt: skip
+        """The jobs of ``method`` and ``rival`` in ``group`` that share a :func:`pairing_key`
+        (the same scene and seed), by that key; a job without its partner is left out."""
+        theirs = {pairing_key(j): j for j in self.group(kind, group, rival)}
+        return [(j, theirs[pairing_key(j)]) for j in self.group(kind, group, method)
+                if pairing_key(j) in theirs]  # fmt: skip
+
     def values(self, kind: str, case: str, method: str, metric: str) -> list[float]:
         """The metric's numbers over the seeds of (kind, case, method), in seed order."""
         jobs = sorted(self.select(kind, case, method), key=lambda j: (j.seed is None, j.seed))
         return [v for v in (j.number(metric) for j in jobs) if v is not None]
+
+
+def in_group(case: str, group: str) -> bool:
+    """Whether a job's case is of ``group``: the case itself, or a scene family's kind
+    ``ENTRY/KIND`` standing for its scenes' cases ``ENTRY/KIND/sNNN`` (docs/families.md).
+
+    >>> in_group("emergency/head-on/s007", "emergency/head-on"), in_group("env1", "env1")
+    (True, True)
+    >>> in_group("emergency/head-on-2/s000", "emergency/head-on")
+    False
+    """
+    return case == group or case.startswith(group + "/")
+
+
+def pairing_key(job: JobResults) -> tuple[str, int]:
+    """What pairs two methods' runs: the same case (one scene) and seed (-1 for none)."""
+    return (job.case, -1 if job.seed is None else job.seed)
 
 
 def load(tables, order: Sequence[str] = ()) -> Results:
@@ -173,9 +204,17 @@ def statistic(results: Results, kind: str, case: str, method: str, metric: str,
     ``value`` and ``median`` the median over seeds, ``min``, ``max``, ``mean``, ``variance``,
     ``std`` (ddof 1), ``of-best`` the metric of the run with the lowest ``fitness``; None when
     there is no data (or one run for a spread)."""
+    jobs = [j for j in results.select(kind, case, method) if j.number(metric) is not None]
+    return summarise([j.number(metric) for j in jobs], name,
+                     [j.number("fitness") for j in jobs])  # fmt: skip
+
+
+def summarise(values: Sequence[float], name: str,
+              fitness: Sequence[float | None] = ()) -> float | None:  # fmt: skip
+    """The figure ``name`` (:func:`statistic`) of ``values``; ``of-best`` takes the value whose
+    ``fitness`` (one per value, None: unknown) is lowest."""
     if name == "of-best":
-        jobs = [j for j in results.select(kind, case, method)
-                if j.number("fitness") is not None and j.number(metric) is not None]  # fmt: skip
-        return min(jobs, key=lambda j: j.number("fitness")).number(metric) if jobs else None
-    figures = stats(results.values(kind, case, method, metric))
+        known = [(f, v) for f, v in zip(fitness, values, strict=True) if f is not None]
+        return min(known, key=lambda fv: fv[0])[1] if known else None
+    figures = stats(values)
     return figures["median" if name == "value" else {"min": "best", "max": "worst"}.get(name, name)]

@@ -15,12 +15,16 @@ that the report may put our figure beside the paper's; otherwise the report show
 figure alone. ``notes`` say how cells of the converted (partly garbled) texts were read.
 
 Claims (:data:`CLAIMS`): each improvement (or absolute) claim a paper makes, quoted with its
-section: the metric (a column of ``usvtool metrics``, or ``final_cost``), the statistic over our
-seeds that carries it, the better direction, the method that should win and the rivals it should
-beat, and the cases it covers. A relative claim holds when, in every case, the method's
-statistic is strictly better than each rival's; an absolute claim (no rivals) when every run of
-the method in every case reaches ``target`` (a number, or the name of another metric of the same
-run that the metric must equal).
+section: the metric (a column of ``usvtool metrics``, or ``final_cost``), the statistic a paper
+states it by, the better direction, the method that should win and the rivals it should beat,
+the cases it covers (a chart, a function, or a scene family's kind ``ENTRY/KIND``: every scene
+of it, paired by scene across controllers), the paper's table cases each stands for, and the
+preconditions our set-up must meet for the metric to move. The report judges each over our
+seeds and scenes (:mod:`usvtool.report.sections.claims`, docs/statistics.md): a relative claim
+with rank tests, Holm-corrected across the claims table, and an effect size with a bootstrap
+interval; an absolute claim (no rivals) by whether every run of the method in every case
+reaches ``target`` (a number, or the name of another metric of the same run that the metric
+must equal), with a Clopper-Pearson interval of the proportion that does.
 
 >>> UDWA_TABLE_1.value("udwa", "emergency-head-on", "closest_distance_m")
 59.48
@@ -39,12 +43,14 @@ from usvtool.report.papers.issa import ISSA_FIGURE_11, ISSA_TABLE_3
 from usvtool.report.papers.iwso_dwa import IWSO_DWA_ENCOUNTERS, IWSO_DWA_TABLE_1, IWSO_DWA_TABLE_2
 from usvtool.report.papers.schema import (
     BETTER,
+    CHECKS,
     STATISTICS,
     Claim,
     Column,
     Paper,
     PaperRow,
     PaperTable,
+    Precondition,
     Quote,
 )
 from usvtool.report.papers.udwa import UDWA_TABLE_1, UDWA_WIND
@@ -59,7 +65,8 @@ TABLES: dict[str, PaperTable] = {t.id: t for m in PAPER_MODULES for t in m.TABLE
 CLAIMS: tuple[Claim, ...] = tuple(c for m in PAPER_MODULES for c in m.CLAIMS)
 
 __all__ = [
-    "BETTER", "CLAIMS", "PAPERS", "PAPER_MODULES", "STATISTICS", "TABLES", "Claim", "Column",
-    "Paper", "PaperRow", "PaperTable", "Quote", "ISSA_FIGURE_11", "ISSA_TABLE_3",
-    "IWSO_DWA_ENCOUNTERS", "IWSO_DWA_TABLE_1", "IWSO_DWA_TABLE_2", "UDWA_TABLE_1", "UDWA_WIND",
+    "BETTER", "CHECKS", "CLAIMS", "PAPERS", "PAPER_MODULES", "STATISTICS", "TABLES", "Claim",
+    "Column", "Paper", "PaperRow", "PaperTable", "Precondition", "Quote", "ISSA_FIGURE_11",
+    "ISSA_TABLE_3", "IWSO_DWA_ENCOUNTERS", "IWSO_DWA_TABLE_1", "IWSO_DWA_TABLE_2", "UDWA_TABLE_1",
+    "UDWA_WIND",
 ]  # fmt: skip
