@@ -1,29 +1,47 @@
-"""The report's methods section: what produced the results and how to produce them again.
+"""The report's methods section: what produced the results and how a stranger produces them
+again from a fresh clone.
 
-Versions of usvtool and its main libraries, the git commit of the source tree, the machine,
-the seeds and every job's parameters (from each job's ``job.json``), and the commands to rerun.
-Nothing here depends on the time of day, so the same results give the same page.
+How to rerun it all (``make report``) and one example command per stage, run from the
+repository's root: the command of a real job of the batch (its ``job.json``), with its own
+seed, its inputs as paths relative to the repository and its outputs in ``rerun/`` (a route's
+grid is the example grid's, written there first). Then the versions of Python, usvtool (the git
+commit) and its libraries, the machine, and the parameter tables, each read from the jobs'
+files, never from another stage: the optimizers' (a route's ``summary.json`` ``parameters``, a
+function job's ``job.json``), the controllers' parameters and weights (the events' ``run``
+``parameters``), the vessels (the scenario files' ``own``, the events' ``run.ships`` and, when
+the run records it, ``run.vessel``) and the scene families' geometry and seeds (each scene's
+``scenario.yaml`` and ``job.json`` ``scene``). The command line of every job is listed in the
+HTML only. Nothing here depends on the time of day, so the same results give the same page.
 """
 
 from __future__ import annotations
 
+import json
+import math
 import os
 import platform
+import shlex
 import subprocess
+from collections import defaultdict
+from functools import cache
 from importlib import metadata
 from pathlib import Path
 
 from usvtool import __version__
-from usvtool.report.data import Results, seed_text
-from usvtool.report.document import Cell, Section, Table
+from usvtool.errors import UsvError
+from usvtool.report.data import JobResults, Results, seed_text
+from usvtool.report.document import APPENDIX, HTML, Cell, Section, Table
+from usvtool.yamlfile import read_yaml
 
-LIBRARIES = ("numpy", "scipy", "rasterio", "pyogrio", "shapely", "pyproj",
-             "opencv-python-headless", "scikit-fuzzy", "matplotlib", "jinja2", "weasyprint",
-             "click", "pyyaml")  # fmt: skip
-RERUN = ("make report  (pipelines/full.yaml: usvtool batch, then usvtool report)",
-         "usvtool batch pipelines/full.yaml -j 2 -o build/batch",
-         "usvtool report build/batch/metrics.csv -o build/report")  # fmt: skip
-
+#: The repository this report's source lives in: paths inside it are shown relative to it.
+ROOT = Path(__file__).resolve().parents[3]
+#: The directory the example commands write into (relative to the repository).
+RERUN_DIR = "rerun"
+LIBRARIES = ("numpy", "scipy", "numba", "matplotlib", "weasyprint", "rasterio", "pyogrio",
+             "shapely", "pyproj", "opencv-python-headless", "scikit-fuzzy", "jinja2", "click",
+             "pyyaml")  # fmt: skip
+MAKE = ("make report", "usvtool batch pipelines/full.yaml -j 2 -o build/batch",
+        "usvtool report build/batch/metrics.csv -o build/report")  # fmt: skip
 
 def git_commit() -> str:
     """The commit of the source tree (``+changes`` when it has uncommitted ones), or
@@ -58,35 +76,292 @@ def _memory_gib() -> str:
     return f"{pages * size / 2**30:.0f} GiB"
 
 
+def shown_path(path: Path) -> str:
+    """``path`` relative to the repository when inside it, else as it is."""
+    try:
+        return str(path.resolve().relative_to(ROOT))
+    except ValueError:
+        return str(path)
+
+
+def slug(job: JobResults) -> str:
+    """A job's name in ``rerun/``: its case (``/`` as ``-``), method and seed."""
+    case = job.case.replace("/", "-")
+    if job.kind == "grids":
+        return case
+    return f"{case}-{job.method}" + ("" if job.seed is None else f"-s{job.seed}")
+
+
+@cache
+def _grid_case(grid_dir: Path) -> str:
+    """The case (chart) of a grid job's directory, from its ``job.json``."""
+    try:
+        return str(json.loads((grid_dir / "job.json").read_text(encoding="utf-8"))["case"])
+    except (OSError, ValueError, KeyError):
+        return grid_dir.name
+
+
+def command(job: JobResults) -> str:
+    """The job's command line as one runs it from the repository's root: its own outputs
+    (the files its ``job.json`` lists) as ``rerun/<slug>-<file>``, a grid job's output read
+    by a route as ``rerun/<chart>-<file>``, any other path relative to the repository."""
+    outputs = set(job.config.get("files") or ()) | {"grid.tif", "preview.png"}
+    words = []
+    for arg in map(str, job.config.get("args") or ()):
+        if arg in outputs:
+            words.append(f"{RERUN_DIR}/{slug(job)}-{arg}")
+        elif arg.startswith("../") or os.path.isabs(arg):
+            path = (job.dir / arg).resolve()
+            if path.parent.parent.name == "grids" and (path.parent / "job.json").is_file():
+                words.append(f"{RERUN_DIR}/{_grid_case(path.parent)}-{path.name}")
+            else:
+                words.append(shown_path(path))
+        else:
+            words.append(arg)
+    return shlex.join(["usvtool", *words]) if words else "-"
+
+
+def grid_jobs(results: Results) -> list[JobResults]:
+    """The grid jobs of the routes (a grid has no metrics, so no row in the results table):
+    each route's grid job directory with its ``job.json``."""
+    dirs = {d for d in (j.grid_dir() for j in results.select("routes")) if d is not None}
+    jobs = []
+    for d in sorted(dirs):
+        config = _json(d / "job.json")
+        if config:
+            jobs.append(JobResults(d.name, "grids", str(config.get("case", d.name)),
+                                   str(config.get("method", "preprocess")), None, d,
+                                   config=config))  # fmt: skip
+    return jobs
+
+
+def _first(jobs: list[JobResults]) -> JobResults | None:
+    return min(jobs, key=lambda j: (j.case, j.method, j.seed is None, j.seed), default=None)
+
+
+def examples(results: Results) -> list[list[Cell]]:
+    """One job per stage: the first grid, a route planned on that grid, the first function
+    job, a bundled scenario's run and a family scene's run."""
+    grid = _first(grid_jobs(results))
+    routes = results.select("routes")
+    on_grid = [j for j in routes if grid and j.config.get("grid") == grid.key]
+    runs = results.select("runs")
+    chosen = (("preprocess a chart", grid), ("plan a route on it", _first(on_grid or routes)),
+              ("an optimizer on a benchmark function", _first(results.select("functions"))),
+              ("simulate a bundled scenario", _first([j for j in runs if "scene" not in j.config])),
+              ("simulate a scene of a family", _first([j for j in runs if "scene" in j.config])))
+    rows = [[Cell("setup"), Cell(f"mkdir -p {RERUN_DIR}", "mono")]]
+    for stage, job in chosen:
+        if job is not None and job.config.get("args"):
+            seed = "" if job.seed is None else f", seed {job.seed}"
+            rows.append([Cell(f"{stage} ({job.case}, {job.method}{seed})"),
+                         Cell(command(job), "mono")])  # fmt: skip
+    return rows
+
+
+def _value(v) -> str:
+    if isinstance(v, float):
+        return f"{v:g}"
+    return json.dumps(v) if isinstance(v, list | dict) else str(v)
+
+
+def _values(seen: set[str]) -> str:
+    return " / ".join(sorted(seen)) if seen else "-"
+
+
+@cache
+def _json(path: Path) -> dict:
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+
+
+def _events_run(job: JobResults) -> dict:
+    run = _json(job.dir / "trace.events.json").get("run")
+    return run if isinstance(run, dict) else {}
+
+
+def optimizers(results: Results) -> Table | None:
+    """Each optimizer's parameters: a route's ``summary.json`` ``parameters`` (every value
+    seen, per matrix of the pipeline), the functions' population, iterations and dimension."""
+    seen: dict[tuple[str, str], dict[str, set[str]]] = defaultdict(lambda: defaultdict(set))
+    for j in results.select("routes"):
+        params = _json(j.dir / "summary.json").get("parameters") or {}
+        where = f"routes: {j.config.get('matrix', j.case)}"
+        for k, v in params.items():
+            seen[(j.method, where)][k].add(_value(v))
+    for j in results.select("functions"):
+        for k in ("pop", "iters", "dim"):
+            if k in j.config:
+                seen[(j.method, "functions")][k].add(_value(j.config[k]))
+    if not seen:
+        return None
+    rows = [[Cell(m), Cell(where), Cell(", ".join(f"{k} {_values(v)}" for k, v in p.items()))]
+            for (m, where), p in sorted(seen.items())]  # fmt: skip
+    return Table("methods-optimizers", "Optimizers' parameters",
+                 "As each run recorded them (route summary.json's parameters; the functions' "
+                 "job.json); values that differ between runs are separated by /.",
+                 ["algorithm", "where", "parameters"], rows, APPENDIX)  # fmt: skip
+
+
+def controllers(results: Results) -> Table | None:
+    """Each controller's parameters and weights, as the runs' events record them
+    (``run.parameters``): one row per parameter, one column per controller."""
+    seen: dict[str, dict[str, set[str]]] = defaultdict(lambda: defaultdict(set))
+    for j in results.select("runs"):
+        for k, v in (_events_run(j).get("parameters") or {}).items():
+            seen[j.method][k].add(_value(v))
+    if not seen:
+        return None
+    names = results.methods("runs")
+    names = [c for c in names if c in seen]
+    params = sorted({k for p in seen.values() for k in p})
+    rows = [[Cell(k), *(Cell(_values(seen[c].get(k, set())), "num") for c in names)]
+            for k in params]  # fmt: skip
+    return Table("methods-controllers", "Controllers' parameters and weights",
+                 "As the runs' events record them (run.parameters); - : the controller has "
+                 "no such parameter; values that differ between runs are separated by /.",
+                 ["parameter", *names], rows, APPENDIX)  # fmt: skip
+
+
+def _scenario(job: JobResults) -> tuple[Path | None, dict]:
+    """The run's scenario file (the events' ``run.scenario_file``, relative to the job's
+    directory, else the job's ``scenario``) and its contents ({} when unreadable)."""
+    name = _events_run(job).get("scenario_file") or job.config.get("scenario")
+    if not name:
+        return None, {}
+    path = (job.dir / str(name)).resolve()
+    try:
+        return path, read_yaml(path) or {}
+    except (OSError, UsvError):  # a scenario gone or broken since: the table says what it can
+        return path, {}
+
+
+def vessels(results: Results) -> Table | None:
+    """The own ships' vessels: the preset each scenario names, its inline overrides, the length
+    the runs used and, when the runs record it (``run.vessel``), the motion limits."""
+    seen: dict[str, dict[str, set[str]]] = defaultdict(lambda: defaultdict(set))
+    for j in results.select("runs"):
+        _, scenario = _scenario(j)
+        own = scenario.get("own") or {}
+        name = str(own.get("vessel", "(the default)"))
+        run = _events_run(j)
+        seen[name]["scenarios"].add(j.case.rsplit("/", 1)[0])  # a family's scenes: its kind
+        if "own_length" in run:
+            seen[name]["length (m)"].add(_value(run["own_length"]))
+        for k, v in own.items():
+            if k not in ("start", "goal", "heading", "speed", "vessel"):
+                seen[name][f"override {k}"].add(_value(v))
+        for k, v in (run.get("vessel") or {}).items():
+            seen[name][k].add(_value(v))
+    if not seen:
+        return None
+    rows = []
+    for name, facts in sorted(seen.items()):
+        limits = ", ".join(f"{k} {_values(v)}" for k, v in facts.items()
+                           if k not in ("scenarios", "length (m)"))  # fmt: skip
+        rows.append([Cell(name), Cell(_values(facts["length (m)"]), "num"),
+                     Cell(limits or "not recorded by these runs (usvtool/sim/vessel.py "
+                                    "PRESETS gives them)"),
+                     Cell(f"{len(facts['scenarios'])}: " + ", ".join(sorted(facts["scenarios"])[:6])
+                          + (" ..." if len(facts["scenarios"]) > 6 else ""))])  # fmt: skip
+    return Table("methods-vessels", "Vessels of the own ship",
+                 "The preset each scenario names (own.vessel), the length the runs used "
+                 "(run.own_length) and the motion limits and inline overrides.",
+                 ["vessel", "length (m)", "limits and overrides", "scenarios"], rows,
+                 APPENDIX)  # fmt: skip
+
+
+def _span(values: list[float], digits: int = 0) -> str:
+    if not values:
+        return "-"
+    lo, hi = min(values), max(values)
+    return f"{lo:.{digits}f}" if lo == hi else f"{lo:.{digits}f}-{hi:.{digits}f}"
+
+
+def families(results: Results) -> Table | None:
+    """Per scene family and kind (the runs' ``job.json`` ``scene``): the scenes, seeds and
+    controllers, and the geometry of the scenes as their ``scenario.yaml`` give it: the own
+    ship's run from start to goal and speed, the targets, their distance from the own start
+    and their speed."""
+    groups: dict[str, list[JobResults]] = defaultdict(list)
+    for j in results.select("runs"):
+        scene = j.config.get("scene")
+        if isinstance(scene, dict):
+            groups[f"{scene.get('family')}/{scene.get('kind')}"].append(j)
+    if not groups:
+        return None
+    order = results.methods("runs")
+    rows = []
+    for name, jobs in sorted(groups.items()):
+        scenes = sorted({int(j.config["scene"].get("scene", -1)) for j in jobs})
+        seeds = sorted({j.seed for j in jobs if j.seed is not None})
+        run, speed, targets, distance, target_speed = [], [], [], [], []
+        for j in {j.case: j for j in jobs}.values():  # one run per scene: the same scene file
+            _, s = _scenario(j)
+            own = s.get("own") or {}
+            if own.get("start") and own.get("goal"):
+                run.append(math.dist(own["start"], own["goal"]))
+                speed.append(float(own.get("speed", 0.0)))
+            ts = s.get("targets") or []
+            targets.append(len(ts))
+            for t in ts:
+                if own.get("start") and t.get("start"):
+                    distance.append(math.dist(own["start"], t["start"]))
+                target_speed.append(float(t.get("speed", 0.0)))
+        options = sorted({_value(j.config["scene"].get("options") or {}) for j in jobs})
+        rows.append([Cell(name), Cell(seed_text(scenes)), Cell(seed_text(seeds)),
+                     Cell(", ".join(sorted({j.method for j in jobs}, key=order.index))),
+                     Cell(_span(run), "num"), Cell(_span(speed, 1), "num"),
+                     Cell(_span(targets), "num"), Cell(_span(distance), "num"),
+                     Cell(_span(target_speed, 1), "num"), Cell(" / ".join(options))])  # fmt: skip
+    return Table("methods-families", "Scene families: geometry and seeds",
+                 "Per family and kind (docs/families.md): the scenes drawn and the seeds of "
+                 "the runs, the controllers, and over the scenes (their scenario.yaml): the "
+                 "own ship's start-goal distance (m) and speed (m/s), the number of targets, "
+                 "their distance from the own start (m) and speed (m/s); min-max.",
+                 ["family/kind", "scenes", "seeds", "controllers", "own run (m)",
+                  "own speed", "targets", "target distance (m)", "target speed", "options"],
+                 rows, APPENDIX)  # fmt: skip
+
+
+def jobs_table(results: Results) -> Table:
+    """Every job with its own seed and command line (HTML only: it is long)."""
+    jobs = sorted([*grid_jobs(results), *results.jobs],
+                  key=lambda j: (j.kind, j.case, j.method, j.seed is None, j.seed))  # fmt: skip
+    rows = [[Cell(j.kind), Cell(j.case), Cell(j.method),
+             Cell("-" if j.seed is None else str(j.seed), "num"), Cell(command(j), "mono")]
+            for j in jobs]  # fmt: skip
+    return Table("methods-jobs", f"Every job's command line ({len(rows)} jobs)",
+                 "Each job with its own seed, as run from the repository's root (outputs in "
+                 f"{RERUN_DIR}/, a route's grid the one its chart's preprocess line writes).",
+                 ["kind", "case", "method", "seed", "command"], rows, HTML)  # fmt: skip
+
+
 def section(results: Results) -> Section:
     s = Section("methods", "Methods")
+    tables = ", ".join(shown_path(Path(t)) for t in results.tables)
     s.paragraphs.append(
-        "Every figure of this report comes from the results tables named below and the job "
-        "files beside them; the same tables give the same page. Timings are those of the "
-        "machine described here.")
-    software = [[Cell("usvtool"), Cell(__version__)], [Cell("git commit"), Cell(git_commit())],
-                [Cell("Python"), Cell(platform.python_version())]]  # fmt: skip
+        f"Every figure of this report comes from the results tables {tables} and the job files "
+        "beside them; the same tables give the same page. Timings are those of the machine "
+        "described here. To run it all again from a fresh clone: "
+        f"{MAKE[0]} (= {MAKE[1]}, then {MAKE[2]}).")
+    s.paragraphs.append(
+        "One job of each stage as it ran, with its own seed, to be run from the repository's "
+        f"root (outputs in {RERUN_DIR}/); the parameter tables are in the appendix, every "
+        "job's command line in the HTML report.")
+    s.blocks.append(Table("methods-rerun", "One example per stage", "",
+                          ["stage", "command"], examples(results)))  # fmt: skip
+    software = [[Cell("Python"), Cell(platform.python_version())],
+                [Cell("usvtool"), Cell(__version__)], [Cell("git commit"), Cell(git_commit())]]
     software += [[Cell(name), Cell(_version(name))] for name in LIBRARIES]
-    machine = [[Cell("system"), Cell(f"{platform.system()} {platform.machine()}")],
-               [Cell("processor"), Cell(platform.processor() or platform.machine())],
-               [Cell("cores"), Cell(str(os.cpu_count()))],
-               [Cell("memory"), Cell(_memory_gib())]]  # fmt: skip
-    s.blocks.append(Table("methods-software", "Software", "", ["package", "version"], software))
-    s.blocks.append(Table("methods-machine", "Machine", "", ["", ""], machine))
-    rows = []
-    for kind in ("routes", "runs", "functions"):
-        for case in results.cases(kind):
-            for method in results.methods(kind, case):
-                jobs = results.select(kind, case, method)
-                seeds = sorted(j.seed for j in jobs if j.seed is not None)
-                args = jobs[0].config.get("args")
-                rows.append([Cell(kind), Cell(case), Cell(method), Cell(seed_text(seeds)),
-                             Cell(" ".join(map(str, args)) if args else "-")])  # fmt: skip
-    s.blocks.append(Table("methods-jobs", "Jobs and parameters",
-                          "Each (case, method) with its seeds and the command line of its "
-                          "first job (the others differ in the seed only).",
-                          ["kind", "case", "method", "seeds", "command"], rows))  # fmt: skip
-    tables = ", ".join(str(t) for t in results.tables)
-    s.paragraphs.append(f"Results tables: {tables}. To run it all again: " + "; ".join(RERUN))
+    machine = (f"{platform.system()} {platform.machine()}, "
+               f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
+               f"{_memory_gib()}")  # fmt: skip
+    s.blocks.append(Table("methods-software", "Software and machine", f"Machine: {machine}.",
+                          ["package", "version"], software))  # fmt: skip
+    s.blocks += [t for t in (optimizers(results), controllers(results), vessels(results),
+                             families(results)) if t is not None]  # fmt: skip
+    s.blocks.append(jobs_table(results))
     return s
-
