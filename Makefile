@@ -53,7 +53,10 @@ REPORT_SRC := $(shell find usvtool/report -name '*.py') usvtool/cli/report.py $(
 BATCH_INPUTS := $(filter-out $(REPORT_SRC),$(shell find usvtool -name '*.py')) \
 	$(shell find charts -type f -not -name '*.pyc') $(wildcard pipelines/*.yaml)
 
+# ends with one line, also when the report was up to date: where it is, its pages, the verdicts
 report: $(REPORT_DIR)/index.html
+	@$(BIN)/python -c 'import json, sys; from usvtool.cli.report import summary_line; \
+		print(summary_line(json.load(open(sys.argv[1], encoding="utf-8"))))' $(BUILD)/report.json
 
 $(BATCH_DIR)/metrics.csv: $(STAMP) $(BATCH_INPUTS)
 	@mkdir -p $(BUILD)

@@ -5,8 +5,11 @@ The sections are two hand-made figures (real PNGs) so that only the writing is e
 from __future__ import annotations
 
 import errno
+import json
 import os
 import re
+import shutil
+import subprocess
 from pathlib import Path
 
 import cv2
@@ -92,3 +95,38 @@ def test_a_failure_in_an_output_directory_that_exists_removes_only_what_it_made(
     with pytest.raises(UsvError, match="f1.png: cannot write it"):
         make(out)
     assert tree(out) == {"notes.txt": b"mine"}
+
+
+def test_the_summary_line_says_where_the_pages_and_the_verdicts():
+    from usvtool.cli.report import summary_line
+
+    claims = {"holds": 2, "does not hold": 1, "inconclusive": 4, "not testable": 1,
+              "not tested": 0}  # fmt: skip
+    summary = {"output": "r/index.html", "pdf": "r/report.pdf", "pdf_pages": 40,
+               "main_pages": 29, "pdf_hint": None, "claims": claims}  # fmt: skip
+    assert summary_line(summary) == (
+        "report: r/index.html and r/report.pdf, 29 pages of main body, 40 in all; claims: "
+        "2 holds, 1 does not hold, 4 inconclusive, 1 not testable, 0 not tested")
+    summary.update(pdf=None, pdf_pages=None, main_pages=None)
+    assert summary_line(summary).startswith("report: r/index.html, no PDF (--no-pdf); claims: 2")
+    summary["pdf_hint"] = "install WeasyPrint"
+    assert "no PDF (WeasyPrint cannot run: pdf_hint)" in summary_line(summary)
+
+
+@pytest.mark.skipif(shutil.which("make") is None, reason="make is not installed")
+def test_make_report_ends_with_the_summary_line(make, tmp_path):
+    """The Makefile's report target on a report already made (``-o``: not remade): its last
+    line is the summary's, from the report's ``--summary`` JSON."""
+    (tmp_path / "build").mkdir()
+    result = make(tmp_path / "build" / "report")
+    summary = result.summary()
+    (tmp_path / "build" / "report.json").write_text(json.dumps(summary))
+    root = Path(__file__).resolve().parents[2]
+    r = subprocess.run(["make", "-s", "-C", str(root), f"BUILD={tmp_path / 'build'}", "-o",
+                        str(tmp_path / "build" / "report" / "index.html"), "report"],
+                       capture_output=True, text=True, timeout=60)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    from usvtool.cli.report import summary_line
+
+    assert r.stdout.splitlines()[-1] == summary_line(summary)
+    assert summary_line(summary).startswith(f"report: {tmp_path}/build/report/index.html, no PDF")

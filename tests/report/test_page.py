@@ -11,7 +11,7 @@ import zlib
 import pytest
 
 from usvtool.report.document import APPENDIX, HTML, Cell, Figure, Section, Table, layout
-from usvtool.report.page import html, long, png_width_mm
+from usvtool.report.page import html, long, pdf, png_width_mm
 
 
 def table(name: str, placement: str = "main") -> Table:
@@ -103,3 +103,17 @@ def test_a_section_of_four_blocks_or_more_is_long():
                             subsections=[Section("b", "B", blocks=[table("3")])]))  # fmt: skip
     assert long(Section("a", "A", blocks=[table("1"), table("2")],
                         subsections=[Section("b", "B", blocks=[table("3"), table("4")])]))
+
+
+@pytest.mark.slow  # two WeasyPrint layouts
+def test_the_pdf_counts_the_main_bodys_pages_up_to_the_appendix():
+    """Page 1: the summary and the contents; page 2: a long section (four tables: it starts a
+    page); page 3: the appendix (it starts a page)."""
+    pytest.importorskip("weasyprint")
+    sections = [Section("summary", "Summary", ["first"]),
+                Section("one", "One", blocks=[table(f"t{i}") for i in range(4)]),
+                Section("two", "Two", blocks=[table("t9")], placement=APPENDIX)]  # fmt: skip
+    _, pages, main = pdf(html("T", "s", sections, "print"))
+    assert (pages, main) == (3, 2)
+    _, pages, main = pdf(html("T", "s", sections[:2], "print"))
+    assert (pages, main) == (2, 2)  # no appendix: every page is the main body's

@@ -35,6 +35,26 @@ def report(tables, output, pdf, summary_path) -> None:
     emit(summary)
 
 
+def summary_line(summary: dict) -> str:
+    """The one line ``make report`` ends with (from the summary JSON): where the report is, the
+    PDF's pages (main body and in all) and how many claims get each verdict.
+
+    >>> summary_line({"output": "build/report/index.html", "pdf": "build/report/report.pdf",
+    ...               "pdf_pages": 41, "main_pages": 28, "pdf_hint": None,
+    ...               "claims": {"holds": 3, "does not hold": 1, "not tested": 0}})
+    'report: build/report/index.html and build/report/report.pdf, 28 pages of main body, 41 in \
+all; claims: 3 holds, 1 does not hold, 0 not tested'
+    """
+    if summary.get("pdf"):
+        where = (f"{summary['output']} and {summary['pdf']}, {summary['main_pages']} pages of "
+                 f"main body, {summary['pdf_pages']} in all")  # fmt: skip
+    else:
+        why = "WeasyPrint cannot run: pdf_hint" if summary.get("pdf_hint") else "--no-pdf"
+        where = f"{summary['output']}, no PDF ({why})"
+    claims = ", ".join(f"{n} {verdict}" for verdict, n in summary["claims"].items())
+    return f"report: {where}; claims: {claims or 'none'}"
+
+
 def stage_methods() -> tuple[str, ...]:
     """The methods the stages' registries know, in the order the report shows them: the
     planners (:func:`usvtool.plan.planners.names`), then the controllers."""
