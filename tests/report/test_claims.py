@@ -1,15 +1,17 @@
 """Claims and published tables (usvtool/report/sections/claims.py, published.py) on hand-made
-results tables: verdicts, ties, missing runs, absolute claims, statistics and the optimisation
-rate."""
+results tables: the five verdicts, ties, failures as the worst, pairing by scene, Holm across
+the table, preconditions, absolute claims with their interval, and the optimisation rate."""
 
 from __future__ import annotations
 
+import json
 from dataclasses import replace
 
 import pytest
+from scipy.stats import beta
 
 from usvtool.report.data import load, statistic
-from usvtool.report.papers import UDWA_TABLE_1, Claim, Quote
+from usvtool.report.papers import UDWA_TABLE_1, Claim, Precondition, Quote
 from usvtool.report.sections import claims, published
 from usvtool.results import Row, write_results
 
@@ -22,62 +24,195 @@ def _results(tmp_path, rows):
 def _claim(**kw) -> Claim:
     base = dict(id="c", paper="iwso-dwa", quotes=(Quote("5.2", "q"),), kind="routes",
                 metric="length_m", statistic="median", better="lower", method="iwso",
-                rivals=("wso",), cases=("env1", "env2"))  # fmt: skip
+                rivals=("wso",), cases=("env1",))  # fmt: skip
     return Claim(**{**base, **kw})
 
 
-ROUTES = [  # key, kind, case, method, seed, metric, value
-    ("a1", "routes", "env1", "iwso", 1, "length_m", "700"),
-    ("a2", "routes", "env1", "iwso", 2, "length_m", "720"),
-    ("a3", "routes", "env1", "iwso", 3, "length_m", "800"),  # median 720
-    ("b1", "routes", "env1", "wso", 1, "length_m", "730"),
-    ("b2", "routes", "env1", "wso", 2, "length_m", "740"),  # median 735
-    ("c1", "routes", "env2", "iwso", 1, "length_m", "500"),
-    ("d1", "routes", "env2", "wso", 1, "length_m", "500"),  # a tie
-]
+def _routes(case, method, values, metric="length_m", first=0, tag=""):
+    return [(f"{tag}{case}-{method}-{i}", "routes", case, method, first + i, metric, str(v))
+            for i, v in enumerate(values)]  # fmt: skip
 
 
-def test_a_claim_holds_only_when_strictly_better_in_every_case(tmp_path):
-    results = _results(tmp_path, ROUTES)
-    v = claims.judge(results, _claim(cases=("env1",)))
-    assert v.verdict == claims.HOLDS and v.evidence == ["env1: iwso 720 against wso 735"]
-    assert claims.judge(results, _claim()).verdict == claims.FAILS  # the env2 tie
-    assert claims.judge(results, _claim(better="higher", cases=("env1",))).verdict == claims.FAILS
+# iwso all below wso: U = 0 of 6 x 6, exact two-sided p = 2 / C(12, 6) = 2 / 924
+SEPARATED = (_routes("env1", "iwso", [700, 701, 702, 703, 704, 705])
+             + _routes("env1", "wso", [800, 801, 802, 803, 804, 805]))  # fmt: skip
 
 
-def test_a_case_without_runs_is_not_tested_but_a_failure_elsewhere_still_fails(tmp_path):
-    results = _results(tmp_path, ROUTES)
-    assert claims.judge(results, _claim(cases=("env1", "env3"))).verdict == claims.UNTESTED
-    assert claims.judge(results, _claim(cases=("env3", "env2"))).verdict == claims.FAILS
+def test_holds_when_better_with_corrected_p_below_alpha(tmp_path):
+    v = claims.judge(_results(tmp_path, SEPARATED), _claim())
+    assert v.verdict == claims.HOLDS
+    (t,) = v.tests
+    assert t.comparison.test == "Mann-Whitney U" and t.p == pytest.approx(2 / 924)
+    assert t.comparison.effect == 1.0 and t.sides[0].median == 702.5
+    assert t.sides[1].median == 802.5 and (t.sides[0].n, t.sides[1].n) == (6, 6)
+
+
+def test_does_not_hold_when_significantly_worse(tmp_path):
+    v = claims.judge(_results(tmp_path, SEPARATED), _claim(better="higher"))
+    assert v.verdict == claims.FAILS and v.tests[0].outcome == "worse"
+
+
+def test_inconclusive_when_neither_and_on_ties(tmp_path):
+    # 700, 720, 800 against 730, 740: U = 2 of 6, p = 0.8 by enumeration of C(5, 2) = 10
+    rows = (_routes("env1", "iwso", [700, 720, 800]) + _routes("env1", "wso", [730, 740])
+            + _routes("env2", "iwso", [500, 500]) + _routes("env2", "wso", [500, 500]))
+    results = _results(tmp_path, rows)
+    v = claims.judge(results, _claim())
+    assert v.verdict == claims.INCONCLUSIVE and v.tests[0].p == pytest.approx(0.8)
+    tie = claims.judge(results, _claim(cases=("env2",)))
+    assert tie.verdict == claims.INCONCLUSIVE and tie.tests[0].comparison.p is None
+
+
+def test_missing_runs_are_not_tested_but_a_significant_loss_elsewhere_fails(tmp_path):
+    results = _results(tmp_path, SEPARATED)
+    v = claims.judge(results, _claim(cases=("env1", "env3")))
+    assert v.verdict == claims.UNTESTED and "env3" in v.reason
+    assert claims.judge(results, _claim(cases=("env3", "env1"),
+                                        better="higher")).verdict == claims.FAILS
+
+
+def test_holm_across_the_table(tmp_path):
+    # 4 against 4, separated: p = 2 / C(8, 4) = 0.0286 each; two tests: 2 x 0.0286 = 0.057
+    rows = [r for case in ("env1", "env2") for r in
+            _routes(case, "iwso", [1, 2, 3, 4]) + _routes(case, "wso", [5, 6, 7, 8])]
+    results = _results(tmp_path, rows)
+    assert claims.judge(results, _claim()).verdict == claims.HOLDS
+    v = claims.judge(results, _claim(cases=("env1", "env2")))
+    assert [t.p for t in v.tests] == pytest.approx([4 / 70, 4 / 70])
+    assert v.verdict == claims.INCONCLUSIVE
+    # two claims of one case each in one table: the same family
+    one, two = claims.judge_all(results, [(_claim(), False), (_claim(cases=("env2",)), False)])
+    assert one.tests[0].p == two.tests[0].p == pytest.approx(4 / 70)
+    # a variant's test is a family of its own
+    one, two = claims.judge_all(results, [(_claim(), False), (_claim(cases=("env2",)), True)])
+    assert one.verdict == two.verdict == claims.HOLDS
+
+
+def test_a_colliding_route_is_the_worst_never_a_success(tmp_path):
+    crashed = [(f"env1-iwso-{i}", "routes", "env1", "iwso", i, "collision_free", "False")
+               for i in range(6)]  # fmt: skip
+    v = claims.judge(_results(tmp_path, SEPARATED + crashed), _claim())
+    # the colliding iwso routes are shorter, but count as the longest
+    assert v.verdict == claims.FAILS
+    a, b = v.tests[0].sides
+    assert a.failed == 6 and a.median == float("inf") and a.figure == 702.5 and a.clean is None
+
+
+def test_penalised_fitness_beside_the_collision_free_figure(tmp_path):
+    # mean fitness: iwso 10, 11, 90 (the last collided, penalised) against wso 20, 21, 22
+    rows = (_routes("env1", "iwso", [10, 11, 90], "fitness")
+            + _routes("env1", "wso", [20, 21, 22], "fitness")
+            + [("env1-iwso-2", "routes", "env1", "iwso", 2, "collision_free", "False")])
+    claim = _claim(metric="fitness", statistic="mean")
+    (t,) = claims.judge(_results(tmp_path, rows), claim).tests
+    a, b = t.sides
+    assert a.figure == pytest.approx(37.0) and a.clean == pytest.approx(10.5) and b.figure == 21
+    assert claims.change(a.figure, b.figure, "lower") == pytest.approx(100 * (21 - 37) / 21)
+    assert "without failures +50.0" in claims._figures(t, claim)
+
+
+def test_spread_claims_compare_deviations_from_the_median(tmp_path):
+    # iwso 10, 11, 12, 13, 14, 15 (|dev| from 12.5: 0.5-2.5), wso 0, 5, 10, 15, 20, 25 (|dev|
+    # 2.5-12.5): deviations 0.5, 0.5, 1.5, 1.5, 2.5, 2.5 vs 2.5, 2.5, 7.5, 7.5, 12.5, 12.5
+    rows = (_routes("env1", "iwso", [10, 11, 12, 13, 14, 15], "fitness")
+            + _routes("env1", "wso", [0, 5, 10, 15, 20, 25], "fitness"))
+    v = claims.judge(_results(tmp_path, rows), _claim(metric="fitness", statistic="variance"))
+    c = v.tests[0].comparison
+    # pairs: iwso's 2.5s tie wso's two 2.5s (4 ties of 36); all else lower: (32 - 0) / 36
+    assert c.effect == pytest.approx(32 / 36)
+    assert v.tests[0].sides[0].figure == pytest.approx(3.5)  # the sample variance
+
+
+def _runs(group, method, values, metric, tag=""):
+    return [(f"{tag}{method}-{i}", "runs", f"{group}/s{i:03d}", method, 1, metric, str(v))
+            for i, v in enumerate(values)]  # fmt: skip
+
+
+def test_runs_pair_by_scene(tmp_path):
+    # udwa beats ccdwa by 1 m in each of 6 scenes whose distances differ widely: all six
+    # differences +1 (tied): the exhaustive sign flips give p = 2 / 2^6
+    ccdwa = [10, 30, 50, 70, 90, 110]
+    rows = (_runs("emergency/head-on", "udwa", [c + 1 for c in ccdwa], "closest_distance_m")
+            + _runs("emergency/head-on", "ccdwa", ccdwa, "closest_distance_m")
+            + _runs("emergency/head-on-x", "udwa", [0], "closest_distance_m", "x"))
+    claim = _claim(kind="runs", metric="closest_distance_m", better="higher", method="udwa",
+                   rivals=("ccdwa",), cases=("emergency/head-on",))  # fmt: skip
+    results = _results(tmp_path, rows)
+    v = claims.judge(results, claim)
+    (t,) = v.tests
+    assert t.comparison.test == "Wilcoxon signed-rank" and t.p == pytest.approx(2 / 64)
+    assert t.comparison.effect == 1.0 and (t.sides[0].n, t.sides[1].n) == (6, 6)
+    assert v.verdict == claims.HOLDS
+    # a scene where udwa did not arrive is its worst, not its 1 m gain
+    stopped = [("udwa-0", "runs", "emergency/head-on/s000", "udwa", 1, "arrived", "False")]
+    (t,) = claims.judge(_results(tmp_path, rows + stopped), claim).tests
+    # differences +1 x 5 and -inf: ranks 3 (the five tied +1) and 6: r = (15 - 6) / 21
+    assert t.comparison.effect == pytest.approx(9 / 21) and t.sides[0].failed == 1
+
+
+def test_a_turn_claim_whose_routes_cannot_turn_enough_is_not_testable(tmp_path):
+    rows = _routes("env1", "iwso", [3, 3, 3], "turns") + _routes("env1", "wso", [3, 3, 3],
+                                                                  "turns")  # fmt: skip
+    claim = _claim(metric="turns", table="iwso-dwa-table-2",
+                   preconditions=(Precondition("turns-reachable", "needs more waypoints"),))
+    results = _results(tmp_path, rows)
+    v = claims.judge(results, claim)  # no summary.json: cannot be checked
+    assert v.verdict == claims.UNTESTABLE and "missing" in v.reason
+    for j in results.jobs:
+        j.dir.mkdir(parents=True)
+        (j.dir / "summary.json").write_text(json.dumps({"points": 5}))
+    v = claims.judge(results, claim)
+    # Table 2: IWSO 5, WSO 7 turns in env1; 5 points turn at most 3 times
+    assert v.verdict == claims.UNTESTABLE and v.tests == ()
+    assert v.reason == ("our routes turn at most 3 times (5 points), the paper's up to 7: "
+                        "needs more waypoints")
+    for j in results.jobs:
+        (j.dir / "summary.json").write_text(json.dumps({"points": 22}))
+    assert claims.judge(results, claim).verdict == claims.INCONCLUSIVE  # all tied at 3
+
+
+def _gdwa(i, judged, compliant, *extra):
+    key, case = f"g{i}", f"iwso/head-on/s{i:03d}"
+    rows = [(key, "runs", case, "gdwa", 1, "judged", str(judged)),
+            (key, "runs", case, "gdwa", 1, "compliant", str(compliant)),
+            (key, "runs", case, "gdwa", 1, "arrived", "True")]
+    return rows + [(key, "runs", case, "gdwa", 1, m, v) for m, v in extra]
+
+
+def test_absolute_claims_count_every_run_with_a_clopper_pearson_interval(tmp_path):
+    rows = (_gdwa(0, 1, 1) + _gdwa(1, 1, 1) + _gdwa(2, 1, 1)
+            + _gdwa(3, 1, 0, ("compliant_excused", "1"), ("noncompliant", "0"))
+            + _gdwa(4, 0, 0)  # judged nothing: no evidence
+            + _gdwa(5, 1, 1, ("collision", "target")))  # collided: never compliant
+    results = _results(tmp_path, rows)
+    compliant = _claim(kind="runs", metric="compliant", statistic="every", better="higher",
+                       method="gdwa", rivals=(), target="judged", cases=("iwso/head-on",))
+    v = claims.judge(results, compliant)
+    (t,) = v.tallies
+    assert v.verdict == claims.FAILS and (t.met, t.n) == (3, 6)
+    # Clopper-Pearson by its beta quantiles
+    assert t.low == pytest.approx(beta.ppf(0.025, 3, 4)) and t.high == pytest.approx(
+        beta.ppf(0.975, 4, 3))
+    assert t.note == ("1 collided, 1 judged no encounter, 1 compliant only through an excused "
+                      "Rule 2 departure")
+    collision = replace(compliant, metric="collision", better="lower", target=0.0)
+    (t,) = claims.judge(results, collision).tallies
+    assert (t.met, t.n) == (5, 6)
+    held = claims.judge(_results(tmp_path, _gdwa(0, 2, 2) + _gdwa(1, 1, 1)), compliant)
+    assert held.verdict == claims.HOLDS and held.tallies[0].high == 1.0
+    assert claims.judge(results, replace(compliant, cases=("iwso/static",))).verdict == (
+        claims.UNTESTED)
 
 
 def test_statistics_as_the_papers_state_them(tmp_path):
-    rows = ROUTES + [("a1", "routes", "env1", "iwso", 1, "fitness", "9"),
-                     ("a2", "routes", "env1", "iwso", 2, "fitness", "7"),
-                     ("a3", "routes", "env1", "iwso", 3, "fitness", "8")]  # fmt: skip
+    rows = (_routes("env1", "iwso", [700, 720, 800])
+            + _routes("env1", "iwso", [9, 7, 8], "fitness"))
     results = _results(tmp_path, rows)
     stat = lambda name: statistic(results, "routes", "env1", "iwso", "length_m", name)  # noqa: E731
     assert (stat("min"), stat("max"), stat("median"), stat("value")) == (700, 800, 720, 720)
     assert stat("mean") == pytest.approx(740)
     assert stat("variance") == pytest.approx(((40**2) + (20**2) + (60**2)) / 2)  # ddof 1: 2800
     assert stat("of-best") == 720  # the length of the seed with the lowest fitness (7)
-
-
-def test_absolute_claims_count_every_run_and_an_absent_collision_is_none(tmp_path):
-    rows = [("r1", "runs", "s1", "gdwa", 1, "judged", "2"), ("r1", "runs", "s1", "gdwa", 1,
-            "compliant", "2"), ("r2", "runs", "s2", "gdwa", 1, "judged", "1"),
-            ("r2", "runs", "s2", "gdwa", 1, "compliant", "0"),
-            ("r2", "runs", "s2", "gdwa", 1, "collision", "target")]  # fmt: skip
-    results = _results(tmp_path, rows)
-    compliant = _claim(kind="runs", metric="compliant", statistic="every", better="higher",
-                       method="gdwa", rivals=(), target="judged")  # fmt: skip
-    assert claims.judge(results, replace(compliant, cases=("s1",))).verdict == claims.HOLDS
-    v = claims.judge(results, replace(compliant, cases=("s1", "s2")))
-    assert v.verdict == claims.FAILS and v.evidence == ["s1: 1/1 runs", "s2: 0/1 runs"]
-    collision = _claim(kind="runs", metric="collision", statistic="every", method="gdwa",
-                       rivals=(), target=0.0)  # fmt: skip
-    v = claims.judge(results, replace(collision, cases=("s1", "s2")))
-    assert v.evidence == ["s1: 1/1 runs", "s2: 0/1 runs"]
 
 
 def test_the_optimisation_rate_is_computed_from_our_medians_when_runs_lack_it(tmp_path):
@@ -93,14 +228,21 @@ def test_the_optimisation_rate_is_computed_from_our_medians_when_runs_lack_it(tm
     assert [c.text for c in row[2:]] == ["-", "59.48", "78.50", "78.50", "43.25", "43.25"]
 
 
-def test_a_variant_run_in_the_claims_cases_is_judged_beside_the_papers_method(tmp_path):
-    rows = ROUTES + [("e1", "routes", "env1", "iwso+g", 1, "length_m", "690"),
-                     ("e2", "routes", "env2", "iwso+g", 1, "length_m", "480"),
-                     ("f1", "routes", "grid20", "wso+s", 1, "length_m", "30")]  # fmt: skip
+def test_the_section_counts_five_verdicts_and_judges_variants_apart(tmp_path):
+    rows = (SEPARATED + _routes("env1", "iwso+g", [600, 601, 602])
+            + _routes("env2", "iwso", [1, 2]) + _routes("env2", "wso", [3, 4]))
     results = _results(tmp_path, rows)
-    assert claims.variants(results, _claim()) == ["iwso+g"]
-    judged = {v.claim.id: v.verdict for v in claims.verdicts(results)}
-    shorter = [k for k in judged if k.startswith("iwso-shorter")]
-    assert shorter == ["iwso-shorter", "iwso-shorter (iwso+g)"]
-    assert judged["iwso-shorter (iwso+g)"] == claims.HOLDS  # 690 < 735, 480 < 500
-    assert judged["iwso-shorter"] == claims.FAILS  # the env2 tie
+    judged = {v.claim.id: v for v in claims.verdicts(results)}
+    assert claims.verdicts(results) is claims.verdicts(results)  # computed once
+    assert "iwso-shorter (iwso+g)" in judged and judged["iwso-shorter (iwso+g)"].variant
+    assert judged["iwso-fewer-turns"].verdict == claims.UNTESTED  # no turns at all
+    s = claims.section(results)
+    main, cases = s.tables()
+    assert main.id == "claims-table" and cases.placement == "appendix"
+    assert len(main.rows) == len(judged)
+    counts = claims.counts([s])
+    assert list(counts) == list(claims.VERDICTS)
+    assert sum(counts.values()) == sum(not v.variant for v in judged.values())
+    # the quote once per claim: a variant's row leaves it out
+    row = next(r for r in main.rows if r[0].text == "iwso-shorter (iwso+g)")
+    assert row[1].text == ""

@@ -110,7 +110,7 @@ def compare(method: Sequence[float], rival: Sequence[float], *, paired: bool, be
         estimate = _weighted_median(values, weights)[0]
         low_s, high_s = np.percentile(_weighted_median(values, resampled), [2.5, 97.5])
         shift = (float(estimate), float(low_s), float(high_s))
-    return Comparison((x.size, y.size), (_median(x), _median(y)), (_iqr(x), _iqr(y)), test, p,
+    return Comparison((x.size, y.size), (median(x), median(y)), (iqr(x), iqr(y)), test, p,
                       name, effect, float(low), float(high), *shift)  # fmt: skip
 
 
@@ -127,22 +127,32 @@ def holm(p_values: Sequence[float | None]) -> list[float | None]:
     return out
 
 
-def _median(v: np.ndarray) -> float:
+def median(v: Sequence[float]) -> float:
     """The median as an order statistic (the lower and upper middle's mean, an infinite one
     winning)."""
-    s = np.sort(v)
+    s = np.sort(np.asarray(v, float))
     lo, hi = s[(s.size - 1) // 2], s[s.size // 2]
     return float(lo if lo == hi else (lo + hi) / 2)
 
 
-def _iqr(v: np.ndarray) -> float:
+def iqr(v: Sequence[float]) -> float:
     """q75 - q25; infinite when a quartile is (a failure within the middle half's reach), but 0
     when every value is the same."""
-    s = np.sort(v)
+    s = np.sort(np.asarray(v, float))
     if s[0] == s[-1]:
         return 0.0
     q25, q75 = _quantile(s, 0.25), _quantile(s, 0.75)
     return math.inf if math.isinf(q25) or math.isinf(q75) else q75 - q25
+
+
+def dispersion(v: Sequence[float]) -> np.ndarray:
+    """Each value's absolute deviation from the sample's median (a spread claim compares these,
+    as Brown and Forsythe 1974, J. Am. Stat. Assoc. 69, and Fligner and Killeen 1976 do):
+    infinite for a failure and for every value when the median is a failure."""
+    a = np.asarray(v, float)
+    m = median(a)
+    with np.errstate(invalid="ignore"):
+        return np.where(np.isinf(a) | np.isinf(m), math.inf, np.abs(a - m))
 
 
 def _quantile(s: np.ndarray, q: float) -> float:
