@@ -21,9 +21,9 @@ from PIL import Image
 from usvtool.errors import UsvError
 from usvtool.grid import Grid
 from usvtool.report import figures as F
-from usvtool.report.figures.canvas import COLOURS, DPI
-from usvtool.report.figures.encounters import SHIP_COLOURS, draw_ship
-from usvtool.report.figures.raster import display_rgb
+from usvtool.report.figures.encounters import draw_ship
+from usvtool.report.figures.raster import PREVIEW_HATCH, PREVIEW_STRIP_PX, ChartImage, display_rgb
+from usvtool.report.figures.styles import DPI, MIN_FONT_PT, ship_styles, style
 from usvtool.trace import Trace, format_events
 
 pytestmark = pytest.mark.slow  # every figure drawn
@@ -45,8 +45,8 @@ def small_grid() -> Grid:
 
 
 def two_routes() -> dict[str, np.ndarray]:
-    return {"alpha": np.array([[5.0, 5.0], [5.0, 95.0], [95.0, 95.0]]),
-            "beta": np.array([[5.0, 5.0], [95.0, 5.0], [95.0, 95.0]])}  # fmt: skip
+    return {"wso": np.array([[5.0, 5.0], [5.0, 95.0], [95.0, 95.0]]),
+            "astar": np.array([[5.0, 5.0], [95.0, 5.0], [95.0, 95.0]])}  # fmt: skip
 
 
 def two_ship_trace() -> Trace:
@@ -66,11 +66,15 @@ def wind_field():
     return u, np.zeros((10, 10)), (0.0, 100.0, 0.0, 100.0)
 
 
-def chart_image() -> np.ndarray:
+def chart_image() -> ChartImage:
+    """40 x 40 pixels over small_grid's 100 m: red west, blue east; the obstacle's pixels (rows
+    and columns 16-23) outside the chart."""
     rgb = np.zeros((40, 40, 3), np.uint8)
     rgb[:, :20] = (255, 0, 0)
     rgb[:, 20:] = (0, 0, 255)
-    return rgb
+    outside = np.zeros((40, 40), bool)
+    outside[16:24, 16:24] = True
+    return ChartImage(rgb, (0.0, 100.0, 0.0, 100.0), outside)
 
 
 def all_plots() -> dict[str, F.Plot]:
@@ -82,10 +86,12 @@ def all_plots() -> dict[str, F.Plot]:
     u, v, extent = wind_field()
     return {
         "routes": F.routes_on_grid(grid, two_routes(), (5, 5), (95, 95), "routes"),
-        "convergence": F.convergence({"alpha": [[3, 2, 1], [1, 1, 1], [2, 1.5, 1]],
-                                      "beta": [[4, 4, 2]]}, "convergence"),  # fmt: skip
-        "boxplots": F.boxplots({"length (m)": {"alpha": [1, 2, 3], "beta": [2, 4]},
-                                "turns": {"alpha": [1, 1], "beta": [3, 0]}}, "boxes"),  # fmt: skip
+        "routes_chart": F.routes_on_grid(grid, two_routes(), (5, 5), (95, 95), "on the chart",
+                                         chart_image()),  # fmt: skip
+        "convergence": F.convergence({"wso": [[3, 2, 1], [1, 1, 1], [2, 1.5, 1]],
+                                      "astar": [[4, 4, 2]]}, "convergence"),  # fmt: skip
+        "boxplots": F.boxplots({"length (m)": {"wso": [1, 2, 3], "astar": [2, 4]},
+                                "turns": {"wso": [1, 1], "astar": [3, 0]}}, "boxes"),  # fmt: skip
         "snapshots": F.encounter_snapshots(trace, {"preparatory": 0, "meeting": 5,
                                                    "completion": 10},
                                            {"own": 10, "target": 5}, grid=grid,
@@ -120,26 +126,104 @@ def rows(plot: F.Plot) -> list[list[str]]:
     return list(csv.reader(io.StringIO(plot.data)))
 
 
+def capture_figures(draw) -> list:
+    """The Matplotlib figures that ``draw()`` saves, drawn (their artists as in the PNG)."""
+    from matplotlib.figure import Figure
+
+    saved, original = [], Figure.savefig
+
+    def keep(self, *args, **kwargs):
+        saved.append(self)
+        return original(self, *args, **kwargs)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(Figure, "savefig", keep)
+        draw()
+    return saved
+
+
 @pytest.fixture(scope="module")
-def plots() -> dict[str, F.Plot]:
-    return all_plots()
+def drawn() -> tuple[dict[str, F.Plot], list]:
+    """Every figure of the hand-made inputs, and the Matplotlib figures they were saved from."""
+    out: dict[str, F.Plot] = {}
+    return out, capture_figures(lambda: out.update(all_plots()))
+
+
+@pytest.fixture(scope="module")
+def plots(drawn) -> dict[str, F.Plot]:
+    return drawn[0]
 
 
 # --- every figure -----------------------------------------------------------------------------
 
-SIZES = {"routes": (9.6, 6.4), "convergence": (9.6, 5.6), "boxplots": (10.0, 7.6),
-         "snapshots": (12.9, 5.4), "states": (8.0, 7.2), "nearest": (9.0, 5.0),
-         "wind": (8.6, 7.0), "preprocessing": (11.0, 5.6)}  # fmt: skip
+#: Pixels (width, height) at 150 dpi. The text width 182 mm = 7.165 in (1074 px: Matplotlib
+#: truncates); routes: a 100 m square view with the legend beside it, a map 7.165 - 2.3 in
+#: square and 0.8 in more, 5.665 in; convergence 7.2 x 4.4; boxplots two panels in one row,
+#: 2.9 + 0.4 in; snapshots three panels of (7.165 - 0.6) / 3 in and 0.25 in each, 0.9 in more,
+#: 3.338 in; states 7.2 x 5.6; nearest 7.2 x 3.9; wind (H3's) 8.6 x 7.0; preprocessing two
+#: panels of (7.165 - 0.5) / 2 in, a square grid, and 1.3 in, 4.633 in.
+SIZES = {"routes": (1074, 849), "routes_chart": (1074, 849), "convergence": (1080, 660),
+         "boxplots": (1080, 495), "snapshots": (1074, 500), "states": (1080, 840),
+         "nearest": (1080, 585), "wind": (1290, 1050), "preprocessing": (1074, 694)}  # fmt: skip
 
 
 @pytest.mark.parametrize("name", sorted(SIZES))
 def test_each_figure_is_a_png_of_its_fixed_size_with_many_colours_and_small(plots, name):
     img = pixels(plots[name].png)
-    w, h = SIZES[name]
-    assert img.shape == (round(h * DPI), round(w * DPI), 3)
+    assert img.shape == (SIZES[name][1], SIZES[name][0], 3)
+    dpi = Image.open(io.BytesIO(plots[name].png)).info["dpi"]
+    assert dpi == pytest.approx((DPI, DPI), abs=0.05)
     packed = img.astype(np.int32) @ np.array([1 << 16, 1 << 8, 1])
     assert len(np.unique(packed)) > 20
     assert len(plots[name].png) < 300_000
+
+
+def test_every_text_prints_at_least_7_pt_at_the_page_width(drawn):
+    """A figure w inches wide is printed min(w * 150 / 96, 182 / 25.4) inches wide (a PNG at
+    96 px an inch, at most the A4 text width): every text's size, so scaled, is >= 7 pt."""
+    from matplotlib.text import Text
+
+    figures = drawn[1]
+    assert len(figures) == len(SIZES)
+    for fig in figures:
+        w = fig.get_figwidth()
+        scale = min(w * 150 / 96, 182 / 25.4) / w
+        texts = [t for t in fig.findobj(Text) if t.get_visible() and t.get_text().strip()]
+        assert len(texts) > 10  # titles, labels, ticks, legend
+        smallest = min(texts, key=Text.get_fontsize)
+        assert smallest.get_fontsize() * scale >= MIN_FONT_PT, smallest.get_text()
+
+
+def test_a_method_has_its_style_in_every_figure_whatever_its_place():
+    """Methods in different orders in four figures: each line's colour and marker are its
+    registered style's, so the same in every figure (a colour by position would swap them)."""
+    import matplotlib.colors as mcolors
+
+    r, trace = two_routes(), two_ship_trace()
+    figures = capture_figures(lambda: (
+        F.routes_on_grid(small_grid(), {"astar": r["astar"], "iwso+s": r["wso"] + 1,
+                                        "wso": r["wso"]}, (5, 5), (95, 95), ""),
+        F.routes_on_grid(small_grid(), {"mine": r["astar"], "wso": r["wso"]}, (5, 5), (95, 95),
+                         ""),
+        F.convergence({"iwso+s": [[3, 2, 1]], "mine": [[2, 2, 2]], "wso": [[2, 1, 1]]}, ""),
+        F.nearest_distance({"udwa": trace, "dwa": trace}, ""),
+        F.boxplots({"m": {"mine": [1, 2], "astar": [2, 3], "wso": [0, 1]}}, "")))  # fmt: skip
+    seen: dict[str, set] = {}
+    for fig in figures[:4]:
+        for line in fig.axes[0].get_lines():
+            name = line.get_label().split(" (")[0]
+            if name in ("astar", "iwso+s", "wso", "mine", "udwa", "dwa"):
+                seen.setdefault(name, set()).add((mcolors.to_hex(line.get_color()),
+                                                  line.get_marker()))  # fmt: skip
+    assert set(seen) == {"astar", "iwso+s", "wso", "mine", "udwa", "dwa"}
+    for name, looks in seen.items():
+        assert looks == {(style(name).color.lower(), style(name).marker)}, name
+    assert len(seen["wso"]) == 1 and seen["wso"] != seen["astar"]
+    boxes = [p for p in figures[4].axes[0].patches]
+    labels = [t.get_text() for t in figures[4].axes[0].get_xticklabels()]
+    assert labels == ["wso", "astar", "mine"]  # family by family, the unregistered last
+    assert [mcolors.to_hex(b.get_facecolor()[:3]) for b in boxes] == [
+        style(m).color.lower() for m in labels]
 
 
 def test_the_same_inputs_give_the_same_bytes_here_and_in_a_fresh_process(plots, tmp_path):
@@ -166,17 +250,62 @@ def test_routes_show_the_grid_classes_and_each_route_colour(plots):
     img = pixels(plots["routes"].png)
     assert near(img, OBSTACLE_RGB, 3) > 500  # 20 x 20 m of obstacle in a 100 m view
     assert near(img, MARGIN_RGB, 3) > 300
-    for colour in COLOURS[:2]:  # each route ~ 600 px long; a legend sample is ~ 60 px
-        assert near(img, hex_rgb(colour), 60) > 400
+    for name in ("wso", "astar"):  # each route ~ 1000 px long; a legend sample is ~ 50 px
+        assert near(img, hex_rgb(style(name).color), 30) > 400
 
+
+def test_routes_over_a_chart_show_the_chart_not_the_grid(plots):
+    img = pixels(plots["routes_chart"].png)
+    # the chart's red and blue halves fill the map; the grid's dark obstacle is not drawn
+    assert near(img, (255, 0, 0), 3) > 100_000 and near(img, (0, 0, 255), 3) > 100_000
+    assert near(img, OBSTACLE_RGB, 3) < 2000  # text's edges; the grid's obstacle: ~ 21 000
+    for name in ("wso", "astar"):
+        assert near(img, hex_rgb(style(name).color), 30) > 400
+
+
+def test_a_preview_png_gives_its_map_over_the_grid_and_its_outside(tmp_path):
+    """A preview of small_grid (20 x 20 cells): a 40 x 40 map above the 80-pixel strip; the
+    obstacle cells (rows, columns 8-11: pixels 16-23) half hatched (outside the chart), and the
+    hatch's grey also on a navigable pixel, which is not outside."""
+    import cv2
+
+    image = np.full((40 + PREVIEW_STRIP_PX, 40, 3), 255, np.uint8)
+    image[:40] = (10, 120, 200)
+    image[16:24, 16:20] = PREVIEW_HATCH[0]
+    image[16:24:2, 16:20] = PREVIEW_HATCH[1]
+    image[0, 0] = PREVIEW_HATCH[0]
+    path = tmp_path / "preview.png"
+    cv2.imwrite(str(path), image[:, :, ::-1])
+    chart = F.preview_chart(path, small_grid())
+    assert chart.rgb.shape == (40, 40, 3) and chart.extent == (0.0, 100.0, 0.0, 100.0)
+    assert (chart.rgb[30, 30] == (10, 120, 200)).all()
+    expected = np.zeros((40, 40), bool)
+    expected[16:24, 16:20] = True
+    assert (chart.outside == expected).all()
+    assert F.preview_chart(tmp_path / "missing.png", small_grid()) is None
+    cv2.imwrite(str(path), np.zeros((50, 5, 3), np.uint8))  # 50 px: no room for a 20 px map
+    assert F.preview_chart(path, small_grid()) is None
+
+
+def test_a_long_route_is_shown_in_its_reach_not_the_whole_chart():
+    """A 1 km route east across the north of a 10 x 10 km chart: the view is the route's box
+    padded by 80 m each side (8 % of 1 km), widened to a width / height of 3: 1160 x 386.7 m,
+    shifted inside the chart's northern edge; a wide view, so the legend goes below."""
+    grid = Grid(np.zeros((100, 100), np.uint8), Affine(100.0, 0, 0, 0, -100.0, 10_000.0))
+    captured = capture_figures(lambda: F.routes_on_grid(
+        grid, {"astar": np.array([[4000.0, 9900], [5000, 9900]])}, (4000, 9900), (5000, 9900),
+        "reach"))  # fmt: skip
+    ax = captured[0].axes[0]
+    assert ax.get_xlim() == pytest.approx((3920, 5080))
+    assert ax.get_ylim() == pytest.approx((10_000 - 1160 / 3, 10_000))
 
 def test_routes_data_are_every_vertex_then_start_and_goal(plots):
     got = rows(plots["routes"])
     assert got[0] == ["kind", "algorithm", "vertex", "x", "y"]
-    assert got[1:4] == [["route", "alpha", "0", "5.000", "5.000"],
-                        ["route", "alpha", "1", "5.000", "95.000"],
-                        ["route", "alpha", "2", "95.000", "95.000"]]  # fmt: skip
-    assert got[4][:3] == ["route", "beta", "0"]
+    assert got[1:4] == [["route", "wso", "0", "5.000", "5.000"],
+                        ["route", "wso", "1", "5.000", "95.000"],
+                        ["route", "wso", "2", "95.000", "95.000"]]  # fmt: skip
+    assert got[4][:3] == ["route", "astar", "0"]
     assert got[-2:] == [["start", "", "0", "5.000", "5.000"], ["goal", "", "0", "95.000", "95.000"]]
     assert len(got) == 1 + 6 + 2
 
@@ -201,7 +330,9 @@ def test_a_big_grid_draws_fast_and_keeps_a_one_cell_obstacle_line():
                             (500010, 3994000), (507990, 3994000), "big")  # fmt: skip
     seconds = time.perf_counter() - begin
     print(f"routes_on_grid on 3000 x 4000 cells: {seconds:.2f} s, {len(plot.png)} bytes")
-    assert pixels(plot.png).shape == (640, 960, 3)
+    # the route's box padded by 638.4 m, 9256.8 x 1276.8 m, widened to 9256.8 x 3085.6 (aspect
+    # 3) and clipped to the chart's 8 km: 8000 x 3085.6 m, printed 6.465 x 2.493 in, 1.5 in more
+    assert pixels(plot.png).shape == (599, 1074, 3)
 
 
 # --- convergence and box plots ----------------------------------------------------------------
@@ -211,24 +342,24 @@ def test_convergence_data_are_the_median_and_quartiles_over_seeds(plots):
     got = rows(plots["convergence"])
     assert got[0] == ["algorithm", "iteration", "median", "q1", "q3"]
     # iteration 1: seeds 3, 1, 2 -> median 2, quartiles 1.5 and 2.5 (linear); iteration 2:
-    # 2, 1, 1.5 -> 1.5, 1.25, 1.75; iteration 3: all 1; one seed of beta: its own values
-    assert got[1:4] == [["alpha", "1", "2.000000", "1.500000", "2.500000"],
-                        ["alpha", "2", "1.500000", "1.250000", "1.750000"],
-                        ["alpha", "3", "1.000000", "1.000000", "1.000000"]]  # fmt: skip
-    assert got[4:] == [["beta", str(i), v, v, v] for i, v in
+    # 2, 1, 1.5 -> 1.5, 1.25, 1.75; iteration 3: all 1; one seed of astar: its own values
+    assert got[1:4] == [["wso", "1", "2.000000", "1.500000", "2.500000"],
+                        ["wso", "2", "1.500000", "1.250000", "1.750000"],
+                        ["wso", "3", "1.000000", "1.000000", "1.000000"]]  # fmt: skip
+    assert got[4:] == [["astar", str(i), v, v, v] for i, v in
                        ((1, "4.000000"), (2, "4.000000"), (3, "2.000000"))]  # fmt: skip
     img = pixels(plots["convergence"].png)
-    assert all(near(img, hex_rgb(c), 60) > 300 for c in COLOURS[:2])
+    assert all(near(img, hex_rgb(style(m).color), 30) > 300 for m in ("wso", "astar"))
 
 
 def test_boxplot_data_are_every_value_by_metric_and_algorithm(plots):
     got = rows(plots["boxplots"])
     assert got[0] == ["metric", "algorithm", "seed_index", "value"]
     assert [r[:3] for r in got[1:]] == [
-        ["length (m)", "alpha", "0"], ["length (m)", "alpha", "1"], ["length (m)", "alpha", "2"],
-        ["length (m)", "beta", "0"], ["length (m)", "beta", "1"],
-        ["turns", "alpha", "0"], ["turns", "alpha", "1"], ["turns", "beta", "0"],
-        ["turns", "beta", "1"]]  # fmt: skip
+        ["length (m)", "wso", "0"], ["length (m)", "wso", "1"], ["length (m)", "wso", "2"],
+        ["length (m)", "astar", "0"], ["length (m)", "astar", "1"],
+        ["turns", "wso", "0"], ["turns", "wso", "1"], ["turns", "astar", "0"],
+        ["turns", "astar", "1"]]  # fmt: skip
     assert [r[3] for r in got[1:6]] == ["1.000000", "2.000000", "3.000000", "2.000000",
                                         "4.000000"]  # fmt: skip
 
@@ -251,8 +382,8 @@ def test_snapshot_data_are_each_ship_as_drawn_with_its_domain_axes(plots):
 
 def test_snapshots_show_both_ships_and_the_grid(plots):
     img = pixels(plots["snapshots"].png)
-    for colour in SHIP_COLOURS[:2]:
-        assert near(img, hex_rgb(colour), 40) > 100
+    for look in ship_styles(["own", "target"]).values():
+        assert near(img, hex_rgb(look.color), 40) > 100
     assert near(img, OBSTACLE_RGB, 3) > 300
 
 
@@ -342,7 +473,7 @@ def test_states_data_are_the_own_ship_with_the_heading_unwrapped():
                           ["1.000", "1.000", "1.000", "365.000"],
                           ["2.000", "2.000", "2.000", "380.000"],
                           ["3.000", "3.000", "3.000", "340.000"]]  # fmt: skip
-    assert near(pixels(plot.png), hex_rgb(SHIP_COLOURS[0]), 40) > 300
+    assert near(pixels(plot.png), hex_rgb(style("own").color), 40) > 300
 
 
 def test_nearest_distance_data_are_the_hand_computed_distances(plots):
@@ -353,7 +484,7 @@ def test_nearest_distance_data_are_the_hand_computed_distances(plots):
     assert got[12] == ["udwa", "0.000", "115.763"]  # own ship 1 m north: sqrt(60^2 + 99^2)
     assert len(got) == 1 + 2 * 11
     img = pixels(plots["nearest"].png)
-    assert all(near(img, hex_rgb(c), 60) > 300 for c in COLOURS[:2])
+    assert all(near(img, hex_rgb(style(c).color), 30) > 300 for c in ("ccdwa", "udwa"))
 
 
 def test_wind_runs_show_the_field_and_the_tracks(plots):
@@ -364,7 +495,7 @@ def test_wind_runs_show_the_field_and_the_tracks(plots):
     # coolwarm at 1 of 5 m/s (blue) and 5 of 5 (dark red) fill the two halves of the field
     assert near(img, (59, 76, 192), 40) > 20_000 or near(img, (98, 130, 234), 30) > 20_000
     assert near(img, (180, 4, 38), 30) > 20_000
-    assert near(img, hex_rgb(COLOURS[0]), 40) > 100
+    assert near(img, hex_rgb(style("udwa").color), 40) > 100
 
 
 def test_preprocessing_shows_the_chart_and_counts_the_classes(plots):
@@ -374,7 +505,9 @@ def test_preprocessing_shows_the_chart_and_counts_the_classes(plots):
                                             ["safety margin", "2", "20", "5.000"]]  # fmt: skip
     img = pixels(plots["preprocessing"].png)
     assert near(img, (255, 0, 0), 3) > 10_000 and near(img, (0, 0, 255), 3) > 10_000
-    assert near(img, OBSTACLE_RGB, 3) > 500
+    # the grid panel's obstacle (~ 10 000 px) is wholly outside the chart: hatched, not dark
+    assert near(img, OBSTACLE_RGB, 3) < 2000
+    assert near(img, PREVIEW_HATCH[0], 3) > 500
     alone = pixels(F.preprocessing(None, small_grid(), "grid").png)
     assert near(alone, (255, 0, 0), 3) == 0 and near(alone, OBSTACLE_RGB, 3) > 500
 
@@ -401,7 +534,6 @@ def test_preprocessing_shows_the_chart_and_counts_the_classes(plots):
      "u has shape (2, 2) and v (2, 3)"),
     (lambda: F.wind_runs(np.ones((2, 2)), np.ones((2, 2)), (1, 0, 0, 1), {"a": two_ship_trace()},
                          ""), "is not (left, right, bottom, top)"),  # fmt: skip
-    (lambda: F.preprocessing(np.zeros((4, 4)), small_grid(), ""), "chart_rgb must be"),
 ])  # fmt: skip
 def test_bad_input_is_one_line_naming_the_argument(call, message):
     with pytest.raises(UsvError) as info:

@@ -2,8 +2,9 @@
 
 A figure is a :class:`matplotlib.figure.Figure` on an Agg canvas (no pyplot: nothing global is
 switched or left open, and the figure is freed with its last reference), drawn inside
-:func:`figure`, which sets Matplotlib's defaults plus :data:`STYLE` whatever the user's
-matplotlibrc holds. The PNG is written at :data:`DPI` with no ``Software`` or date metadata, so
+:func:`figure`, which sets Matplotlib's defaults plus :data:`STYLE` and the print sizes of
+:mod:`~usvtool.report.figures.styles` whatever the user's matplotlibrc holds. The PNG is
+written at :data:`~usvtool.report.figures.styles.DPI` with no ``Software`` or date metadata, so
 the same inputs give the same bytes in any process.
 """
 
@@ -19,28 +20,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from usvtool.errors import UsvError
+from usvtool.report.figures.styles import DPI, apply_rc
 
-DPI = 100
+#: Settings beside :func:`~usvtool.report.figures.styles.rc_params` (its DPI and font sizes).
 STYLE = {
-    "font.family": "DejaVu Sans",
-    "font.size": 9.0,
-    "axes.titlesize": 10.0,
-    "figure.titlesize": 11.0,
-    "legend.fontsize": 8.0,
     "axes.grid": True,
     "grid.alpha": 0.35,
     "grid.linewidth": 0.6,
     "axes.axisbelow": True,
     "image.interpolation": "antialiased",
-    "figure.dpi": DPI,
-    "savefig.dpi": DPI,
     "figure.facecolor": "white",
     "savefig.facecolor": "white",
 }
-#: Thirteen distinct colours (tab10 and three more) for the series of a figure, in order.
-COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
-           "#7f7f7f", "#bcbd22", "#17becf", "#000000", "#393b79", "#b8860b")  # fmt: skip
-LINESTYLES = ("-", "--", "-.", ":")
 
 
 @dataclass(frozen=True)
@@ -51,15 +42,10 @@ class Plot:
     data: str
 
 
-def series_style(i: int) -> dict:
-    """Colour and line style of the ``i``-th series: every one of 13 in its own colour, and
-    neighbours in different line styles (readable in grey print too)."""
-    return {"color": COLOURS[i % len(COLOURS)], "linestyle": LINESTYLES[i % len(LINESTYLES)]}
-
-
 @contextmanager
 def figure(width: float, height: float) -> Iterator:
-    """A new constrained-layout figure of ``width`` x ``height`` inches under the fixed style;
+    """A new constrained-layout figure of ``width`` x ``height`` inches under the fixed style and
+    the fonts that print at >= 7 pt at its width (:func:`~usvtool.report.figures.styles.rc_params`);
     draw and :func:`png` it inside the block (the style applies when it is drawn)."""
     import matplotlib as mpl
     from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -68,6 +54,7 @@ def figure(width: float, height: float) -> Iterator:
     with mpl.rc_context():
         mpl.rcdefaults()
         mpl.rcParams.update(STYLE)
+        apply_rc(width)
         fig = Figure(figsize=(width, height), dpi=DPI, layout="constrained")
         FigureCanvasAgg(fig)
         yield fig

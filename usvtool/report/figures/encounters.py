@@ -21,15 +21,17 @@ from usvtool.report.figures.canvas import Plot, csv_text, figure, finite_array, 
 from usvtool.report.figures.maps import GOAL, START
 from usvtool.report.figures.raster import draw_grid, map_axes, square_view
 from usvtool.report.figures.runs import nearest_ship_distance
+from usvtool.report.figures.styles import PRINT_WIDTH_IN, ship_styles
 from usvtool.trace import OWN, Trace
 
 #: The domain's full axes in ship lengths (:mod:`usvtool.encounter`, docs/colregs.md).
 DOMAIN_LENGTHS = (DOMAIN_LENGTH_FACTOR, DOMAIN_WIDTH_FACTOR)
-#: Ship colours: the own ship blue and the obstacle ships red, as in IWSO-DWA section 5.3 ("the
-#: blue boat indicates the USV and the red boat indicates the obstacle ship"), then others.
-SHIP_COLOURS = ("#1f4fd8", "#d62728", "#000000", "#9467bd", "#8c564b", "#e377c2", "#17becf")
-#: Target starts: "the purple circle represents the start point of the obstacle ship".
-TARGET_START = {"marker": "o", "color": "#9b30ff", "markersize": 6, "linestyle": "none"}
+#: Target starts: "the purple circle represents the start point of the obstacle ship" (Okabe-Ito
+#: reddish purple). The ships' colours are :func:`~usvtool.report.figures.styles.ship_styles`:
+#: the own ship blue, the obstacle ships vermillion first, as in IWSO-DWA section 5.3 ("the blue
+#: boat indicates the USV and the red boat indicates the obstacle ship").
+TARGET_START = {"marker": "o", "color": "#CC79A7", "markersize": 5, "linestyle": "none",
+                "markeredgecolor": "black", "markeredgewidth": 0.5}  # fmt: skip
 #: The hull outline, bow toward +x, two units long (scaled to the hull's length).
 HULL = np.array([(1.0, 0.0), (0.3, 0.32), (-1.0, 0.32), (-1.0, -0.32), (0.3, -0.32)])
 #: The hull is drawn at least this fraction of a panel's side long, to be seen.
@@ -109,17 +111,24 @@ def encounter_snapshots(trace: Trace, times: dict[str, float], lengths: dict[str
                        DOMAIN_LENGTHS[0] * max(size.values()),
                        None if grid is None else grid.bounds)
     rows = []
-    with figure(4.3 * len(times), 5.4) as fig:
-        axes = fig.subplots(1, len(times), squeeze=False)[0]
-        for n, (ax, (state, i)) in enumerate(zip(axes, steps.items(), strict=True)):
+    looks = ship_styles(trace.ships)
+    columns = min(len(times), 3)
+    panel_rows = -(-len(times) // columns)
+    side = (PRINT_WIDTH_IN - 0.6) / columns
+    with figure(PRINT_WIDTH_IN, panel_rows * (side + 0.25) + 0.9) as fig:
+        axes = fig.subplots(panel_rows, columns, squeeze=False).ravel()
+        for ax in axes[len(times):]:
+            ax.set_visible(False)
+        for n, (ax, (state, i)) in enumerate(zip(axes, steps.items(), strict=False)):
             if grid is not None:
                 draw_grid(ax, grid, view)
             for j, ship in enumerate(trace.ships):
-                colour = SHIP_COLOURS[j % len(SHIP_COLOURS)]
+                colour = looks[ship].color
                 x, y, h = trace.x[: i + 1, j], trace.y[: i + 1, j], trace.heading[i, j]
-                ax.plot(x, y, color=colour, linewidth=1.2, label=ship, zorder=2)
+                ax.plot(x, y, color=colour, linewidth=1.2, label=looks[ship].label, zorder=2)
                 start = START if ship == OWN else TARGET_START
-                ax.plot(x[0], y[0], **start, label=f"start of {ship}" if ship == OWN else None,
+                ax.plot(x[0], y[0], **start,
+                        label=f"start of the {looks[ship].label}" if ship == OWN else None,
                         zorder=2.2)
                 draw_ship(ax, x[-1], y[-1], h, size[ship], colour,
                           max(size[ship], HULL_MIN * (view[2] - view[0])))
@@ -132,11 +141,12 @@ def encounter_snapshots(trace: Trace, times: dict[str, float], lengths: dict[str
             ax.set_ylim(view[1], view[3])
             map_axes(ax, view[2] - view[0], None if grid is None else grid.crs)
             ax.set_title(f"({chr(ord('a') + n)}) {state}, t = {trace.t[i]:.1f} s")
+            ax.tick_params(axis="x", labelrotation=30)
         handles, labels = axes[0].get_legend_handles_labels()
         if len(trace.ships) > 1:
             handles.append(_target_start_handle())
             labels.append("start of the targets")
-        fig.legend(handles, labels, loc="outside lower center", ncols=min(len(labels), 6))
+        fig.legend(handles, labels, loc="outside lower center", ncols=min(len(labels), 4))
         if title:
             fig.suptitle(title)
         image = png(fig)

@@ -1,70 +1,99 @@
-"""Figures on the chart: every algorithm's route on the grid (IWSO-DWA Figs. 7, 9), and a chart's
-preprocessing (the chart beside its navigation grid, ISSA section 3)."""
+"""Figures on the chart: every algorithm's route over the chart or its grid (IWSO-DWA Figs. 7, 9),
+and a chart's preprocessing (the chart beside its navigation grid, ISSA section 3)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from usvtool.errors import UsvError
 from usvtool.grid import Grid
-from usvtool.report.figures.canvas import (
-    Plot,
-    csv_text,
-    figure,
-    finite_array,
-    fixed,
-    png,
-    series_style,
-)
+from usvtool.report.figures.canvas import Plot, csv_text, figure, finite_array, fixed, png
 from usvtool.report.figures.raster import (
     CLASS_NAMES,
-    MAX_SIDE,
+    ChartImage,
+    chart_handles,
     class_handles,
+    draw_chart,
     draw_grid,
+    draw_outside,
+    fit_view,
     map_axes,
+    outside_handle,
     share,
-    square_view,
 )
+from usvtool.report.figures.styles import PRINT_WIDTH_IN, ordered, style
 
 #: The papers' markers: "the dark blue triangle represents the start point and the red star
 #: represents the target point" (IWSO-DWA Figs. 7, 9, 11-26).
-START = {"marker": "^", "color": "#00008b", "markersize": 10, "linestyle": "none"}
-GOAL = {"marker": "*", "color": "#e00000", "markersize": 14, "linestyle": "none"}
-#: Padding of the routes' view, a fraction of its side.
-VIEW_PAD = 0.12
+START = {"marker": "^", "color": "#00008b", "markersize": 9, "linestyle": "none",
+         "markeredgecolor": "white", "markeredgewidth": 0.8}  # fmt: skip
+GOAL = {"marker": "*", "color": "#e00000", "markersize": 13, "linestyle": "none",
+        "markeredgecolor": "white", "markeredgewidth": 0.8}  # fmt: skip
+#: Padding of the routes' view on each side, a fraction of the routes' longer extent.
+VIEW_PAD = 0.08
+#: The routes' view is widened to a width / height in this range (a map strip along a long
+#: route would leave no room to see the chart around it; a tall one would not fit the page).
+ASPECT = (0.6, 3.0)
+#: Views at least this much wider than high put the legend under the map, others beside it.
+WIDE = 1.6
+#: Markers along a route: each optimizer's waypoints, at most about this many on a route.
+MARKS = 12
 
 
-def routes_on_grid(grid: Grid, routes: dict[str, np.ndarray], start, goal, title: str) -> Plot:
-    """Every route ``(m, 2)`` (map metres) on the grid, each in its own colour and line style
-    (:func:`~usvtool.report.figures.canvas.series_style`, in the order of ``routes``), the start
-    and the goal marked, the legend outside the axes. The view is the square around the routes
-    padded by :data:`VIEW_PAD` of its side, within the grid: the whole of env1, the harbour
-    reach of a large chart.
+def routes_on_grid(grid: Grid, routes: dict[str, np.ndarray], start, goal, title: str,
+                   chart: ChartImage | None = None) -> Plot:
+    """Every route ``(m, 2)`` (map metres) in its registered style
+    (:func:`~usvtool.report.figures.styles.style`: colour, and its family's line and marker,
+    whatever the order of ``routes``; drawn and listed family by family,
+    :func:`~usvtool.report.figures.styles.ordered`), marked at its vertices (at most about
+    :data:`MARKS`), the start and the goal marked, over ``chart`` (the chart as its preview draws
+    it: obstacles tinted, outside the chart hatched, each in the legend) or else the grid (obstacles
+    dark, margin grey). The view is the box around the routes padded by :data:`VIEW_PAD`, widened to
+    an aspect within :data:`ASPECT` and kept within the grid: the whole of env1, the harbour reach
+    of a large chart, never the empty rest of its frame. The figure is as wide as the page's text
+    and as high as the view needs.
 
-    Data: ``kind,algorithm,vertex,x,y``, one row per route vertex (``kind`` ``route``), then
+    Data: ``kind,algorithm,vertex,x,y``, one row per route vertex (``kind`` ``route``, the
+    routes in the legend's order), then
     the start and the goal (``kind`` ``start``, ``goal``; ``algorithm`` empty); metres to 3
     decimals. The grid itself is the grid file's.
     """
-    points = {name: finite_array(f"routes_on_grid: route {name!r}", p, ndim=2, columns=2)
-              for name, p in routes.items()}  # fmt: skip
+    from matplotlib import patheffects
+
+    points = {name: finite_array(f"routes_on_grid: route {name!r}", routes[name], ndim=2,
+                                 columns=2) for name in ordered(routes)}  # fmt: skip
     start = finite_array("routes_on_grid: start", start, ndim=1, columns=2)
     goal = finite_array("routes_on_grid: goal", goal, ndim=1, columns=2)
     every = np.vstack([start, goal, *points.values()])
-    left, bottom, right, top = view = square_view(every[:, 0], every[:, 1], VIEW_PAD,
-                                                  bounds=grid.bounds)
-    with figure(9.6, 6.4) as fig:
+    left, bottom, right, top = view = fit_view(every[:, 0], every[:, 1], VIEW_PAD, ASPECT,
+                                               grid.bounds)  # fmt: skip
+    aspect = (right - left) / (top - bottom)
+    wide = aspect >= WIDE
+    map_w = PRINT_WIDTH_IN - (0.7 if wide else 2.3)
+    height = map_w / aspect + (1.5 if wide else 0.8)
+    halo = [patheffects.withStroke(linewidth=3.0, foreground="white", alpha=0.8)]
+    with figure(PRINT_WIDTH_IN, max(height, 3.4)) as fig:
         ax = fig.add_subplot()
-        draw_grid(ax, grid, view)
-        for i, (name, p) in enumerate(points.items()):
-            ax.plot(p[:, 0], p[:, 1], linewidth=1.6, label=name, **series_style(i))
-        ax.plot(*start, label="start", **START)
-        ax.plot(*goal, label="goal", **GOAL)
+        if chart is None:
+            draw_grid(ax, grid, view)
+        else:
+            draw_chart(ax, chart, view)
+        for name, p in points.items():
+            look = style(name)
+            ax.plot(p[:, 0], p[:, 1], linewidth=1.5, marker=look.marker, markersize=3.5,
+                    markevery=max(1, len(p) // MARKS), label=look.label, path_effects=halo,
+                    **look.line())  # fmt: skip
+        ax.plot(*start, label="start", **START, zorder=5)
+        ax.plot(*goal, label="goal", **GOAL, zorder=5)
         ax.set_xlim(left, right)
         ax.set_ylim(bottom, top)
         map_axes(ax, max(right - left, top - bottom), grid.crs)
         ax.set_title(title)
-        handles = ax.get_legend_handles_labels()[0] + class_handles()[1:]
-        fig.legend(handles=handles, loc="outside right upper")
+        background = class_handles()[1:] if chart is None else chart_handles()[1:]
+        handles = ax.get_legend_handles_labels()[0] + background
+        if wide:
+            fig.legend(handles=handles, loc="outside lower center", ncols=5)
+        else:
+            fig.legend(handles=handles, loc="outside right upper")
         image = png(fig)
     rows = [("route", name, i, *fixed(xy, 3)) for name, p in points.items()
             for i, xy in enumerate(p)]  # fmt: skip
@@ -72,48 +101,39 @@ def routes_on_grid(grid: Grid, routes: dict[str, np.ndarray], start, goal, title
     return Plot(image, csv_text(("kind", "algorithm", "vertex", "x", "y"), rows))
 
 
-def preprocessing(chart_rgb: np.ndarray | None, grid: Grid, title: str) -> Plot:
-    """The chart image (e.g. the ``usvtool preprocess --preview`` PNG, read by the caller as RGB)
-    beside the navigation grid, with the legend of the classes and their shares; the grid alone
-    when ``chart_rgb`` is None. An image longer than 1500 pixels is reduced for display
-    (OpenCV area averaging).
+def preprocessing(chart: ChartImage | None, grid: Grid, title: str) -> Plot:
+    """The chart (its preview's map, :func:`~usvtool.report.figures.raster.preview_chart`)
+    beside the navigation grid, both over the grid's bounds in map metres, the grid's cells
+    outside the chart hatched as the preview hatches them, with the legend of the classes and
+    their shares; the grid alone when ``chart`` is None.
 
-    Data: ``class,value,cells,percent``, one row per class of the grid (the legend's figures).
+    Data: ``class,value,cells,percent``, one row per class of the grid (the legend's figures;
+    the cells outside the chart are obstacle cells).
     """
-    if chart_rgb is not None:
-        chart_rgb = np.asarray(chart_rgb)
-        if chart_rgb.dtype != np.uint8 or chart_rgb.ndim != 3 or chart_rgb.shape[2] != 3:
-            raise UsvError(f"preprocessing: chart_rgb must be a (h, w, 3) uint8 array, not "
-                           f"{chart_rgb.dtype} of shape {chart_rgb.shape}")  # fmt: skip
-        chart_rgb = _reduced(chart_rgb)
     left, bottom, right, top = grid.bounds
-    with figure(11.0, 5.6) as fig:
-        axes = fig.subplots(1, 1 if chart_rgb is None else 2, squeeze=False)[0]
-        if chart_rgb is not None:
-            axes[0].imshow(chart_rgb, interpolation="antialiased")
-            axes[0].set_axis_off()
-            axes[0].set_title("chart")
+    panels = 1 if chart is None else 2
+    side = (PRINT_WIDTH_IN - 0.5) / panels
+    aspect = (right - left) / (top - bottom)
+    with figure(PRINT_WIDTH_IN, min(side / aspect, 7.5) + 1.3) as fig:
+        axes = fig.subplots(1, panels, squeeze=False, sharex=True, sharey=True)[0]
+        if chart is not None:
+            draw_chart(axes[0], chart, grid.bounds)
+            axes[0].set_title("chart (preview: obstacle red, margin yellow)")
         ax = axes[-1]
         draw_grid(ax, grid)
-        ax.set_xlim(left, right)
-        ax.set_ylim(bottom, top)
-        map_axes(ax, max(right - left, top - bottom), grid.crs)
-        ax.set_title(f"navigation grid, {grid.width} x {grid.height} cells of "
-                     f"{grid.cell_size:g} m")  # fmt: skip
+        if chart is not None:
+            draw_outside(ax, chart)
+        for a in axes:
+            a.set_xlim(left, right)
+            a.set_ylim(bottom, top)
+            map_axes(a, max(right - left, top - bottom), grid.crs)
+        ax.set_title(f"grid, {grid.width} x {grid.height} cells of {grid.cell_size:g} m")
         fig.suptitle(title)
-        fig.legend(handles=class_handles(grid.cells), loc="outside lower center", ncols=3)
+        handles = class_handles(grid.cells)
+        if chart is not None and chart.outside.any():
+            handles.append(outside_handle())
+        fig.legend(handles=handles, loc="outside lower center", ncols=len(handles))
         image = png(fig)
     rows = [(name, value, int(np.count_nonzero(grid.cells == value)),
              fixed([share(grid.cells, value)], 3)[0]) for value, name in CLASS_NAMES.items()]
     return Plot(image, csv_text(("class", "value", "cells", "percent"), rows))
-
-
-def _reduced(rgb: np.ndarray) -> np.ndarray:
-    import cv2
-
-    h, w = rgb.shape[:2]
-    f = max(h, w) / MAX_SIDE
-    if f <= 1:
-        return rgb
-    size = (max(1, round(w / f)), max(1, round(h / f)))
-    return cv2.resize(rgb, size, interpolation=cv2.INTER_AREA)

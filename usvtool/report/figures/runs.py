@@ -17,9 +17,9 @@ from usvtool.report.figures.canvas import (
     finite_array,
     fixed,
     png,
-    series_style,
 )
 from usvtool.report.figures.raster import MAX_SIDE, map_axes
+from usvtool.report.figures.styles import ordered, style
 from usvtool.trace import OWN, Trace
 
 #: Quiver arrows along the longer side of the wind field.
@@ -46,11 +46,11 @@ def states_against_time(trace: Trace, title: str = "") -> Plot:
     own = trace.ship(OWN)
     heading = unwrapped_heading(own[:, 2])
     columns = (own[:, 0], own[:, 1], heading)
-    with figure(8.0, 7.2) as fig:
+    with figure(7.2, 5.6) as fig:
         axes = fig.subplots(3, 1, sharex=True)
         for ax, values, label in zip(axes, columns, ("x (m)", "y (m)", "heading (°, compass)"),
                                      strict=True):  # fmt: skip
-            ax.plot(trace.t, values, color="#1f4fd8", linewidth=1.3)
+            ax.plot(trace.t, values, color=style(OWN).color, linewidth=1.3)
             ax.set_ylabel(label)
         axes[-1].set_xlabel("t (s)")
         fig.suptitle(title or "own ship: position and heading")
@@ -70,23 +70,23 @@ def nearest_ship_distance(trace: Trace) -> np.ndarray:
 
 
 def nearest_distance(traces: dict[str, Trace], title: str, limit: float | None = None) -> Plot:
-    """The distance to the nearest ship against time, one line per controller (the order and
-    styles of ``traces``), its minimum marked and given in the legend, and a dotted line at
+    """The distance to the nearest ship against time, one line per controller (in the registry's
+    order, :func:`~usvtool.report.figures.styles.ordered`, each in its registered style), its
+    minimum marked with the controller's marker and given in the legend, and a dotted line at
     ``limit`` metres when given (a domain, a safe distance: the caption says which).
 
     Data: ``controller,t,distance_m`` (3 decimals), one row per step of each trace.
     """
     if not traces:
         raise UsvError("nearest_distance: no trace")
-    series = {name: nearest_ship_distance(tr) for name, tr in traces.items()}
-    with figure(9.0, 5.0) as fig:
+    series = {name: nearest_ship_distance(traces[name]) for name in ordered(traces)}
+    with figure(7.2, 3.9) as fig:
         ax = fig.add_subplot()
-        for i, (name, d) in enumerate(series.items()):
+        for name, d in series.items():
             t, k = traces[name].t, int(np.argmin(d))
-            style = series_style(i)
-            ax.plot(t, d, linewidth=1.4, label=f"{name} (closest {d[k]:.2f} m at {t[k]:.1f} s)",
-                    **style)  # fmt: skip
-            ax.plot(t[k], d[k], marker="o", markersize=5, color=style["color"])
+            look = style(name)
+            ax.plot(t, d, linewidth=1.4, marker=look.marker, markevery=[k], markersize=5,
+                    label=f"{look.label} (closest {d[k]:.2f} m at {t[k]:.1f} s)", **look.line())
         if limit is not None:
             ax.axhline(float(limit), color="black", linestyle=":", linewidth=1.0,
                        label=f"{float(limit):g} m")  # fmt: skip
@@ -106,7 +106,7 @@ def wind_runs(u, v, extent, traces: dict[str, Trace], title: str) -> Plot:
     edge, cells covering ``extent`` = (left, right, bottom, top) map metres), as its speed in a
     colour map with a colour bar and arrows (one every ``ceil(max(h, w) / 20)`` cells, at cell
     centres, pointing where the wind blows), and each controller's own-ship track over it
-    (the styles of ``traces``; the legend gives the time of its last step).
+    (each in its registered style; the legend gives the time of its last step).
 
     Data: ``controller,t,x,y`` (3 decimals), the tracks; the field is the scenario's raster.
     """
@@ -136,10 +136,10 @@ def wind_runs(u, v, extent, traces: dict[str, Trace], title: str) -> Plot:
         fig.colorbar(image, ax=ax, label="wind speed (m/s)", shrink=0.85)
         ax.quiver(*np.meshgrid(ax_x, ax_y), u[np.ix_(rows_i, cols_j)], v[np.ix_(rows_i, cols_j)],
                   color="black", alpha=0.6, pivot="middle", zorder=1)  # fmt: skip
-        for i, (name, tr) in enumerate(traces.items()):
+        for name, tr in traces.items():
             own = tr.ship(OWN)
             ax.plot(own[:, 0], own[:, 1], linewidth=1.8, path_effects=outline, zorder=2,
-                    label=f"{name} ({tr.t[-1]:.1f} s)", **series_style(i))  # fmt: skip
+                    label=f"{style(name).label} ({tr.t[-1]:.1f} s)", **style(name).line())
         ax.set_xlim(left, right)
         ax.set_ylim(bottom, top)
         ax.grid(False)

@@ -14,8 +14,8 @@ from usvtool.report.figures.canvas import (
     fixed,
     panel_grid,
     png,
-    series_style,
 )
+from usvtool.report.figures.styles import ordered, style
 
 #: Decimals of the costs and metric values in the data CSV.
 DECIMALS = 6
@@ -40,21 +40,25 @@ def convergence_bands(where: str, runs: list[list[float]]) -> np.ndarray:
 
 def convergence(curves: dict[str, list[list[float]]], title: str) -> Plot:
     """Best cost against iteration (1, 2, …) per algorithm: the median over its seeds as a line
-    and the interquartile range as a band, in the order and styles of ``curves``.
+    and the interquartile range as a band, family by family
+    (:func:`~usvtool.report.figures.styles.ordered`), each in its registered
+    style (:func:`~usvtool.report.figures.styles.style`: its family's line and marker, marked
+    at ten points).
 
-    Data: ``algorithm,iteration,median,q1,q3``, costs to 6 decimals.
+    Data: ``algorithm,iteration,median,q1,q3`` in that order, costs to 6 decimals.
     """
-    bands = {name: convergence_bands(f"convergence: {name!r}", runs)
-             for name, runs in curves.items()}  # fmt: skip
-    with figure(9.6, 5.6) as fig:
+    bands = {name: convergence_bands(f"convergence: {name!r}", curves[name])
+             for name in ordered(curves)}  # fmt: skip
+    with figure(7.2, 4.4) as fig:
         ax = fig.add_subplot()
-        for i, (name, (median, q1, q3)) in enumerate(bands.items()):
+        for name, (median, q1, q3) in bands.items():
             it = np.arange(1, median.size + 1)
-            style = series_style(i)
+            look = style(name)
             n = len(curves[name])
-            ax.plot(it, median, linewidth=1.4, label=f"{name} ({n} seed{'s' * (n != 1)})",
-                    **style)  # fmt: skip
-            ax.fill_between(it, q1, q3, color=style["color"], alpha=0.15, linewidth=0)
+            ax.plot(it, median, linewidth=1.3, marker=look.marker, markersize=3.5,
+                    markevery=max(1, median.size // 10),
+                    label=f"{look.label} ({n} seed{'s' * (n != 1)})", **look.line())
+            ax.fill_between(it, q1, q3, color=look.color, alpha=0.15, linewidth=0)
         ax.set_xlabel("iteration")
         ax.set_ylabel("best cost (m)")
         ax.set_title(title)
@@ -67,30 +71,31 @@ def convergence(curves: dict[str, list[list[float]]], title: str) -> Plot:
 
 def boxplots(values: dict[str, dict[str, list[float]]], title: str) -> Plot:
     """One panel per metric (the outer keys, in order; two panels a row), one box per algorithm
-    (the inner keys, in order) over its seeds: the median, the quartile box, whiskers to the
-    furthest value within 1.5 IQR, the values beyond as points. An algorithm without values in
-    a metric keeps its place, empty. Each algorithm has one colour in every panel (the order of
-    first appearance).
+    (family by family, :func:`~usvtool.report.figures.styles.ordered`) over its seeds: the median,
+    the quartile box, whiskers to the furthest value within 1.5 IQR, the values beyond as points. An
+    algorithm without values in a metric keeps its place, empty. Each algorithm's box in its
+    registered colour, its edge in its family's line style.
 
     Data: ``metric,algorithm,seed_index,value``, one row per value (6 decimals).
     """
     if not values:
         raise UsvError("boxplots: no metric")
-    data = {metric: {name: finite_array(f"boxplots: {metric!r}, {name!r}", v, ndim=1)
-                     for name, v in per.items()} for metric, per in values.items()}  # fmt: skip
-    names = list(dict.fromkeys(name for per in data.values() for name in per))
+    data = {metric: {name: finite_array(f"boxplots: {metric!r}, {name!r}", per[name], ndim=1)
+                     for name in ordered(per)} for metric, per in values.items()}  # fmt: skip
     rows, cols = panel_grid(len(data), 2)
-    with figure(10.0, 7.6) as fig:
+    with figure(7.2, 2.9 * rows + 0.4) as fig:
         axes = fig.subplots(rows, cols, squeeze=False).ravel()
         for ax, (metric, per) in zip(axes, data.items(), strict=False):
             box = ax.boxplot(list(per.values()), tick_labels=list(per), patch_artist=True,
                              widths=0.6, medianprops={"color": "black"},
                              flierprops={"markersize": 3})  # fmt: skip
             for patch, name in zip(box["boxes"], per, strict=True):
-                patch.set_facecolor(series_style(names.index(name))["color"])
-                patch.set_alpha(0.55)
+                look = style(name)
+                patch.set_facecolor(look.color)
+                patch.set_alpha(0.6)
+                patch.set_linestyle(look.linestyle)
             ax.set_title(metric)
-            ax.tick_params(axis="x", labelrotation=60, labelsize=7.5)
+            ax.tick_params(axis="x", labelrotation=60)
         for ax in axes[len(data):]:
             ax.set_visible(False)
         fig.suptitle(title)

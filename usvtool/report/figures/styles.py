@@ -130,6 +130,18 @@ def style(method: str) -> Style:
     return Style(colour, FALLBACK_LINESTYLE, marker, FALLBACK_FAMILY, method)
 
 
+def ordered(methods) -> list[str]:
+    """``methods`` in the registry's order (families together: the papers' optimizers, our
+    variants, the exact planners, then the controllers), unregistered ones after, as given.
+
+    >>> ordered(["astar", "mine", "iwso+s", "wso"])
+    ['wso', 'iwso+s', 'astar', 'mine']
+    """
+    rank = {name: i for i, name in enumerate(REGISTRY)}
+    methods = list(methods)
+    return sorted(methods, key=lambda m: (rank.get(m, len(rank)), methods.index(m)))
+
+
 def ship_styles(ships) -> dict[str, Style]:
     """Styles of a trace's ships, by name: the own ship (``own``) blue, the others in their order
     ``target1``, ``target2``, … (their label their own name), the fallback past the last."""

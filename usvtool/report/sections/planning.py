@@ -62,11 +62,17 @@ def chart_section(results: Results, chart: str) -> Section:
     routes = {m: r[0] for m, r in ((m, _route(j)) for m, j in first.items()) if r is not None}
     if grid is not None and routes:
         start, goal = next(iter(routes.values()))[[0, -1]]
+        where = next(d for d in (j.grid_dir() for j in first.values()) if d)
+        image = figures.preview_chart(where / "preview.png", grid) if grid.crs else None
         plot = figures.routes_on_grid(grid, routes, tuple(start), tuple(goal),
-                                      f"{chart}: routes (first seed)")  # fmt: skip
+                                      f"{chart}: routes (first seed)", image)  # fmt: skip
+        under = ("over the chart (its preview: obstacles tinted red, safety margin yellow, "
+                 "outside the chart hatched)" if image else
+                 "on the navigation grid (obstacles dark, safety margin grey)")  # fmt: skip
         section.blocks.append(Figure(f"routes-{chart}-map", f"Routes on {chart}",
-                                     "Each algorithm's route of its first seed on the "
-                                     "navigation grid (obstacles dark, safety margin grey).",
+                                     f"Each algorithm's route of its first seed {under}; line "
+                                     "and marker give the family (papers' optimizers solid, "
+                                     "our variants dashed, exact planners dash-dot).",
                                      plot.png, plot.data))  # fmt: skip
     curves = {m: [c for c in (_convergence(j) for j in js) if c] for m, js in jobs.items()}
     curves = {m: c for m, c in curves.items() if c}

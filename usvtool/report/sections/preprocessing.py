@@ -14,13 +14,6 @@ from usvtool.report.data import Results
 from usvtool.report.document import Cell, Figure, Section, Table, number
 
 
-def _preview(path) -> np.ndarray | None:
-    import cv2
-
-    image = cv2.imread(str(path), cv2.IMREAD_COLOR) if path.is_file() else None
-    return None if image is None else image[:, :, ::-1].copy()  # BGR -> RGB
-
-
 def section(results: Results) -> Section | None:
     grids = {}
     for chart in results.cases("routes"):
@@ -47,10 +40,12 @@ def section(results: Results) -> Section | None:
                      Cell(str(grid.crs) if grid.crs else "local metres")])  # fmt: skip
         if grid.crs is None:
             continue  # a synthetic map: its routes figure shows it
-        plot = figures.preprocessing(_preview(where / "preview.png"), grid, chart)
+        plot = figures.preprocessing(figures.preview_chart(where / "preview.png", grid), grid,
+                                     chart)
         s.blocks.append(Figure(f"chart-{chart}", f"Chart {chart}",
                                "Left: the chart with its obstacle (red) and margin (yellow) "
-                               "cells; right: the navigation grid.", plot.png, plot.data))
+                               "cells; right: the navigation grid (obstacle dark, margin grey, "
+                               "outside the chart hatched).", plot.png, plot.data))
     s.blocks.append(Table("charts-table", "Navigation grids",
                           "Cell size, size, and the share of obstacle and margin cells.",
                           ["chart", "source", "cell (m)", "cells", "obstacle (%)", "margin (%)",
