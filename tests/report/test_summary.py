@@ -1,0 +1,54 @@
+"""The report's first page (usvtool/report/sections/summary.py) on a hand-made results table:
+what was compared, the headline verdicts from the claims section's own, and the caveats."""
+
+from __future__ import annotations
+
+from usvtool.report.data import load
+from usvtool.report.sections import claims, summary
+from usvtool.results import Row, write_results
+
+
+def _rows():
+    rows = []
+    for i in range(6):  # iwso shorter than wso in env1: holds
+        rows.append((f"a{i}", "routes", "env1", "iwso", i, "length_m", str(700 + i)))
+        rows.append((f"b{i}", "routes", "env1", "wso", i, "length_m", str(800 + i)))
+        rows.append((f"c{i}", "routes", "env2", "iwso", i, "length_m", str(700 + i)))
+        rows.append((f"d{i}", "routes", "env2", "wso", i, "length_m", str(800 + i)))
+    for i in range(3):  # two kinds of one scene family, and a bundled scenario
+        for kind in ("head-on", "crossing", "overtaking"):
+            for m in ("udwa", "ccdwa"):
+                rows.append((f"{m}-{kind}-{i}", "runs", f"emergency/{kind}/s{i:03d}", m, 1,
+                             "closest_distance_m", "30"))
+    rows.append(("single", "runs", "emergency-head-on", "udwa", 1, "closest_distance_m", "30"))
+    for f in ("F1", "F2"):
+        for s in range(5):
+            rows.append((f"{f}-{s}", "functions", f, "iwso", s, "final_cost", "0.1"))
+    return rows
+
+
+def test_the_summary_states_what_was_compared_and_the_claims_own_verdicts(tmp_path):
+    write_results(tmp_path / "metrics.csv", [Row(*r) for r in _rows()])
+    results = load([tmp_path / "metrics.csv"])
+    s = summary.section(results)
+    assert s.id == "summary"
+    text = s.paragraphs[0]
+    assert "24 routes (2 methods on env1, env2; 6 seeds each)" in text
+    assert "19 simulated runs of 2 controllers" in text
+    assert "emergency/crossing (3), emergency/head-on (3), emergency/overtaking (3)" in text
+    assert "1 bundled scenarios" in text and "10 benchmark-function runs" in text
+    (table,) = s.tables()
+    verdicts = [v for v in claims.verdicts(results) if not v.variant]
+    assert [r[0].text for r in table.rows] == [v.claim.id for v in verdicts]
+    assert [r[-1].text for r in table.rows] == [v.verdict for v in verdicts]
+    row = next(r for r in table.rows if r[0].text == "iwso-shorter")
+    assert row[-1].text == claims.HOLDS
+    assert row[1].text == "iwso vs wso: 710.873 vs 847.487 m; 927.925 vs 1044.97 m"
+    # both cases better (p = 2 / 924 each, Holm over the table's two tested p: 4 / 924)
+    assert row[2].text.startswith("2/2 better; weakest env")
+    # every identical closest distance: ties, inconclusive
+    closest = next(r for r in table.rows if r[0].text == "udwa-larger-closest-distance")
+    assert closest[-1].text == claims.INCONCLUSIVE
+    caveats = s.paragraphs[-1]
+    assert caveats.startswith("Caveats.")
+    assert "5 runs per function and algorithm against the paper's 25" in caveats

@@ -1,0 +1,97 @@
+"""The report's first page: what was compared, the headline verdicts of the papers' claims (for
+the papers' own methods; :func:`usvtool.report.sections.claims.verdicts`, computed once) and
+the caveats, what differs from the papers' set-ups."""
+
+from __future__ import annotations
+
+from collections import Counter
+
+from usvtool.report.data import Results
+from usvtool.report.document import Cell, Section, Table
+from usvtool.report.papers import IWSO_DWA_TABLE_1, PAPERS
+from usvtool.report.sections import claims
+
+
+def _families(results: Results) -> dict[str, int]:
+    """Scenes of each scene family's kind (``ENTRY/KIND``) among the runs."""
+    scenes = {(j.case.rpartition("/")[0], j.case) for j in results.select("runs")
+              if j.case.count("/") == 2}  # fmt: skip
+    return dict(sorted(Counter(kind for kind, _ in scenes).items()))
+
+
+def _range(counts) -> str:
+    low, high = min(counts), max(counts)
+    return f"{low}" if low == high else f"{low}-{high}"
+
+
+def compared(results: Results) -> str:
+    """One paragraph: the papers, and our routes, runs and functions by method and case."""
+    parts = []
+    for kind, what in (("routes", "routes"), ("functions", "benchmark-function runs")):
+        jobs = results.select(kind)
+        if not jobs:
+            continue
+        per = Counter((j.case, j.method) for j in jobs)
+        parts.append(f"{len(jobs)} {what} ({len(results.methods(kind))} methods on "
+                     f"{', '.join(results.cases(kind))}; {_range(per.values())} seeds each)")
+    runs = results.select("runs")
+    if runs:
+        families = _families(results)
+        single = {j.case for j in runs if "/" not in j.case}
+        kinds = ", ".join(f"{k} ({n})" for k, n in families.items())
+        parts.append(f"{len(runs)} simulated runs of {len(results.methods('runs'))} controllers: "
+                     f"the scene families' kinds (scenes) {kinds}" if families else
+                     f"{len(runs)} simulated runs of {len(results.methods('runs'))} controllers")
+        if single:
+            parts[-1] += f", and {len(single)} bundled scenarios (one run each, illustrations)"
+    papers = "; ".join(p.citation for p in PAPERS.values())
+    return (f"Compared: the claims and published figures of {len(PAPERS)} papers ({papers}) "
+            f"against {'; '.join(parts) or 'no runs'}.")
+
+
+def caveats(results: Results, verdicts: list[claims.Verdict]) -> list[str]:
+    """What differs from the papers' set-ups, in short sentences."""
+    out = [
+        "Maps: env1, env2 and grid20 are rebuilt from the papers' descriptions "
+        "(charts/make_synthetic.py; the papers' figures are not in their texts): compare "
+        "orders and trends, not values.",
+        "Scales: the UDWA emergencies and wind fields run a 15 m USV (udwa-usv) for minutes, "
+        "where the paper's wind runs last about an hour; the IWSO-DWA encounters a 2.5 m one "
+        "(iwso-dwa-usv); the Imazu cases are set at a USV scale (docs/families.md).",
+        "The papers give one figure per method and case (one run, or they do not say); we "
+        "judge every claim over seeds or seeded scenes, the encounter claims over the scene "
+        "families, not over the bundled single scenarios.",
+    ]
+    functions = Counter((j.case, j.method) for j in results.select("functions"))
+    if functions and IWSO_DWA_TABLE_1.runs:
+        out.append(f"Benchmark functions: {_range(functions.values())} runs per function and "
+                   f"algorithm against the paper's {IWSO_DWA_TABLE_1.runs}, too few for Holm's "
+                   "correction over the table to find a difference.")
+    for v in verdicts:
+        if v.verdict == claims.UNTESTABLE:
+            out.append(f"{v.claim.id} is not testable: {v.reason}.")
+    return out
+
+
+def section(results: Results) -> Section:
+    verdicts = [v for v in claims.verdicts(results) if not v.variant]
+    counts = Counter(v.verdict for v in verdicts)
+    s = Section("summary", "Summary")
+    s.paragraphs.append(compared(results))
+    s.paragraphs.append(
+        f"Of the papers' {len(verdicts)} claims, for their own methods: "
+        + ", ".join(f"{counts[k]} {k}" for k in claims.VERDICTS if counts[k]) + " "
+        "(the claims section gives the tests, p and effects; docs/statistics.md the rules).")
+    s.blocks.append(Table(
+        "summary-verdicts", "The papers' claims: headline verdicts",
+        "The paper's figure (its method against its first rival), ours: the medians and the "
+        "effect (r paired by scene, δ Cliff's delta; > 0 better) with its 95 % bootstrap "
+        "interval, for a claim of several comparisons the weakest, for an absolute claim the "
+        "runs meeting it with the 95 % Clopper-Pearson interval; the verdict after Holm's "
+        "correction across the claims table.",
+        ["claim", "paper's figure", "ours", "verdict"],
+        [[Cell(v.claim.id), Cell(claims.paper_figure(v.claim), "paper"),
+          Cell(claims.headline(v)), Cell(v.verdict, claims.CSS[v.verdict])]
+         for v in verdicts]))  # fmt: skip
+    s.paragraphs.append("Caveats. " + " ".join(caveats(results, verdicts)))
+    return s
