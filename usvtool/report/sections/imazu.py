@@ -1,0 +1,222 @@
+"""The report's Imazu section: the 22 encounters of the Imazu problem (Imazu 1987, as tabulated
+by Sawada, Sato and Majima 2021, J. Mar. Sci. Technol. 26, Table 4; docs/families.md) with
+every controller that ran them: one case x controller grid figure and a table of each run's
+arrival, collision, closest distance and COLREGs counts, with the totals per controller.
+
+The runs are those of the ``imazu`` scene family (their ``job.json``'s ``scene.family``), whatever
+the pipeline's entry is named; a case is the family's kind (``01`` ... ``22``). The scale the
+cases ran at is read from the runs' own files, never from the family's defaults: speeds, the
+targets' classes, ranges and time to CPA from the trace's first step (:func:`usvtool.encounter
+.assess`), lengths and the goal from the events' ``run`` object, the duration from the scenario
+the job wrote. docs/report-imazu.md says what each cell means.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from usvtool.encounter import CLASS_NAMES, assess
+from usvtool.pipeline import split_family_case
+from usvtool.report.data import JobResults, Results
+from usvtool.report.document import APPENDIX, Cell, Figure, Section, Table
+from usvtool.report.figures.imazu import Cell as GridCell
+from usvtool.report.figures.imazu import imazu_grid, outcome
+from usvtool.report.sections.encounters import run_facts, run_files, thresholds_table
+from usvtool.trace import OWN
+from usvtool.yamlfile import read_yaml
+
+FAMILY = "imazu"
+#: The COLREGs counts of a run (usvtool/metrics/tabulate.py, docs/colregs.md "Counting").
+COUNTS = ("compliant", "compliant_excused", "noncompliant", "not_judged")
+#: Short names of the encounter classes at the start, for the case labels.
+SHORT = {"head-on": "HO", "crossing-give-way": "GW", "crossing-stand-on": "SO",
+         "overtaking": "OT", "overtaken": "OD", "none": "-"}  # fmt: skip
+
+
+@dataclass(frozen=True)
+class Start:
+    """A case's situation at the trace's first step: the own ship's speed, each target's class,
+    speed, range and CPA (distance, time), the distance to the goal, every length, the
+    scenario's duration."""
+
+    own_speed: float
+    classes: tuple[str, ...]
+    speeds: tuple[float, ...]
+    ranges: tuple[float, ...]
+    dcpa: tuple[float, ...]
+    tcpa: tuple[float, ...]
+    goal_m: float
+    own_length: float
+    lengths: tuple[float, ...]
+    duration: float | None
+
+
+def imazu_runs(results: Results) -> dict[str, dict[str, JobResults]]:
+    """The Imazu family's runs: case (``ENTRY/KIND/sNNN``) -> controller -> the run of its
+    lowest seed."""
+    runs: dict[str, dict[str, JobResults]] = {}
+    for job in results.select("runs"):
+        if (job.config.get("scene") or {}).get("family") != FAMILY:
+            continue
+        if split_family_case(job.case) is None:
+            continue
+        mine = runs.setdefault(job.case, {})
+        if job.method not in mine or (job.seed or 0) < (mine[job.method].seed or 0):
+            mine[job.method] = job
+    return dict(sorted(runs.items()))
+
+
+def start(job: JobResults) -> Start | None:
+    """The case's situation at the start of the run ``job`` (None without its files)."""
+    files = run_files(job)
+    if files is None:
+        return None
+    trace, events, where = files
+    run = run_facts(events, where)
+    i = trace.ships.index(OWN)
+    others = [k for k in range(len(trace.ships)) if k != i]
+    own_xy = np.array([trace.x[0, i], trace.y[0, i]])
+    at = assess(own_xy, trace.heading[0, i], trace.speed[0, i],
+                np.column_stack([trace.x[0, others], trace.y[0, others]]),
+                trace.heading[0, others], trace.speed[0, others])  # fmt: skip
+    lengths = {s["name"]: float(s["length"]) for s in run["ships"]}
+    scenario = run.get("scenario_file")
+    duration = None
+    if scenario and (where.parent / scenario).is_file():
+        duration = (read_yaml(where.parent / scenario).get("sim") or {}).get("duration")
+    return Start(float(trace.speed[0, i]), tuple(CLASS_NAMES[c] for c in at.cls),
+                 tuple(float(trace.speed[0, k]) for k in others), tuple(map(float, at.range)),
+                 tuple(map(float, at.dcpa)), tuple(map(float, at.tcpa)),
+                 float(np.hypot(*(np.asarray(run["goal"], float) - own_xy))),
+                 lengths[OWN], tuple(lengths[trace.ships[k]] for k in others),
+                 None if duration is None else float(duration))  # fmt: skip
+
+
+def counts(job: JobResults) -> tuple[int, int, int, int]:
+    """The run's COLREGs counts (:data:`COUNTS`; 0 where the table has none)."""
+    return tuple(int(job.number(c) or 0) for c in COUNTS)  # type: ignore[return-value]
+
+
+def grid_cell(job: JobResults) -> GridCell:
+    arrived, collided = bool(job.number("arrived")), bool(job.text("collision"))
+    c = counts(job)
+    return GridCell(outcome(arrived, collided, c), job.number("closest_distance_m"), c)
+
+
+def _span(values, unit: str, digits: int = 0) -> str:
+    """``lo-hi unit`` (or one value) of the values."""
+    lo, hi = min(values), max(values)
+    text = f"{lo:.{digits}f}" if round(lo, digits) == round(hi, digits) else \
+        f"{lo:.{digits}f}-{hi:.{digits}f}"
+    return f"{text} {unit}"
+
+
+def scale_text(starts: list[Start]) -> str:
+    """The scale the cases ran at, from their starts."""
+    speeds = sorted({round(v, 1) for s in starts for v in s.speeds})
+    durations = {s.duration for s in starts if s.duration is not None}
+    parts = [
+        f"own ship {_span([s.own_length for s in starts], 'm')} long at "
+        f"{_span([s.own_speed for s in starts], 'm/s', 1)}, its goal "
+        f"{_span([s.goal_m for s in starts], 'm')} ahead",
+        f"targets {_span([v for s in starts for v in s.lengths], 'm')} long at "
+        f"{' or '.join(f'{v:.1f}' for v in speeds)} m/s",
+        f"at the start every target {_span([r for s in starts for r in s.ranges], 'm')} off, "
+        f"its CPA {_span([t for s in starts for t in s.tcpa], 's', 1)} ahead at "
+        f"{_span([d for s in starts for d in s.dcpa], 'm', 2)}",
+    ]
+    if durations:
+        parts.append(f"runs end at the goal or after {_span(sorted(durations), 's')}")
+    return "; ".join(parts)
+
+
+def _run_text(job: JobResults) -> Cell:
+    """A table cell: failure first, closest distance, the COLREGs counts."""
+    cell = grid_cell(job)
+    c, e, n, j = cell.counts
+    distance = "-" if cell.closest_m is None else f"{cell.closest_m:.1f} m"
+    head = {"collided": f"collided ({job.text('collision')}); ",
+            "not-arrived": "did not arrive; "}.get(cell.outcome, "")  # fmt: skip
+    css = {"collided": "fails", "not-arrived": "fails", "compliant": "holds"}.get(cell.outcome, "")
+    return Cell(f"{head}{distance}; {c}/{e}/{n}/{j}", css)
+
+
+def totals(runs: dict[str, dict[str, JobResults]], controller: str) -> dict[str, int]:
+    jobs = [r[controller] for r in runs.values() if controller in r]
+    split = np.sum([counts(j) for j in jobs], axis=0) if jobs else np.zeros(4, int)
+    return {"runs": len(jobs), "arrived": sum(bool(j.number("arrived")) for j in jobs),
+            "collided": sum(bool(j.text("collision")) for j in jobs),
+            **{name: int(v) for name, v in zip(COUNTS, split, strict=True)}}  # fmt: skip
+
+
+def _label(case: str) -> str:
+    return split_family_case(case)[1]
+
+
+def section(results: Results) -> Section | None:
+    runs = imazu_runs(results)
+    if not runs:
+        return None
+    controllers = sorted({c for r in runs.values() for c in r},
+                         key=lambda m: results.methods("runs").index(m))  # fmt: skip
+    cases = list(runs)
+    starts = {case: start(next(iter(r.values()))) for case, r in runs.items()}
+    classes = {case: " ".join(SHORT.get(c, c) for c in s.classes) if s else "?"
+               for case, s in starts.items()}  # fmt: skip
+    labels = [f"{_label(case)} {classes[case]}" for case in cases]
+    sums = {c: totals(runs, c) for c in controllers}
+    headers = [f"{c}\n{s['arrived']}/{s['runs']} arrived\n{s['collided']} collided"
+               for c, s in sums.items()]  # fmt: skip
+    cells = {(case, c): grid_cell(job) for case, r in runs.items() for c, job in r.items()}
+    known = [s for s in starts.values() if s is not None]
+    scale = scale_text(known) if known else "the runs' files are missing"
+    seeds = sorted({j.seed for r in runs.values() for j in r.values() if j.seed is not None})
+    top = Section("imazu", "The Imazu problem")
+    top.paragraphs.append(
+        f"The {len(cases)} encounters of the Imazu problem (Imazu 1987; as tabulated by Sawada, "
+        "Sato and Majima 2021, J. Mar. Sci. Technol. 26, Table 4; docs/families.md says how the "
+        "cases were read from two public implementations of that table), a standard benchmark "
+        f"of multi-ship collision avoidance, run with every controller ({', '.join(controllers)}"
+        f"; seed {', '.join(map(str, seeds)) or 'none'}). Every target meets the own ship at one "
+        f"point if neither gives way. At the scale run here (read from the runs): {scale}. "
+        f"Classes at the start: HO head-on, GW crossing give-way, SO crossing stand-on, OT "
+        "overtaking.")
+    plot = imazu_grid(cases, labels, controllers, cells, headers)
+    top.blocks.append(Figure(
+        "imazu-grid", "The Imazu cases with every controller",
+        "Each cell one run: its outcome (colour; the failures hatched) and its closest centre "
+        "distance to a target. A run that did not arrive is a failure, never compliant; an "
+        "arrived run's colour is its worst encounter.", plot.png, plot.data))
+    rows = [[Cell(_label(case)), Cell(classes[case])]
+            + [_run_text(runs[case][c]) if c in runs[case] else Cell("no run")
+               for c in controllers] for case in cases]  # fmt: skip
+    total_cells = [Cell("all"), Cell(f"{len(cases)} cases")]
+    for c in controllers:
+        s = sums[c]
+        encounters = sum(s[k] for k in COUNTS)
+        total_cells.append(Cell(
+            f"arrived {s['arrived']}/{s['runs']}; collided {s['collided']}; compliant "
+            f"{s['compliant']}/{encounters} encounters (excused {s['compliant_excused']}, "
+            f"non-compliant {s['noncompliant']}, not judged {s['not_judged']})",
+            "fails" if s["collided"] or s["arrived"] < s["runs"] else ""))
+    rows.append(total_cells)
+    jobs = [j for r in runs.values() for j in r.values()]
+    thresholds = thresholds_table(jobs)
+    top.blocks.append(Table(
+        "imazu-table", "The Imazu cases: arrival, closest distance and COLREGs",
+        "Per run: a failure first (a collision, naming what was hit, or no arrival), the "
+        "closest centre distance to a target, then its encounters compliant / compliant only "
+        "through an excused Rule 2 departure / non-compliant / not judged (every encounter of "
+        "a failed run is not judged; docs/colregs.md, Counting). The last row totals each "
+        "controller, compliant against all its encounters."
+        + (" The thresholds of the verdicts: the appendix's table of the Imazu thresholds."
+           if thresholds else ""),
+        ["case", "targets", *controllers], rows))
+    if thresholds is not None:
+        top.blocks.append(replace(
+            thresholds, id="imazu-thresholds", title="The thresholds of the Imazu verdicts",
+            caption=thresholds.caption.replace("the tables above", "the Imazu cases"),
+            placement=APPENDIX))
+    return top
