@@ -211,7 +211,9 @@ def format_time(ns) -> list[str]:
 # --- files ----------------------------------------------------------------------------------
 
 
-def _suffix(path, option: str = "") -> str:
+def check_suffix(path, option: str = "") -> str:
+    """The suffix of a tracks file (.parquet or .csv); one line naming ``option`` and the path
+    for another."""
     suffix = Path(path).suffix.lower()
     if suffix not in SUFFIXES:
         raise UsvError(f"{option + ' ' if option else ''}{path}: a tracks file is .parquet or "
@@ -244,7 +246,7 @@ def write_tracks(path: str | os.PathLike, tracks: Tracks) -> None:
 
     from usvtool.atomic import atomic_path
 
-    suffix = _suffix(path)
+    suffix = check_suffix(path)
     table = to_arrow(tracks)
     with atomic_path(path) as tmp:
         if suffix == ".parquet":
@@ -266,7 +268,7 @@ def read_tracks(path: str | os.PathLike) -> Tracks:
     """Read and check a tracks file (module docstring); one line naming the file, line or row,
     and column at fault."""
     check_input_file(path)
-    if _suffix(path) == ".parquet":
+    if check_suffix(path) == ".parquet":
         table = _read_parquet(path)
         where = lambda row: f"row {row + 1}"  # noqa: E731
     else:

@@ -31,6 +31,7 @@ SUBCOMMANDS = {
     "report": ("usvtool.cli.report", "Write the comparison report (HTML and PDF) of results."),
     "batch": ("usvtool.cli.batch", "Run a pipeline's jobs in a local pool, resumable."),
     "compare": ("usvtool.cli.compare", "Regression report: a results table against a baseline."),
+    "ais": ("usvtool.cli.ais", "Real traffic: AIS into tracks, encounters, scenarios."),
 }
 
 
