@@ -161,10 +161,10 @@ def plots(drawn) -> dict[str, F.Plot]:
 #: square and 0.8 in more, 5.665 in; convergence 7.2 x 4.4; boxplots two panels in one row,
 #: 2.9 + 0.4 in; snapshots three panels of (7.165 - 0.6) / 3 in and 0.25 in each, 0.9 in more,
 #: 3.338 in; states 7.2 x 5.6; nearest 7.2 x 3.9; wind (H3's) 8.6 x 7.0; preprocessing two
-#: panels of (7.165 - 0.5) / 2 in, a square grid, and 1.3 in, 4.633 in.
+#: panels of (7.165 - 0.5) / 2 in, a square grid, and 1.1 in, 4.433 in.
 SIZES = {"routes": (1074, 849), "routes_chart": (1074, 849), "convergence": (1080, 660),
          "boxplots": (1080, 495), "snapshots": (1074, 500), "states": (1080, 840),
-         "nearest": (1080, 585), "wind": (1290, 1050), "preprocessing": (1074, 694)}  # fmt: skip
+         "nearest": (1080, 585), "wind": (1290, 1050), "preprocessing": (1074, 664)}  # fmt: skip
 
 
 @pytest.mark.parametrize("name", sorted(SIZES))
@@ -289,7 +289,7 @@ def test_a_preview_png_gives_its_map_over_the_grid_and_its_outside(tmp_path):
 
 def test_a_long_route_is_shown_in_its_reach_not_the_whole_chart():
     """A 1 km route east across the north of a 10 x 10 km chart: the view is the route's box
-    padded by 80 m each side (8 % of 1 km), widened to a width / height of 3: 1160 x 386.7 m,
+    padded by 80 m each side (8 % of 1 km), widened to a width / height of 4: 1160 x 290 m,
     shifted inside the chart's northern edge; a wide view, so the legend goes below."""
     grid = Grid(np.zeros((100, 100), np.uint8), Affine(100.0, 0, 0, 0, -100.0, 10_000.0))
     captured = capture_figures(lambda: F.routes_on_grid(
@@ -297,7 +297,7 @@ def test_a_long_route_is_shown_in_its_reach_not_the_whole_chart():
         "reach"))  # fmt: skip
     ax = captured[0].axes[0]
     assert ax.get_xlim() == pytest.approx((3920, 5080))
-    assert ax.get_ylim() == pytest.approx((10_000 - 1160 / 3, 10_000))
+    assert ax.get_ylim() == pytest.approx((10_000 - 1160 / 4, 10_000))
 
 def test_routes_data_are_every_vertex_then_start_and_goal(plots):
     got = rows(plots["routes"])
@@ -330,9 +330,10 @@ def test_a_big_grid_draws_fast_and_keeps_a_one_cell_obstacle_line():
                             (500010, 3994000), (507990, 3994000), "big")  # fmt: skip
     seconds = time.perf_counter() - begin
     print(f"routes_on_grid on 3000 x 4000 cells: {seconds:.2f} s, {len(plot.png)} bytes")
-    # the route's box padded by 638.4 m, 9256.8 x 1276.8 m, widened to 9256.8 x 3085.6 (aspect
-    # 3) and clipped to the chart's 8 km: 8000 x 3085.6 m, printed 6.465 x 2.493 in, 1.5 in more
-    assert pixels(plot.png).shape == (599, 1074, 3)
+    # the route's box padded by 638.4 m, 9256.8 x 1276.8 m, widened to 9256.8 x 2314.2 (aspect
+    # 4) and clipped to the chart's 8 km: 8000 x 2314.2 m, printed 6.465 x 1.870 in, 1.3 in more
+    # is 3.170 in, under the least height of 3.4 in
+    assert pixels(plot.png).shape == (510, 1074, 3)
 
 
 # --- convergence and box plots ----------------------------------------------------------------

@@ -32,9 +32,11 @@ GOAL = {"marker": "*", "color": "#e00000", "markersize": 13, "linestyle": "none"
 VIEW_PAD = 0.08
 #: The routes' view is widened to a width / height in this range (a map strip along a long
 #: route would leave no room to see the chart around it; a tall one would not fit the page).
-ASPECT = (0.6, 3.0)
+ASPECT = (0.6, 4.0)
 #: Views at least this much wider than high put the legend under the map, others beside it.
 WIDE = 1.6
+#: The tallest map (inches): a taller view is drawn narrower.
+MAX_MAP_HEIGHT = 6.0
 #: Markers along a route: each optimizer's waypoints, at most about this many on a route.
 MARKS = 12
 
@@ -69,8 +71,8 @@ def routes_on_grid(grid: Grid, routes: dict[str, np.ndarray], start, goal, title
     aspect = (right - left) / (top - bottom)
     wide = aspect >= WIDE
     map_w = PRINT_WIDTH_IN - (0.7 if wide else 2.3)
-    height = map_w / aspect + (1.5 if wide else 0.8)
-    halo = [patheffects.withStroke(linewidth=3.0, foreground="white", alpha=0.8)]
+    height = min(map_w / aspect, MAX_MAP_HEIGHT) + (1.3 if wide else 0.8)
+    halo = [patheffects.withStroke(linewidth=2.8, foreground="white", alpha=0.75)]
     with figure(PRINT_WIDTH_IN, max(height, 3.4)) as fig:
         ax = fig.add_subplot()
         if chart is None:
@@ -114,7 +116,7 @@ def preprocessing(chart: ChartImage | None, grid: Grid, title: str) -> Plot:
     panels = 1 if chart is None else 2
     side = (PRINT_WIDTH_IN - 0.5) / panels
     aspect = (right - left) / (top - bottom)
-    with figure(PRINT_WIDTH_IN, min(side / aspect, 7.5) + 1.3) as fig:
+    with figure(PRINT_WIDTH_IN, min(side / aspect, MAX_MAP_HEIGHT) + 1.1) as fig:
         axes = fig.subplots(1, panels, squeeze=False, sharex=True, sharey=True)[0]
         if chart is not None:
             draw_chart(axes[0], chart, grid.bounds)

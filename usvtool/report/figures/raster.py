@@ -37,6 +37,8 @@ PREVIEW_WATER = (212, 234, 238)
 OUTSIDE_NAME = "outside the chart (no data)"
 #: Above this extent (m) map axes are labelled in kilometres.
 KM_ABOVE = 5000.0
+#: Tick intervals on a map axis, at most.
+TICKS = 5
 _RANK = np.zeros(256, np.uint8)  # display priority by cell value: obstacle > margin > navigable
 _RANK[[NAVIGABLE, MARGIN, OBSTACLE]] = [0, 1, 2]
 _RANK_RGB = np.array([CLASS_RGB[NAVIGABLE], CLASS_RGB[MARGIN], CLASS_RGB[OBSTACLE]], np.uint8)
@@ -237,8 +239,9 @@ def share(cells: np.ndarray, value: int) -> float:
 
 def map_axes(ax, span: float, crs=None) -> None:
     """Equal-aspect axes labelled in map metres, or kilometres when ``span`` (the larger extent
-    shown, m) exceeds :data:`KM_ABOVE`; easting and northing with the CRS named when given."""
-    from matplotlib.ticker import FuncFormatter
+    shown, m) exceeds :data:`KM_ABOVE`, at most :data:`TICKS` + 1 round ticks a side (six-digit
+    eastings do not run into each other); easting and northing with the CRS named when given."""
+    from matplotlib.ticker import FuncFormatter, MaxNLocator
 
     ax.set_aspect("equal", adjustable="box")
     ax.grid(False)
@@ -253,5 +256,6 @@ def map_axes(ax, span: float, crs=None) -> None:
         ax.set_ylabel(f"northing ({unit})")
     scale = 1000.0 if km else 1.0
     formatter = FuncFormatter(lambda v, _: fixed([v / scale], 3)[0].rstrip("0").rstrip("."))
-    ax.xaxis.set_major_formatter(formatter)
-    ax.yaxis.set_major_formatter(formatter)
+    for axis in (ax.xaxis, ax.yaxis):
+        axis.set_major_locator(MaxNLocator(nbins=TICKS, steps=[1, 2, 2.5, 5, 10]))
+        axis.set_major_formatter(formatter)
