@@ -306,8 +306,8 @@ def families_table(results: Results) -> Table | None:
                  "Each kind's seeded scenes (docs/families.md), the same scenes for every "
                  "controller; runs = scenes x seeds. Outcomes: runs; COLREGs: encounters "
                  "summed over the runs. " + COUNTS + " Closest: the smallest distance to any "
-                 "ship (m), median (IQR width) over the runs, collided ones included. Thresholds: "
-                 "the verdicts' table below.",
+                 "ship (m), median (IQR width) over the runs, collided ones included. The "
+                 "thresholds: the next table.",
                  ["family/kind", "scenes", "controller", *TALLY_COLUMNS, "closest (m)"], rows)
 
 
@@ -330,8 +330,8 @@ def compliance_table(results: Results) -> Table | None:
     return Table("colregs-compliance", "Bundled scenarios: outcomes and COLREGs per controller",
                  "The bundled scenarios with encounters (illustrated examples: one run per "
                  "seed; the claims rest on the scene families). " + COUNTS + " Rules failed and "
-                 "excused: in the judged encounters (docs/colregs.md). Thresholds: the "
-                 "verdicts' table below.",
+                 "excused: in the judged encounters (docs/colregs.md). The thresholds: the "
+                 "table before.",
                  ["scenario", "controller", *TALLY_COLUMNS, "rules failed", "rules excused"],
                  rows)
 
@@ -431,7 +431,7 @@ def thresholds_table(jobs: list[JobResults]) -> Table | None:
         rows.append([Cell(label), Cell(text + (f" {unit}" if unit and not scaled else "")),
                      Cell(key)])  # fmt: skip
     return Table("colregs-thresholds", "The thresholds of the encounters and verdicts",
-                 f"As the events files of the {len(jobs)} runs of the tables above record them "
+                 f"As the events files of the {len(jobs)} runs of the tables beside record them "
                  "(trace.events.json's thresholds; every distinct value; L = the own ship's "
                  "length). The rules and their sources: docs/colregs.md.",
                  ["threshold", "value", "events key"], rows)
@@ -518,8 +518,8 @@ def section(results: Results) -> Section | None:
             "The results table predates the split COLREGs counts (compliant, excused, "
             "non-compliant, not judged): they show as '-'. usvtool batch writes them again "
             "over the same runs (docs/batch.md).")
-    for table in (families_table(results), compliance_table(results),
-                  thresholds_table(counted), encounter_table(results, scenarios)):
+    for table in (families_table(results), thresholds_table(counted),
+                  compliance_table(results), encounter_table(results, scenarios)):
         if table is not None:
             top.blocks.append(table)
     top.subsections = [scenario_section(results, s) for s in scenarios]
