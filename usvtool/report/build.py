@@ -24,9 +24,12 @@ from usvtool.report.sections import (
     benchmark_functions,
     claims,
     encounters,
+    imazu,
     methods,
     planning,
     preprocessing,
+    summary,
+    wind,
 )
 
 TITLE = "usvtool: path planning and collision avoidance, compared with the papers"
@@ -74,8 +77,9 @@ class ReportResult:
 
 
 #: The section builders, in reading order.
-BUILDERS = (claims.section, planning.section, benchmark_functions.section, encounters.section,
-            preprocessing.section, methods.section)  # fmt: skip
+BUILDERS = (summary.section, claims.section, planning.section, benchmark_functions.section,
+            encounters.section, imazu.section, wind.section, preprocessing.section,
+            methods.section)  # fmt: skip
 
 
 def sections(results, workers: int = 1) -> list[Section]:
