@@ -21,6 +21,7 @@ are not AIS sentences, sentences with a bad checksum and messages pyais cannot d
 
 from __future__ import annotations
 
+import io
 import re
 from datetime import datetime, timezone
 
@@ -116,11 +117,10 @@ def read(path) -> Fixes:
     positions: list[tuple] = []
     statics: list[tuple] = []
     pending: dict[tuple, tuple[list, int]] = {}  # (talker, channel, seq id): fragments, time
-    with open_binary(path) as stream:
+    with io.TextIOWrapper(open_binary(path), encoding="latin-1", newline="") as stream:
         for number, raw in enumerate(stream, start=1):
-            try:
-                line = raw.decode("ascii").strip()
-            except UnicodeDecodeError:
+            line = raw.strip()
+            if not line.isascii():
                 counts["not_ais"] += 1
                 continue
             if not line:
