@@ -163,6 +163,9 @@ def test_bootstrap_is_seeded_and_brackets_the_effect():
     c = compare(method, rival, paired=False, better="lower", seed=4)
     assert a == b and (a.low, a.high) != (c.low, c.high)
     assert a.low < a.effect < a.high and a.shift_low < a.shift < a.shift_high
+    # without the shift: the same test and effect, the same bootstrap draws
+    d = compare(method, rival, paired=False, better="lower", seed=3, shift=False)
+    assert d.shift is None and (d.p, d.effect, d.low, d.high) == (a.p, a.effect, a.low, a.high)
 
 
 def test_resampled_signed_rank_r_matches_expansion():

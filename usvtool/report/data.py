@@ -83,6 +83,9 @@ class Results:
     jobs: list[JobResults]
     tables: list[Path]
     order: tuple[str, ...] = ()
+    #: The jobs by (kind, method), made by :meth:`group` on its first call.
+    _by_method: dict[tuple[str, str], list[JobResults]] = field(
+        default_factory=dict, init=False, repr=False, compare=False)
 
     def select(
         self, kind: str, case: str | None = None, method: str | None = None
@@ -99,8 +102,10 @@ class Results:
 
     def group(self, kind: str, group: str, method: str) -> list[JobResults]:
         """The jobs of (kind, method) in ``group`` (:func:`in_group`), by (case, seed)."""
-        jobs = [j for j in self.jobs if j.kind == kind and j.method == method
-                and in_group(j.case, group)]  # fmt: skip
+        if not self._by_method:
+            for j in self.jobs:
+                self._by_method.setdefault((j.kind, j.method), []).append(j)
+        jobs = [j for j in self._by_method.get((kind, method), ()) if in_group(j.case, group)]
         return sorted(jobs, key=pairing_key)
 
     def pairs(self, kind: str, group: str, method: str,

@@ -50,7 +50,7 @@ class Comparison:
     test and its two-sided uncorrected p (None when untestable: a side empty, or every value
     tied, every paired difference zero), the effect (> 0: the method better) with its 95 %
     bootstrap interval, and the Hodges-Lehmann shift with its interval (None when a value is
-    infinite)."""
+    infinite, or not asked for)."""
 
     n: tuple[int, int]
     median: tuple[float, float]
@@ -67,9 +67,10 @@ class Comparison:
 
 
 def compare(method: Sequence[float], rival: Sequence[float], *, paired: bool, better: str,
-            seed: int = 0, resamples: int = 2000) -> Comparison:  # fmt: skip
+            seed: int = 0, resamples: int = 2000, shift: bool = True) -> Comparison:  # fmt: skip
     """Compare ``method``'s values with ``rival``'s (paired: element i of each is the same
-    scene); ``better``: ``"lower"`` or ``"higher"``."""
+    scene); ``better``: ``"lower"`` or ``"higher"``; ``shift``: also the Hodges-Lehmann shift
+    (most of the bootstrap's work)."""
     if better not in BETTER:
         raise ValueError(f"better must be one of {BETTER}, not {better!r}")
     x, y = np.asarray(method, float), np.asarray(rival, float)
@@ -83,7 +84,7 @@ def compare(method: Sequence[float], rival: Sequence[float], *, paired: bool, be
     # Oriented so that larger is better: the statistics below need no direction.
     a, b = sign * x, sign * y
     rng = np.random.default_rng(seed)
-    finite = bool(np.isfinite(a).all() and np.isfinite(b).all())
+    finite = shift and bool(np.isfinite(a).all() and np.isfinite(b).all())
     if paired:
         d = _improvement(a, b)
         test, name, p = WILCOXON, PAIRED_R, _wilcoxon_p(d)
@@ -104,14 +105,14 @@ def compare(method: Sequence[float], rival: Sequence[float], *, paired: bool, be
             shifts = (a[:, None] - b[None, :]).ravel(), np.ones((1, a.size * b.size)), \
                 (ca[:, :, None] * cb[:, None, :]).reshape(resamples, -1)
     low, high = np.percentile(boot, [2.5, 97.5])
-    shift = (None, None, None)
+    hl = (None, None, None)
     if finite:
         values, weights, resampled = shifts
         estimate = _weighted_median(values, weights)[0]
         low_s, high_s = np.percentile(_weighted_median(values, resampled), [2.5, 97.5])
-        shift = (float(estimate), float(low_s), float(high_s))
+        hl = (float(estimate), float(low_s), float(high_s))
     return Comparison((x.size, y.size), (median(x), median(y)), (iqr(x), iqr(y)), test, p,
-                      name, effect, float(low), float(high), *shift)  # fmt: skip
+                      name, effect, float(low), float(high), *hl)  # fmt: skip
 
 
 def holm(p_values: Sequence[float | None]) -> list[float | None]:
@@ -194,10 +195,8 @@ def _wilcoxon_p(d: np.ndarray) -> float | None:
 
 def _counts(rng: np.random.Generator, n: int, resamples: int) -> np.ndarray:
     """How often each of n values is drawn in each resample: (resamples, n)."""
-    draws = rng.integers(0, n, size=(resamples, n))
-    counts = np.zeros((resamples, n))
-    np.add.at(counts, (np.arange(resamples)[:, None], draws), 1.0)
-    return counts
+    draws = rng.integers(0, n, size=(resamples, n)) + n * np.arange(resamples)[:, None]
+    return np.bincount(draws.ravel(), minlength=resamples * n).reshape(resamples, n).astype(float)
 
 
 def _signed_rank_r(d: np.ndarray, counts: np.ndarray) -> np.ndarray:
@@ -226,10 +225,14 @@ def _walsh_weights(counts: np.ndarray) -> np.ndarray:
 
 def _weighted_median(values: np.ndarray, weights: np.ndarray) -> np.ndarray:
     """The median of each row's multiset (``values`` repeated ``weights`` times, integer
-    weights): the mean of its order statistics ceil(T/2) and floor(T/2) + 1."""
+    weights): the mean of its order statistics ceil(T/2) and floor(T/2) + 1, found by one
+    search in the rows' cumulative weights laid end to end (row i shifted past row i - 1)."""
     order = np.argsort(values, kind="stable")
     v, cum = values[order], np.cumsum(weights[:, order], axis=1)
     total = cum[:, -1]
-    first = np.argmax(cum >= np.floor((total + 1) / 2)[:, None], axis=1)
-    second = np.argmax(cum >= (np.floor(total / 2) + 1)[:, None], axis=1)
-    return (v[first] + v[second]) / 2.0
+    base = np.concatenate([[0.0], np.cumsum(total + 1)[:-1]])
+    flat = (cum + base[:, None]).ravel()
+    start = np.arange(cum.shape[0]) * cum.shape[1]
+    at = [np.searchsorted(flat, k + base) - start
+          for k in (np.floor((total + 1) / 2), np.floor(total / 2) + 1)]
+    return (v[at[0]] + v[at[1]]) / 2.0

@@ -105,9 +105,9 @@ _ISSA_VS_PSO = ("The enhanced sparrow search algorithm obtained smaller fitness 
 def _issa(id_: str, rival: str, metric: str, statistic: str, quotes, change,
           note: str = "") -> Claim:  # fmt: skip
     reachable = (Precondition("turns-reachable", "Table 3's routes turn 3-11 times; the "
-                              "paper's encoding (one vertex per grid column, the batch's "
-                              "--encoding columns) lets a route of the 20 x 20 grid turn up to "
-                              "18 times"),) if metric == "turns" else ()  # fmt: skip
+                              "paper's encoding (a vertex per grid column, the batch's "
+                              "--encoding columns) gives a route of the 20 x 20 grid 22 "
+                              "points, up to 20 turns"),) if metric == "turns" else ()  # fmt: skip
     return Claim(id_, "issa", quotes, "routes", metric, statistic, "lower", "issa", (rival,),
                  ("grid20",), "issa-table-3", change, note=note,
                  preconditions=reachable)  # fmt: skip

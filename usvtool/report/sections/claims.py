@@ -173,7 +173,7 @@ def _test(results: Results, claim: Claim, case: str, rival: str) -> Test:
     if claim.statistic in SPREADS:
         x, y = inference.dispersion(x), inference.dispersion(y)
     comparison = inference.compare(x, y, paired=claim.kind == "runs", better=claim.better,
-                                   seed=SEED, resamples=RESAMPLES)  # fmt: skip
+                                   seed=SEED, resamples=RESAMPLES, shift=False)  # fmt: skip
     return Test(case, rival, sides, comparison)
 
 
