@@ -9,7 +9,7 @@ leave every file its ``usvtool ... -o`` names. A file a command needs comes from
 of its block (a grid ``make charts`` would make is shown as its ``usvtool preprocess`` line). A
 synopsis goes in a ```text block, which nothing runs; a line starting ``usvtool`` in any other
 block fails. EXCLUDED lists the few commands not run here, with the reason; each is shown as a
-skip. About 35 s: 25 commands, each a process of its own (usvtool's imports take 1 s of most).
+skip. About 35 s: 22 usvtool commands, each a process of its own (its imports take 1 s of most).
 """
 
 from __future__ import annotations
