@@ -50,6 +50,12 @@ def test_holds_when_better_with_corrected_p_below_alpha(tmp_path):
 def test_does_not_hold_when_significantly_worse(tmp_path):
     v = claims.judge(_results(tmp_path, SEPARATED), _claim(better="higher"))
     assert v.verdict == claims.FAILS and v.tests[0].outcome == "worse"
+    # against two rivals, the headline shows the loss that decides
+    rows = SEPARATED + _routes("env1", "ssa", [600, 601, 602, 603, 604, 605])
+    v = claims.judge(_results(tmp_path, rows), _claim(rivals=("wso", "ssa")))
+    assert v.verdict == claims.FAILS
+    assert claims.headline(v) == ("1/2 better; worse env1 vs ssa: 702 vs 602, "
+                                  "δ -1.00 [-1.00, -1.00]")
 
 
 def test_inconclusive_when_neither_and_on_ties(tmp_path):

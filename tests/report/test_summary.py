@@ -33,17 +33,17 @@ def test_the_summary_states_what_was_compared_and_the_claims_own_verdicts(tmp_pa
     s = summary.section(results)
     assert s.id == "summary"
     text = s.paragraphs[0]
-    assert "24 routes (2 methods on env1, env2; 6 seeds each)" in text
-    assert "19 simulated runs of 2 controllers" in text
-    assert "emergency/crossing (3), emergency/head-on (3), emergency/overtaking (3)" in text
-    assert "1 bundled scenarios" in text and "10 benchmark-function runs" in text
+    assert "24 routes of 2 optimizers and planners (env1, env2: 6 seeds)" in text
+    assert "10 benchmark-function runs of 1 optimizers (F1, F2: 5 seeds)" in text
+    assert ("19 simulated runs of 2 controllers on the scene families emergency (3 kinds x 3 "
+            "scenes), paired by scene, and on 1 bundled scenario (one run each") in text
     (table,) = s.tables()
     verdicts = [v for v in claims.verdicts(results) if not v.variant]
     assert [r[0].text for r in table.rows] == [v.claim.id for v in verdicts]
     assert [r[-1].text for r in table.rows] == [v.verdict for v in verdicts]
     row = next(r for r in table.rows if r[0].text == "iwso-shorter")
     assert row[-1].text == claims.HOLDS
-    assert row[1].text == "iwso vs wso: 710.873 vs 847.487 m; 927.925 vs 1044.97 m"
+    assert row[1].text == "iwso vs wso: 710.873 vs 847.487 m; 927.925 vs 1044.975 m"  # as printed
     # both cases better (p = 2 / 924 each, Holm over the table's two tested p: 4 / 924)
     assert row[2].text.startswith("2/2 better; weakest env")
     # every identical closest distance: ties, inconclusive

@@ -261,6 +261,8 @@ def _note(jobs: Sequence[JobResults], claim: Claim) -> str:
         done = [j for j in jobs if not failed(j)]
         if none := sum((_value(j, claim.target) or 0) < 1 for j in done):
             parts.append(f"{none} judged no encounter")
+        if broke := sum((_value(j, "noncompliant") or 0) > 0 for j in done):
+            parts.append(f"{broke} with a non-compliant encounter")
         excused = sum(not _meets(j, claim) and (_value(j, "compliant_excused") or 0) > 0
                       and _value(j, "noncompliant") == 0 and (_value(j, claim.target) or 0) >= 1
                       for j in done)  # fmt: skip
@@ -402,15 +404,15 @@ def paper_figure(claim: Claim) -> str:
         return "-"
     table = TABLES[claim.table]
     unit = f" {column.unit}" if column.unit and column.unit != "%" else ""
+    index = table.columns.index(column)
     parts = []
     for case in claim.cases:
-        cases = claim.table_cases(case)
-        mine = [table.value(claim.method, c, column.name) for c in cases]
-        theirs = [table.value(claim.rivals[0], c, column.name) for c in cases]
-        if None in mine or None in theirs:
+        rows = [[table.row(m, c) for c in claim.table_cases(case)]
+                for m in (claim.method, claim.rivals[0])]
+        if any(r is None or r.printed[index] is None for side in rows for r in side):
             continue
-        fmt = lambda vs: ", ".join(f"{v:g}" for v in vs)  # noqa: E731
-        parts.append(f"{fmt(mine)} vs {fmt(theirs)}{unit}")
+        mine, theirs = (", ".join(r.printed[index] for r in side) for side in rows)
+        parts.append(f"{mine} vs {theirs}{unit}")
     if len(parts) > LISTED:
         return f"{len(parts)} cases ({table.label})"
     head = f"{claim.method} vs {claim.rivals[0]}: " if parts else ""
@@ -421,12 +423,14 @@ def _figures(t: Test, claim: Claim) -> str:
     """Our change from the claim's statistic over every run (and over the runs that did not
     fail, when some did)."""
     a, b = t.sides
-    whole = change(a.figure, b.figure, claim.better)
-    text = "-" if whole is None else f"{whole:+.1f}"
+    text = _percent(change(a.figure, b.figure, claim.better))
     if a.failed or b.failed:
-        clean = change(a.clean, b.clean, claim.better)
-        text += f" (without failures {'-' if clean is None else f'{clean:+.1f}'})"
+        text += f" (without failures {_percent(change(a.clean, b.clean, claim.better))})"
     return text
+
+
+def _percent(value: float | None) -> str:
+    return "-" if value is None else f"{round(value, 1) + 0.0:+.1f}"
 
 
 def _ours(t: Test) -> str:
@@ -443,15 +447,15 @@ def _effect(c: Comparison | None) -> str:
     return f"{symbol} {c.effect:+.2f} [{c.low:+.2f}, {c.high:+.2f}]"
 
 
-def _label(t: Test, claim: Claim, many: bool) -> str:
-    rival = f" vs {t.rival}" if len(claim.rivals) > 1 or many else ""
+def _label(t: Test, claim: Claim) -> str:
+    rival = f" vs {t.rival}" if len(claim.rivals) > 1 else ""
     return f"{t.case}{rival}: " if len(claim.cases) > 1 or len(claim.rivals) > 1 else ""
 
 
 def headline(v: Verdict) -> str:
-    """Ours in one line: the comparison (or, for several, the weakest: the highest corrected p)
-    with its effect and interval; an absolute claim's runs meeting the target with the
-    interval."""
+    """Ours in one line: the comparison (or, for several, the most significant loss if there is
+    one, else the weakest: the highest corrected p) with its effect and interval; an absolute
+    claim's runs meeting the target with the interval."""
     if v.reason and not (v.tests or v.tallies):
         return v.reason
     if v.tallies:
@@ -461,12 +465,16 @@ def headline(v: Verdict) -> str:
     done = [t for t in v.tests if t.comparison is not None]
     if not done:
         return v.reason or "-"
-    weakest = max(done, key=lambda t: (t.p is None, t.p or 0.0))
-    a, b = weakest.sides
-    text = f"{_g(a.median)} vs {_g(b.median)}, {_effect(weakest.comparison)}"
+    worse = [t for t in done if t.outcome == "worse"]
+    if worse:  # the most significant loss decides
+        shown, word = min(worse, key=lambda t: t.p), "worse"
+    else:
+        shown, word = max(done, key=lambda t: (t.p is None, t.p or 0.0)), "weakest"
+    a, b = shown.sides
+    text = f"{_g(a.median)} vs {_g(b.median)}, {_effect(shown.comparison)}"
     if len(done) > 1:
         better = sum(t.outcome == "better" for t in done)
-        text = f"{better}/{len(done)} better; weakest {weakest.case} vs {weakest.rival}: {text}"
+        text = f"{better}/{len(done)} better; {word} {shown.case} vs {shown.rival}: {text}"
     return text
 
 
@@ -482,14 +490,14 @@ def _row(v: Verdict) -> list[Cell]:
                          for t in v.tallies) if len(v.tallies) <= LISTED else headline(v)
         cells = [ours, "-", "Clopper-Pearson 95 %", "-"]
     elif tests and len(v.tests) <= LISTED:
-        many = len(v.tests) > 1
-        cells = ["; ".join(_label(t, c, many) + f(t) for t in tests) for f in (
+        cells = ["; ".join(_label(t, c) + f(t) for t in tests) for f in (
             _ours, lambda t: _figures(t, c),
             lambda t: f"{'W' if t.comparison.test == inference.WILCOXON else 'U'}, "
                       f"p {_p(t.p)}", lambda t: _effect(t.comparison))]  # fmt: skip
     elif tests:
+        low, high = (_p(f(t.p or 1.0 for t in tests)) for f in (min, max))
         cells = [headline(v), "-", f"{tests[0].comparison.test}: corrected p "
-                 f"{_p(min(t.p or 1 for t in tests))}-{_p(max(t.p or 1 for t in tests))}", "-"]
+                 + (low if low == high else f"{low}-{high}"), "-"]
     else:
         cells = [v.reason or "-", "-", "-", "-"]
     if v.reason and (v.tests or v.tallies):

@@ -4,6 +4,7 @@ the caveats, what differs from the papers' set-ups."""
 
 from __future__ import annotations
 
+import re
 from collections import Counter
 
 from usvtool.report.data import Results
@@ -12,41 +13,57 @@ from usvtool.report.papers import IWSO_DWA_TABLE_1, PAPERS
 from usvtool.report.sections import claims
 
 
-def _families(results: Results) -> dict[str, int]:
-    """Scenes of each scene family's kind (``ENTRY/KIND``) among the runs."""
-    scenes = {(j.case.rpartition("/")[0], j.case) for j in results.select("runs")
-              if j.case.count("/") == 2}  # fmt: skip
-    return dict(sorted(Counter(kind for kind, _ in scenes).items()))
+def _natural(case: str) -> tuple:
+    """F2 before F10."""
+    return tuple(int(t) if t.isdigit() else t for t in re.split(r"(\d+)", case))
 
 
-def _range(counts) -> str:
-    low, high = min(counts), max(counts)
-    return f"{low}" if low == high else f"{low}-{high}"
+def _by_seeds(results: Results, kind: str) -> str:
+    """The cases grouped by their seeds per method: ``env1, env2 25; grid20 50``."""
+    per = Counter((j.case, j.method) for j in results.select(kind))
+    seeds: dict[int, list[str]] = {}
+    for case in sorted(results.cases(kind), key=_natural):
+        seeds.setdefault(max(n for (c, _), n in per.items() if c == case), []).append(case)
+    return "; ".join(f"{', '.join(cases)}: {n} seed{'s' * (n > 1)}"
+                     for n, cases in seeds.items())  # fmt: skip
+
+
+def _families(results: Results) -> str:
+    """The scene families run: each with its kinds and scenes per kind."""
+    scenes: dict[str, dict[str, set]] = {}
+    for j in results.select("runs"):
+        if j.case.count("/") == 2:
+            family, kind, _ = j.case.split("/")
+            scenes.setdefault(family, {}).setdefault(kind, set()).add(j.case)
+    parts = []
+    for family, kinds in sorted(scenes.items()):
+        counts = [len(c) for c in kinds.values()]
+        low, high = min(counts), max(counts)
+        each = f"{low}" if low == high else f"{low}-{high}"
+        parts.append(f"{family} ({len(kinds)} kind{'s' * (len(kinds) > 1)} x {each} "
+                     f"scene{'s' * (high > 1)})")
+    return ", ".join(parts)
 
 
 def compared(results: Results) -> str:
     """One paragraph: the papers, and our routes, runs and functions by method and case."""
     parts = []
-    for kind, what in (("routes", "routes"), ("functions", "benchmark-function runs")):
-        jobs = results.select(kind)
-        if not jobs:
-            continue
-        per = Counter((j.case, j.method) for j in jobs)
-        parts.append(f"{len(jobs)} {what} ({len(results.methods(kind))} methods on "
-                     f"{', '.join(results.cases(kind))}; {_range(per.values())} seeds each)")
-    runs = results.select("runs")
-    if runs:
-        families = _families(results)
-        single = {j.case for j in runs if "/" not in j.case}
-        kinds = ", ".join(f"{k} ({n})" for k, n in families.items())
-        parts.append(f"{len(runs)} simulated runs of {len(results.methods('runs'))} controllers: "
-                     f"the scene families' kinds (scenes) {kinds}" if families else
-                     f"{len(runs)} simulated runs of {len(results.methods('runs'))} controllers")
-        if single:
-            parts[-1] += f", and {len(single)} bundled scenarios (one run each, illustrations)"
+    for kind, what in (("routes", "routes of {} optimizers and planners"),
+                       ("functions", "benchmark-function runs of {} optimizers")):
+        if jobs := results.select(kind):
+            parts.append(f"{len(jobs)} {what.format(len(results.methods(kind)))} "
+                         f"({_by_seeds(results, kind)})")
+    if runs := results.select("runs"):
+        text = f"{len(runs)} simulated runs of {len(results.methods('runs'))} controllers"
+        if families := _families(results):
+            text += f" on the scene families {families}, paired by scene"
+        if single := {j.case for j in runs if "/" not in j.case}:
+            text += (f", and on {len(single)} bundled scenario{'s' * (len(single) > 1)} (one "
+                     "run each, as illustrations)")
+        parts.append(text)
     papers = "; ".join(p.citation for p in PAPERS.values())
     return (f"Compared: the claims and published figures of {len(PAPERS)} papers ({papers}) "
-            f"against {'; '.join(parts) or 'no runs'}.")
+            f"with {'; '.join(parts) or 'no runs'}.")
 
 
 def caveats(results: Results, verdicts: list[claims.Verdict]) -> list[str]:
@@ -62,9 +79,10 @@ def caveats(results: Results, verdicts: list[claims.Verdict]) -> list[str]:
         "judge every claim over seeds or seeded scenes, the encounter claims over the scene "
         "families, not over the bundled single scenarios.",
     ]
-    functions = Counter((j.case, j.method) for j in results.select("functions"))
+    functions = Counter((j.case, j.method) for j in results.select("functions")).values()
     if functions and IWSO_DWA_TABLE_1.runs:
-        out.append(f"Benchmark functions: {_range(functions.values())} runs per function and "
+        runs = "-".join(map(str, sorted({min(functions), max(functions)})))
+        out.append(f"Benchmark functions: {runs} runs per function and "
                    f"algorithm against the paper's {IWSO_DWA_TABLE_1.runs}, too few for Holm's "
                    "correction over the table to find a difference.")
     for v in verdicts:
