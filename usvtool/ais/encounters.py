@@ -181,8 +181,8 @@ class _Samples:
         times = k * step_ns
         # each sample's segment: the last fix of its track at or before it, by one sort of the
         # fixes and samples together (a fix before a sample of the same time)
-        rows = np.concatenate([np.arange(a, b) for a, b in zip(first, stop, strict=True)]) \
-            if first.size else np.zeros(0, np.int64)  # fmt: skip
+        rows = np.flatnonzero(np.repeat(long_enough, np.diff(np.r_[tracks.track_bounds()[0],
+                                                                    tracks.n_rows])))  # fmt: skip
         fix_ordinal = np.repeat(np.arange(first.size), stop - first)
         merged = np.lexsort((np.r_[np.zeros(rows.size, np.int8), np.ones(n, np.int8)],
                              np.r_[t[rows], times], np.r_[fix_ordinal, ordinal]))  # fmt: skip
@@ -248,10 +248,11 @@ class _Samples:
                 near = (self.ordinal[a] != self.ordinal[b]) & (
                     ((xyz[a] - xyz[b]) ** 2).sum(axis=1) <= cell * cell)  # fmt: skip
                 pa, pb = self.ordinal[a[near]], self.ordinal[b[near]]
-                found.append(np.column_stack([np.minimum(pa, pb), np.maximum(pa, pb)]))
+                found.append(np.unique(np.minimum(pa, pb) * self.n_tracks + np.maximum(pa, pb)))
         if not found:
             return np.zeros((0, 2), np.int64)
-        return np.unique(np.vstack(found), axis=0)
+        pairs = np.unique(np.concatenate(found))
+        return np.column_stack([pairs // self.n_tracks, pairs % self.n_tracks])
 
     def follow(self, pairs: np.ndarray, options: EncounterOptions, tracks: Tracks) -> list[dict]:
         """The encounters of candidate ``pairs`` over their common grid times."""
