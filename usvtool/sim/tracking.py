@@ -1,9 +1,10 @@
 """Encounter tracking for the run: each target's COLREGs class latched for its encounter.
 
 The simulation classifies every target at every control step (:func:`usvtool.encounter.assess`,
-compass degrees) and latches the class here; the controller's side rule follows the most urgent
-latched encounter. The verdicts of a finished run (:mod:`usvtool.sim.verdicts`) latch the whole
-run at once with :func:`latch_series`, which gives what the step-by-step tracker gives.
+compass degrees, compiled for the step: :mod:`usvtool.sim.tracking_kernels`) and latches the
+class here; the controller's side rule follows the most urgent latched encounter. The verdicts
+of a finished run (:mod:`usvtool.sim.verdicts`) latch the whole run at once with
+:func:`latch_series`, which gives what the step-by-step tracker gives.
 
 Latching (:class:`EncounterTracker`, :func:`latch_series`)
     An encounter starts (its class is latched) at the first step at which the target is
@@ -19,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.encounter import NONE, assess, domain_semi_axes
+from usvtool.encounter import NONE, Situation, domain_semi_axes
 
 #: Latching: a risk must be within this time to CPA (our choice; scenarios close at ≤ 10 m/s).
 RISK_HORIZON_S = 120.0
@@ -52,12 +53,19 @@ class EncounterTracker:
         clear_distance=None,
         release_distance=np.inf,
     ):
+        from usvtool.sim import tracking_kernels  # numba's import: a run's, not the CLI's
+
+        self._kernels = tracking_kernels
         self.risk_distance = np.asarray(risk_distance, float)
         self.horizon_s = float(horizon_s)
         self.clear_distance = (
             self.risk_distance if clear_distance is None else np.asarray(clear_distance, float)
         )
         self.release_distance = np.asarray(release_distance, float)
+        self._limits = tuple(
+            _per_target(d, n_targets, float)
+            for d in (self.risk_distance, self.clear_distance, self.release_distance)
+        )
         self.latched = np.full(n_targets, NONE, np.int8)
         self.onset_t = np.full(n_targets, np.nan)
         self.tcpa = np.full(n_targets, np.nan)
@@ -65,33 +73,41 @@ class EncounterTracker:
 
     def step(self, t: float, cls, dcpa, tcpa, rng) -> np.ndarray:
         """Advance one step with this step's classes, CPA and ranges; the latched codes (a copy)."""
-        cls = np.asarray(cls)
-        dcpa, tcpa, rng = (np.asarray(a, float) for a in (dcpa, tcpa, rng))
-        active = self.latched != NONE
-        release = active & (self._opening(tcpa, rng) | (rng > self.release_distance))
-        onset = ~active & _onset(cls, dcpa, tcpa, self.risk_distance, self.horizon_s)
-        self.latched = np.where(release, NONE, np.where(onset, cls, self.latched)).astype(np.int8)
-        self.onset_t = np.where(onset, float(t), np.where(release, np.nan, self.onset_t))
-        self.tcpa = tcpa
-        self._prev_range = rng
+        k = self.latched.size
+        self._kernels.latch(float(t), _per_target(cls, k, np.int8),
+                            *(_per_target(a, k, float) for a in (dcpa, tcpa, rng)),
+                            *self._limits, self.horizon_s, *self._state)  # fmt: skip
         return self.latched.copy()
 
     def update(self, t, own_xy, own_heading, own_speed, target_xy, target_heading, target_speed):
-        """:func:`assess` the targets, then :meth:`step`; returns the :class:`Situation`."""
-        s = assess(own_xy, own_heading, own_speed, target_xy, target_heading, target_speed)
-        self.step(t, s.cls, s.dcpa, s.tcpa, s.range)
-        return s
+        """:func:`usvtool.encounter.assess` the targets, then :meth:`step`, in one compiled call
+        (:func:`usvtool.sim.tracking_kernels.track`: the same bits); returns the
+        :class:`~usvtool.encounter.Situation`."""
+        k = self.latched.size
+        cls, out = np.empty(k, np.int8), np.empty((5, k))
+        self._kernels.track(float(t), float(own_xy[0]), float(own_xy[1]), float(own_heading),
+                            float(own_speed), np.ascontiguousarray(target_xy, float).reshape(k, 2),
+                            _per_target(target_heading, k, float),
+                            _per_target(target_speed, k, float), *self._limits, self.horizon_s,
+                            *self._state, cls, out)  # fmt: skip
+        return Situation(cls, *out)
 
     def most_urgent(self) -> int | None:
         """Index of the latched target with the smallest positive ``tcpa`` (None if none)."""
-        urgent = (self.latched != NONE) & (self.tcpa > 0)
-        if not urgent.any():
-            return None
-        return int(np.argmin(np.where(urgent, self.tcpa, np.inf)))
+        at = self._kernels.most_urgent(self.latched, self.tcpa)
+        return None if at < 0 else at
 
-    def _opening(self, tcpa, rng):
-        with np.errstate(invalid="ignore"):
-            return (tcpa < 0) & (rng > self._prev_range) & (rng >= self.clear_distance)
+    @property
+    def _state(self) -> tuple:
+        """The arrays the kernels update in place."""
+        return self.latched, self.onset_t, self.tcpa, self._prev_range
+
+
+def _per_target(a, k: int, dtype) -> np.ndarray:
+    """``a`` as a writeable contiguous ``(k,)`` array of ``dtype`` (the kernels' arguments; a
+    scalar for every target), copied only when it is not one."""
+    a = np.ascontiguousarray(a, dtype)
+    return a if a.shape == (k,) and a.flags.writeable else np.broadcast_to(a, (k,)).copy()
 
 
 def _onset(cls, dcpa, tcpa, risk_distance, horizon_s):
