@@ -18,7 +18,6 @@ import csv
 import io
 import os
 import re
-from collections.abc import Iterable
 from pathlib import Path
 
 import numpy as np
@@ -64,38 +63,67 @@ def first_lines(path: str | os.PathLike, n: int = 1) -> list[str]:
     return lines
 
 
-def read_table(path: str | os.PathLike, types: dict, *, delimiter: str = ",",
-               skip_rows: int = 0, names: Iterable[str] | None = None):  # fmt: skip
-    """The columns ``types`` (name: pyarrow type; text columns ``pa.string()``, never null) of
-    the CSV file ``path`` whose header is line ``skip_rows + 1`` (or, with ``names``, whose
-    columns are ``names`` and which has no header after its ``skip_rows`` first lines)."""
-    import pyarrow as pa
+def _options(types: dict, delimiter: str):
     import pyarrow.csv as pcsv
 
-    names = list(names) if names is not None else None
-    read = pcsv.ReadOptions(skip_rows=skip_rows, column_names=names, block_size=1 << 24)
+    read = pcsv.ReadOptions(block_size=1 << 24)
     parse = pcsv.ParseOptions(delimiter=delimiter)
     convert = pcsv.ConvertOptions(column_types=types, include_columns=list(types),
                                   null_values=list(NULLS), strings_can_be_null=False,
                                   quoted_strings_can_be_null=False)  # fmt: skip
+    return read, parse, convert
+
+
+def read_table(path: str | os.PathLike, types: dict, *, delimiter: str = ","):
+    """The columns ``types`` (name: pyarrow type; text columns ``pa.string()``, never null) of
+    the CSV file ``path`` (its header on line 1)."""
+    import pyarrow as pa
+    import pyarrow.csv as pcsv
+
+    read, parse, convert = _options(types, delimiter)
     try:
         with open_binary(path) as stream:
             return pcsv.read_csv(stream, read, parse, convert)
     except (pa.ArrowInvalid, pa.ArrowTypeError) as exc:
-        raise _locate(path, exc, types, read, parse, skip_rows, names is None) from None
+        raise _locate(path, exc, types, read, parse) from None
     except UnicodeDecodeError as exc:
         raise UsvError(f"{path}: not UTF-8 text ({exc.reason})") from None
 
 
-def _locate(path, exc, types, read, parse, skip_rows: int, header: bool) -> UsvError:
+def read_filtered(path: str | os.PathLike, types: dict, keep, *, delimiter: str = ","):
+    """:func:`read_table` block by block, keeping the rows for which ``keep(batch)`` (a pyarrow
+    record batch) is true, so that only they are held: ``(table, rows, n)``, ``rows`` the kept
+    rows' indices in the file's data (for :func:`line_of`), ``n`` the data rows read."""
+    import pyarrow as pa
+    import pyarrow.csv as pcsv
+
+    read, parse, convert = _options(types, delimiter)
+    parts, rows, seen = [], [], 0
+    try:
+        with open_binary(path) as stream:
+            for batch in pcsv.open_csv(stream, read, parse, convert):
+                mask = np.asarray(keep(batch), bool)
+                parts.append(batch.filter(pa.array(mask)))
+                rows.append(seen + np.flatnonzero(mask))
+                seen += batch.num_rows
+    except (pa.ArrowInvalid, pa.ArrowTypeError) as exc:
+        raise _locate(path, exc, types, read, parse) from None
+    except UnicodeDecodeError as exc:
+        raise UsvError(f"{path}: not UTF-8 text ({exc.reason})") from None
+    if not parts:
+        empty = pa.table({name: pa.array([], kind) for name, kind in types.items()})
+        return empty, np.zeros(0, np.int64), 0
+    return pa.Table.from_batches(parts), np.concatenate(rows), seen
+
+
+def _locate(path, exc, types, read, parse) -> UsvError:
     """The one-line error of a failed typed read: the first row at fault, its line and column."""
     import pyarrow as pa
     import pyarrow.csv as pcsv
 
     message = str(exc)
     if "Expected" in message and "columns" in message:  # a row of the wrong number of fields
-        single = pcsv.ReadOptions(skip_rows=read.skip_rows, column_names=read.column_names,
-                                  use_threads=False)  # fmt: skip
+        single = pcsv.ReadOptions(use_threads=False)
         try:
             with open_binary(path) as stream:
                 pcsv.read_csv(stream, single, parse)
@@ -128,7 +156,7 @@ def _locate(path, exc, types, read, parse, skip_rows: int, header: bool) -> UsvE
     row, name, value = min(faults)
     kind = "a number" if pa.types.is_floating(types[name]) else "an integer" \
         if pa.types.is_integer(types[name]) else f"a {types[name]}"  # fmt: skip
-    return UsvError(f"{path}: line {line_of(path, row, skip_rows + header, parse.delimiter)}, "
+    return UsvError(f"{path}: line {line_of(path, row, 1, parse.delimiter)}, "
                     f"column {name}: {_short(repr(value), 40)} is not {kind}")
 
 
@@ -179,20 +207,24 @@ def line_of(path: str | os.PathLike, row: int, before: int = 1, delimiter: str =
 
 
 def time_ns(path, column, name: str, before: int, formats: tuple[str, ...] = (),
-            delimiter: str = ",") -> np.ndarray:  # fmt: skip
+            delimiter: str = ",", rows: np.ndarray | None = None) -> np.ndarray:  # fmt: skip
     """Nanoseconds since the epoch (UTC) of the text column ``column`` (pyarrow) of ``path``,
     all in the form of its first value: ISO 8601 without a zone (taken as UTC) or with one
     (converted to UTC), else the first of the ``strptime`` ``formats`` that reads it; one line
-    naming the first value not in that form (``before``: the lines above the data)."""
+    naming the first value not in that form (``before``: the lines above the data; ``rows``:
+    the file's data row of each value, when they are not all of them)."""
     import pyarrow as pa
     import pyarrow.compute as pc
 
     column = column.combine_chunks() if hasattr(column, "combine_chunks") else column
+
+    def line(row: int) -> int:
+        return line_of(path, int(rows[row]) if rows is not None else row, before, delimiter)
+
     empty = pc.equal(column, "")
     if pc.any(empty).as_py():
         row = int(np.argmax(empty.to_numpy(zero_copy_only=False)))
-        raise UsvError(f"{path}: line {line_of(path, row, before, delimiter)}, column {name}: "
-                       "empty: a time is required")  # fmt: skip
+        raise UsvError(f"{path}: line {line(row)}, column {name}: empty: a time is required")
     readers = [lambda c, k=k: c.cast(k) for k in (pa.timestamp("ns"), pa.timestamp("ns", "UTC"))]
     readers += [lambda c, f=f: pc.strptime(c, format=f, unit="ns") for f in formats]
     form = next((r for r in readers if _reads(r, column.slice(0, 1))), None)
@@ -206,7 +238,7 @@ def time_ns(path, column, name: str, before: int, formats: tuple[str, ...] = (),
         row, rule = lo, "in the form of the first"
     else:
         row, rule = 0, ", ".join(["ISO 8601", *formats])
-    raise UsvError(f"{path}: line {line_of(path, row, before, delimiter)}, column {name}: "
+    raise UsvError(f"{path}: line {line(row)}, column {name}: "
                    f"{_short(repr(column[row].as_py()), 40)} is not a time ({rule})")
 
 

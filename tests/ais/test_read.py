@@ -12,7 +12,7 @@ from usvtool.ais.read import detect
 from usvtool.errors import UsvError
 from usvtool.tracks import NS, read_tracks
 
-from .aisdata import NY, T0, encode, tag
+from .aisdata import EXTRACT, NY, T0, encode, tag
 
 UPPER = ("MMSI,BaseDateTime,LAT,LON,SOG,COG,Heading,VesselName,IMO,CallSign,VesselType,Status,"
          "Length,Width,Draft,Cargo,TransceiverClass")  # fmt: skip
@@ -198,3 +198,20 @@ def test_cli_reads_the_new_york_sample(usv, tmp_path):
         2411, 187, "marinecadastre")  # the PROVENANCE's counts
     t = read_tracks(out)
     assert t.n_rows == 2411 and np.unique(t.mmsi).size == 187
+
+
+def test_bbox_reads_the_new_york_subset_out_of_the_extract(tmp_path):
+    """The New York file is the extract's rows inside its box (PROVENANCE.md): read through
+    --bbox, the extract gives the same tracks."""
+    box = (-74.30, 40.45, -73.85, 40.75)
+    result = read_ais([EXTRACT], ReadOptions(bbox=box))
+    assert result.files[0]["positions"] == 2411
+    assert result.files[0]["outside_bbox"] == 99_999 - 2411
+    whole = read_ais([NY]).tracks
+    for column in ("mmsi", "time", "lon", "lat", "track", "name"):
+        assert np.array_equal(getattr(result.tracks, column), getattr(whole, column)), column
+    bad = tmp_path / "bad.csv"  # a fault inside the box is named at its own line
+    bad.write_text("mmsi,time,lat,lon\n1,2022-01-03T00:00:00,10,10\n2,2022-01-03T00:00:00,40.5,"
+                   "-74\n3,noon,40.5,-74\n")  # fmt: skip
+    with pytest.raises(UsvError, match="bad.csv: line 4, column time: 'noon'"):
+        read_ais([bad], ReadOptions(bbox=box))

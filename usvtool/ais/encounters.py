@@ -38,6 +38,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from usvtool.ais.clean import EARTH_RADIUS, KNOT
+from usvtool.ais.fixes import check_bbox
 from usvtool.angles import wrap180, wrap360
 from usvtool.encounter import CLASS_NAMES, assess
 from usvtool.encounter import cpa as straight_cpa
@@ -71,13 +72,7 @@ class EncounterOptions:
                 raise UsvError(f"--{name.replace('_', '-')}: must be a number > 0, not {value}")
         if not (math.isfinite(self.min_speed) and self.min_speed >= 0):
             raise UsvError(f"--min-speed: must be a number >= 0, not {self.min_speed}")
-        if self.bbox is not None:
-            box = tuple(float(v) for v in self.bbox)
-            if len(box) != 4 or not (-180 <= box[0] < box[2] <= 180
-                                     and -90 <= box[1] < box[3] <= 90):  # fmt: skip
-                raise UsvError(f"--bbox: {self.bbox} is not LON_MIN,LAT_MIN,LON_MAX,LAT_MAX "
-                               "(degrees, min < max)")  # fmt: skip
-            object.__setattr__(self, "bbox", box)
+        object.__setattr__(self, "bbox", check_bbox(self.bbox))
 
 
 @dataclass

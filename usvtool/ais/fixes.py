@@ -43,6 +43,20 @@ class Fixes:
     def n_positions(self) -> int:
         return int(self.mmsi.size)
 
+    def within(self, bbox: tuple[float, float, float, float]) -> Fixes:
+        """The positions inside ``bbox`` (lon min, lat min, lon max, lat max; all the static
+        reports kept), those outside counted as ``outside_bbox``."""
+        with np.errstate(invalid="ignore"):
+            inside = ((self.lon >= bbox[0]) & (self.lon <= bbox[2]) & (self.lat >= bbox[1])
+                      & (self.lat <= bbox[3]))  # fmt: skip
+        kept = {n: getattr(self, n)[inside] for n in ("mmsi", "time", "lon", "lat", "sog", "cog",
+                                                      "heading")}  # fmt: skip
+        counts = self.counts | {"outside_bbox": self.counts.get("outside_bbox", 0)
+                                + int((~inside).sum())}  # fmt: skip
+        return Fixes(**kept, static_mmsi=self.static_mmsi, static_time=self.static_time,
+                     length=self.length, beam=self.beam, name=self.name,
+                     ship_type=self.ship_type, counts=counts)  # fmt: skip
+
     @classmethod
     def concatenate(cls, parts: list[Fixes]) -> Fixes:
         """The fixes of several files, in the order given; their counts summed."""
@@ -54,6 +68,25 @@ class Fixes:
                 counts[k] = counts.get(k, 0) + v
         return cls(**{n: np.concatenate([getattr(p, n) for p in parts]) for n in names},
                    counts=counts)  # fmt: skip
+
+
+def check_bbox(box, option: str = "--bbox") -> tuple[float, float, float, float] | None:
+    """``box`` as four floats (lon min, lat min, lon max, lat max; degrees, min < max), or None;
+    one line naming ``option`` otherwise.
+
+    >>> check_bbox([-74.3, 40.45, -73.85, 40.75])
+    (-74.3, 40.45, -73.85, 40.75)
+    """
+    from usvtool.errors import UsvError
+
+    if box is None:
+        return None
+    values = tuple(float(v) for v in box)
+    if len(values) != 4 or not (-180 <= values[0] < values[2] <= 180
+                                and -90 <= values[1] < values[3] <= 90):  # fmt: skip
+        raise UsvError(f"{option}: {tuple(box)} is not LON_MIN,LAT_MIN,LON_MAX,LAT_MAX (degrees, "
+                       "min < max)")  # fmt: skip
+    return values
 
 
 def fixes(mmsi, time, lon, lat, sog, cog, heading, static_mmsi, static_time, length, beam,

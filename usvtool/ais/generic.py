@@ -83,9 +83,11 @@ def roles(names: list[str], mapping: dict[str, str]) -> dict[str, str]:
     return out
 
 
-def read(path, mapping: dict[str, str]) -> Fixes:
-    """The fixes of a CSV file by ``mapping`` (role: column) and the usual names."""
+def read(path, mapping: dict[str, str], bbox=None) -> Fixes:
+    """The fixes of a CSV file by ``mapping`` (role: column) and the usual names (inside
+    ``bbox``)."""
     delimiter = sniff(path)
     names = header(path, delimiter)
-    return read_columns(path, roles(names, mapping), delimiter=delimiter, time_formats=TIME_FORMATS,
-                        epoch_seconds=True, ship_types=dma.SHIP_TYPES)  # fmt: skip
+    return read_columns(path, roles(names, mapping), delimiter=delimiter,
+                        time_formats=TIME_FORMATS, epoch_seconds=True,
+                        ship_types=dma.SHIP_TYPES, bbox=bbox)  # fmt: skip

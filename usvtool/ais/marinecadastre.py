@@ -35,7 +35,7 @@ def layout(names: list[str]) -> str | None:
     return next((k for k, cols in SIGNATURE.items() if all(c in names for c in cols)), None)
 
 
-def read(path, names: list[str]) -> Fixes:
-    """The fixes of a MarineCadastre file whose header is ``names``."""
+def read(path, names: list[str], bbox=None) -> Fixes:
+    """The fixes of a MarineCadastre file whose header is ``names`` (inside ``bbox``)."""
     columns = {role: c for role, c in LAYOUTS[layout(names)].items() if c in names}
-    return read_columns(path, columns)
+    return read_columns(path, columns, bbox=bbox)

@@ -3,8 +3,9 @@
 Each file's format is told by its first line: an NMEA sentence or tag block (:mod:`.nmea`), a
 MarineCadastre header in either layout (:mod:`.marinecadastre`), the DMA's (:mod:`.dma`), else
 any CSV (:mod:`.generic`); ``--columns`` reads every CSV file as :mod:`.generic` with that
-mapping. The fixes of all the files are cleaned together (:mod:`.clean`), so one vessel's fixes
-from several files make one track.
+mapping. With ``--bbox`` only the positions inside the box are kept (counted as
+``outside_bbox``). The fixes of all the files are cleaned together (:mod:`.clean`), so one
+vessel's fixes from several files make one track.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ import numpy as np
 
 from usvtool.ais import dma, generic, marinecadastre, nmea
 from usvtool.ais.clean import CleanOptions, clean
-from usvtool.ais.fixes import Fixes
+from usvtool.ais.fixes import Fixes, check_bbox
 from usvtool.errors import UsvError, check_input_file
 from usvtool.tracks import Tracks, format_time
 
@@ -25,10 +26,15 @@ FORMATS = ("nmea", "marinecadastre", "dma", "generic")
 @dataclass(frozen=True)
 class ReadOptions:
     """``columns``: the ``--columns`` mapping (role: column name; read every CSV as generic);
-    ``clean``: the cleaning's limits."""
+    ``clean``: the cleaning's limits; ``bbox``: only the positions inside (lon min, lat min, lon
+    max, lat max; a CSV file is read block by block, holding only those)."""
 
     columns: dict = field(default_factory=dict)
     clean: CleanOptions = field(default_factory=CleanOptions)
+    bbox: tuple[float, float, float, float] | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "bbox", check_bbox(self.bbox))
 
 
 @dataclass
@@ -70,12 +76,14 @@ def detect(path, columns: dict | None = None) -> str:
 def read_file(path, options: ReadOptions = ReadOptions()) -> tuple[str, Fixes]:
     """The format and the raw fixes of one file."""
     kind = detect(path, options.columns)
+    box = options.bbox
     if kind == "nmea":
-        return kind, nmea.read(path)
+        fx = nmea.read(path)
+        return kind, fx.within(box) if box is not None else fx
     if kind == "generic":
-        return kind, generic.read(path, options.columns)
+        return kind, generic.read(path, options.columns, box)
     names = generic.header(path)
-    return kind, (marinecadastre if kind == "marinecadastre" else dma).read(path, names)
+    return kind, (marinecadastre if kind == "marinecadastre" else dma).read(path, names, box)
 
 
 def read_ais(paths, options: ReadOptions = ReadOptions()) -> ReadResult:

@@ -36,7 +36,8 @@ def header(path, delimiter: str = ",", skip_rows: int = 0) -> list[str]:
 def read_columns(path, columns: dict[str, str], *, delimiter: str = ",",
                  time_formats: tuple[str, ...] = (), epoch_seconds: bool = False,
                  ship_types: dict[str, int] | None = None,
-                 keep: tuple[str, frozenset[str], str] | None = None) -> Fixes:  # fmt: skip
+                 keep: tuple[str, frozenset[str], str] | None = None,
+                 bbox: tuple[float, float, float, float] | None = None) -> Fixes:  # fmt: skip
     """The fixes of the CSV file ``path`` whose roles (:data:`ROLES`) are the columns
     ``columns`` (role: column name).
 
@@ -44,12 +45,14 @@ def read_columns(path, columns: dict[str, str], *, delimiter: str = ",",
     column of numbers is Unix seconds. ``ship_types``: the ship type column is text, read
     through this table (other texts: 0), a number being taken as the code itself. ``keep``:
     ``(column, values, count)``: only rows whose column holds one of the values are fixes, the
-    others counted under ``count``.
+    others counted under ``count``. ``bbox`` (lon min, lat min, lon max, lat max): only the rows
+    inside are read, block by block (counted as ``outside_bbox``), so that a day of a whole
+    coast is read for one region in the memory of that region's rows.
     """
     import pyarrow as pa
     import pyarrow.compute as pc
 
-    from usvtool.csvtable import read_table
+    from usvtool.csvtable import line_of, read_filtered, read_table
 
     names = header(path, delimiter)
     missing = [r for r in REQUIRED if r not in columns]
@@ -70,17 +73,29 @@ def read_columns(path, columns: dict[str, str], *, delimiter: str = ",",
         types[columns["ship_type"]] = pa.string() if ship_types is not None else pa.float64()
     if keep is not None:
         types[keep[0]] = pa.string()
-    table = read_table(path, types, delimiter=delimiter)
+    counts = {}
+    rows = None
+    if bbox is None:
+        table = read_table(path, types, delimiter=delimiter)
+    else:
+        lon_name, lat_name = columns["lon"], columns["lat"]
+
+        def inside(batch):
+            lon = batch.column(lon_name).to_numpy(zero_copy_only=False)
+            lat = batch.column(lat_name).to_numpy(zero_copy_only=False)
+            with np.errstate(invalid="ignore"):
+                return (lon >= bbox[0]) & (lon <= bbox[2]) & (lat >= bbox[1]) & (lat <= bbox[3])
+
+        table, rows, n = read_filtered(path, types, inside, delimiter=delimiter)
+        counts["outside_bbox"] = n - int(rows.size)
     times = _times(path, table.column(columns["time"]), columns["time"], time_formats,
-                   epoch_seconds, delimiter)  # fmt: skip
+                   epoch_seconds, delimiter, rows)  # fmt: skip
     mmsi = table.column(columns["mmsi"])
     if mmsi.null_count:
-        from usvtool.csvtable import line_of
-
         row = int(np.argmax(mmsi.is_null().to_numpy(zero_copy_only=False)))
+        row = int(rows[row]) if rows is not None else row
         raise UsvError(f"{path}: line {line_of(path, row, 1, delimiter)}, column "
                        f"{columns['mmsi']}: empty: an MMSI is required")  # fmt: skip
-    counts = {}
     if keep is not None:
         column, values, label = keep
         kept = pc.is_in(table.column(column), value_set=pa.array(sorted(values)))
@@ -122,7 +137,7 @@ def _ship_types(column, table: dict[str, int] | None) -> np.ndarray:
 
 
 def _times(path, column, name: str, formats: tuple[str, ...], epoch_seconds: bool,
-           delimiter: str) -> np.ndarray:  # fmt: skip
+           delimiter: str, rows) -> np.ndarray:  # fmt: skip
     """Nanoseconds (UTC) of a time column: Unix seconds when ``epoch_seconds`` and every value
     is a number, else text (:func:`usvtool.csvtable.time_ns`)."""
     import pyarrow as pa
@@ -136,4 +151,4 @@ def _times(path, column, name: str, formats: tuple[str, ...], epoch_seconds: boo
             seconds = None
         if seconds is not None and np.isfinite(seconds).all():
             return np.round(seconds * 1e9).astype(np.int64)
-    return time_ns(path, column, name, 1, formats, delimiter)
+    return time_ns(path, column, name, 1, formats, delimiter, rows)

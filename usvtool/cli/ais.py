@@ -26,6 +26,18 @@ def _write_with_summary(output, summary_path, summary: dict, write) -> None:
     emit(summary)
 
 
+def _bbox(ctx, param, value):
+    if value is None:
+        return None
+    try:
+        box = tuple(float(v) for v in value.split(","))
+    except ValueError:
+        raise click.BadParameter(f"{value!r} is not LON_MIN,LAT_MIN,LON_MAX,LAT_MAX") from None
+    if len(box) != 4:
+        raise click.BadParameter(f"{value!r} is not LON_MIN,LAT_MIN,LON_MAX,LAT_MAX")
+    return box
+
+
 @ais.command("read")
 @click.argument("inputs", metavar="FILE...", nargs=-1, required=True,
                 type=click.Path(dir_okay=False))  # fmt: skip
@@ -39,8 +51,11 @@ def _write_with_summary(output, summary_path, summary: dict, write) -> None:
               "track.")  # fmt: skip
 @click.option("--max-speed", type=POSITIVE, default=50.0, show_default=True, metavar="KN",
               help="A fix that implies more than this speed (knots) is dropped.")  # fmt: skip
+@click.option("--bbox", callback=_bbox, metavar="LON_MIN,LAT_MIN,LON_MAX,LAT_MAX",
+              help="Keep only the positions inside this box (degrees); a CSV is read block by "
+              "block, holding only those.")  # fmt: skip
 @summary_option
-def read(inputs, output, columns, max_gap, max_speed, summary_path) -> None:
+def read(inputs, output, columns, max_gap, max_speed, bbox, summary_path) -> None:
     """Read AIS files (MarineCadastre, DMA, NMEA, any CSV; gzip, zstd or zip) into one tidy
     tracks table, cleaned (each rule counted in the summary on stdout)."""
     from usvtool.ais import CleanOptions, ReadOptions, read_ais
@@ -50,23 +65,11 @@ def read(inputs, output, columns, max_gap, max_speed, summary_path) -> None:
 
     check_suffix(output, "-o")
     check_outputs([("-o", output), ("--summary", summary_path)])
-    options = ReadOptions(parse_columns(columns), CleanOptions(max_gap, max_speed))
+    options = ReadOptions(parse_columns(columns), CleanOptions(max_gap, max_speed), bbox)
     result = read_ais(inputs, options)
     summary = {"output": output, **result.summary()}
     _write_with_summary(output, summary_path, summary, lambda tmp: write_tracks(tmp,
                                                                                 result.tracks))
-
-
-def _bbox(ctx, param, value):
-    if value is None:
-        return None
-    try:
-        box = tuple(float(v) for v in value.split(","))
-    except ValueError:
-        raise click.BadParameter(f"{value!r} is not LON_MIN,LAT_MIN,LON_MAX,LAT_MAX") from None
-    if len(box) != 4:
-        raise click.BadParameter(f"{value!r} is not LON_MIN,LAT_MIN,LON_MAX,LAT_MAX")
-    return box
 
 
 @ais.command("encounters")
