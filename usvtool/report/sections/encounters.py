@@ -204,19 +204,20 @@ def run_table(results: Results, scenario: str, controllers: list[str]) -> Table:
 # --- outcomes and COLREGs counts ------------------------------------------------------------
 
 #: The results table's COLREGs counts (docs/colregs.md, "Counting"): every encounter of a run in
-#: exactly one, and their headings.
+#: exactly one; what each says of an encounter, and its column's heading.
 VERDICTS = ("compliant", "compliant_excused", "noncompliant", "not_judged")
-VERDICT_HEADINGS = ("compliant", "compliant only by an excused Rule 2 departure",
-                    "non-compliant", "not judged")  # fmt: skip
+VERDICT_WORDS = dict(zip(VERDICTS, ("compliant", "compliant only by an excused Rule 2 departure",
+                                    "non-compliant", "not judged"), strict=True))  # fmt: skip
+VERDICT_HEADINGS = ("compliant", "excused only", "non-compliant", "not judged")
 #: A run's outcomes, each in its own column: a run that did not arrive is a failure.
 OUTCOMES = ("arrived", "collided", "did not arrive")
 #: Scene families with a section of their own (the Imazu problem), left out of the families
 #: table.
 OWN_SECTION = ("imazu",)
 COUNTS = ("A run that did not arrive or collided is a failure: its encounters are all 'not "
-          "judged', never compliant (docs/colregs.md, 'Counting'); 'compliant only by an "
-          "excused Rule 2 departure': compliant only because the controller's Rule 2 record "
-          "excused a failed side or stand-on rule.")
+          "judged', never compliant (docs/colregs.md, 'Counting'). Excused only: compliant "
+          "only through an excused Rule 2 departure, i.e. because the controller's Rule 2 "
+          "record excused a failed side or stand-on rule.")
 
 
 def is_family(case: str) -> bool:
@@ -240,7 +241,6 @@ class Tally(NamedTuple):
     """The outcomes of some runs and the sum of their COLREGs counts (None when a run's row
     lacks them: a table written before the counts were split)."""
 
-    runs: int
     outcomes: dict[str, int]
     verdicts: dict[str, int] | None
 
@@ -252,11 +252,11 @@ class Tally(NamedTuple):
         counts = [[j.number(v) for v in VERDICTS] for j in jobs]
         split = None if any(None in c for c in counts) else {
             v: int(sum(c[i] for c in counts)) for i, v in enumerate(VERDICTS)}  # fmt: skip
-        return cls(len(jobs), outcomes, split)
+        return cls(outcomes, split)
 
     def cells(self) -> list[Cell]:
-        """Runs, the outcomes (failures marked) and the four counts (``-`` when unknown)."""
-        cells = [Cell(str(self.runs), "num")]
+        """The outcomes (failures marked) and the four counts (``-`` when unknown)."""
+        cells = []
         for name, n in self.outcomes.items():
             cells.append(Cell(str(n), "num" + (" fails" if n and name != "arrived" else "")))
         for v in VERDICTS:
@@ -266,7 +266,7 @@ class Tally(NamedTuple):
         return cells
 
 
-TALLY_COLUMNS = ["runs", *OUTCOMES, *VERDICT_HEADINGS]
+TALLY_COLUMNS = [*OUTCOMES, *VERDICT_HEADINGS]
 #: How a count above 0 is marked.
 MARKS = {"noncompliant": " fails", "not_judged": " untested"}
 
@@ -304,8 +304,8 @@ def families_table(results: Results) -> Table | None:
     return Table("encounter-families", "Scene families: outcomes and COLREGs per kind and "
                  "controller",
                  "Each kind's seeded scenes (docs/families.md), the same scenes for every "
-                 "controller; runs = scenes x seeds. Outcomes: runs; COLREGs: encounters "
-                 "summed over the runs. " + COUNTS + " Closest: the smallest distance to any "
+                 "controller. Outcomes: runs (scenes x seeds); COLREGs: encounters summed "
+                 "over the runs. " + COUNTS + " Closest: the smallest distance to any "
                  "ship (m), median (IQR width) over the runs, collided ones included. The "
                  "thresholds: the next table.",
                  ["family/kind", "scenes", "controller", *TALLY_COLUMNS, "closest (m)"], rows)
@@ -323,17 +323,17 @@ def compliance_table(results: Results) -> Table | None:
     for s in scenarios:
         for c in results.methods("runs", s):
             jobs = results.select("runs", s, c)
-            rules = [sorted({r for j in jobs for r in (j.text(m) or "").split(";") if r})
-                     for m in ("failed_rules", "excused_rules")]  # fmt: skip
-            rows.append([Cell(s), Cell(c), *Tally.of(jobs).cells(),
-                         *(Cell(", ".join(r)) for r in rules)])  # fmt: skip
+            failed, excused = (
+                sorted({r for j in jobs for r in (j.text(m) or "").split(";") if r})
+                for m in ("failed_rules", "excused_rules"))  # fmt: skip
+            rules = ", ".join(failed) + (f" (excused: {', '.join(excused)})" if excused else "")
+            rows.append([Cell(s), Cell(c), *Tally.of(jobs).cells(), Cell(rules.strip())])
     return Table("colregs-compliance", "Bundled scenarios: outcomes and COLREGs per controller",
                  "The bundled scenarios with encounters (illustrated examples: one run per "
                  "seed; the claims rest on the scene families). " + COUNTS + " Rules failed and "
-                 "excused: in the judged encounters (docs/colregs.md). The thresholds: the "
+                 "(excused): in the judged encounters (docs/colregs.md). The thresholds: the "
                  "table before.",
-                 ["scenario", "controller", *TALLY_COLUMNS, "rules failed", "rules excused"],
-                 rows)
+                 ["scenario", "controller", *TALLY_COLUMNS, "rules failed (excused)"], rows)
 
 
 # --- the thresholds the verdicts used --------------------------------------------------------
@@ -451,9 +451,8 @@ def encounter_verdict(encounter: dict, run: dict) -> str:
     if encounter.get("compliant") is None:
         return "not judged: no verdict"
     if not encounter["compliant"]:
-        return "non-compliant"
-    return "compliant only by an excused Rule 2 departure" if encounter.get(
-        "excused_rules") else "compliant"  # fmt: skip
+        return VERDICT_WORDS["noncompliant"]
+    return VERDICT_WORDS["compliant_excused" if encounter.get("excused_rules") else "compliant"]
 
 
 def encounter_table(results: Results, scenarios: list[str]) -> Table | None:
