@@ -13,23 +13,22 @@ from usvtool.report.data import JobResults, Results
 from usvtool.report.figures.imazu import outcome
 from usvtool.report.sections import imazu
 from usvtool.results import Row
-from usvtool.trace import Trace, write_events, write_trace
+from usvtool.trace import write_events
 
 CONTROLLERS = ("dwa", "udwa")
 
 
 def job(root, case: str, method: str, metrics: dict, family: str = "imazu") -> JobResults:
-    """A run job of ``case``: its metrics as a results table holds them, and (for the Imazu
-    family) its trace and events: own ship north at 6 m/s, 12 m long; one 10 m target head-on
-    at 4 m/s, 500 m ahead, so its CPA is 500 / 10 = 50 s ahead at 0 m."""
+    """A run job of ``case``: its metrics as a results table holds them, the scenario its job
+    wrote and its events: own ship north at 6 m/s, 12 m long; one 10 m target head-on at 4 m/s,
+    500 m ahead, so its CPA is 500 / 10 = 50 s ahead at 0 m."""
     d = root / "runs" / f"{case.replace('/', '-')}-{method}"
     d.mkdir(parents=True)
     rows = {m: Row("k", "runs", case, method, 1, m, str(v)) for m, v in metrics.items()}
-    trace = Trace.from_states([0.0, 0.1], ["own", "ts1"],
-                              [[[0, 0, 0, 6, 0], [0, 500, 180, 4, 0]],
-                               [[0, 0.6, 0, 6, 0], [0, 499.6, 180, 4, 0]]])  # fmt: skip
-    write_trace(d / "trace.csv", trace)
-    (d / "scenario.yaml").write_text("sim: {dt: 0.1, duration: 90.0}\n")
+    (d / "scenario.yaml").write_text(
+        "sim: {dt: 0.1, duration: 90.0}\n"
+        "own: {start: [0, 0], goal: [0, 800], heading: 0, speed: 6}\n"
+        "targets: [{name: ts1, start: [0, 500], heading: 180, speed: 4, length: 10}]\n")
     write_events(d / "trace.events.json", {"encounters": [], "thresholds": {
         "apparent": {"course_deg": 30.0, "speed_reduction": 0.5}, "domain_axes_m": [84, 36]},
         "run": {"own_length": 12.0,

@@ -1,5 +1,6 @@
 """The Imazu problem's case x controller grid: one cell per run, coloured by its outcome, with
-its closest distance to a target written in it (docs/report-imazu.md).
+its closest distance to a target and its compliant encounters of all written in it
+(docs/report-imazu.md).
 
 The outcome is the worst that befell the run, in the order of :data:`OUTCOMES`: it collided,
 did not arrive (both failures, hatched so that grey print keeps them apart), or arrived with a
@@ -66,7 +67,8 @@ def outcome(arrived: bool, collided: bool, counts: Sequence[int]) -> str:
 def imazu_grid(cases: Sequence[str], labels: Sequence[str], controllers: Sequence[str],
                cells: dict[tuple[str, str], Cell], headers: Sequence[str]) -> Plot:  # fmt: skip
     """Cases down (``labels`` beside them), ``controllers`` across (``headers`` above them),
-    one :class:`Cell` per (case, controller) of ``cells`` (a missing run left white, "no run");
+    one :class:`Cell` per (case, controller) of ``cells`` (a missing run left white, "no run"),
+    its closest distance and its compliant encounters of all written in it ("41.2 m · 1/3");
     a legend of the outcomes below. Every text prints at >= :data:`MIN_FONT_PT` pt.
 
     Data: ``case,controller,outcome,closest_distance_m,compliant,compliant_excused,
@@ -97,12 +99,13 @@ def imazu_grid(cases: Sequence[str], labels: Sequence[str], controllers: Sequenc
                 _, _, face, hatch, ink = look[cell.outcome]
                 ax.add_patch(Rectangle((j, i), 1, 1, facecolor=face, edgecolor="white",
                                        hatch=hatch, linewidth=1.5))  # fmt: skip
-                text = "-" if cell.closest_m is None else f"{cell.closest_m:.1f} m"
+                distance = "-" if cell.closest_m is None else f"{cell.closest_m:.1f} m"
+                text = f"{distance} · {cell.counts[0]}/{sum(cell.counts)}"
                 ax.text(j + 0.5, i + 0.5, text, ha="center", va="center", fontsize=text_pt,
                         color=ink, bbox={"facecolor": face, "edgecolor": "none",
                                          "pad": 0.6})  # fmt: skip
-                distance = "" if cell.closest_m is None else fixed([cell.closest_m], 3)[0]
-                rows.append((case, controller, cell.outcome, distance, *cell.counts))
+                exact = "" if cell.closest_m is None else fixed([cell.closest_m], 3)[0]
+                rows.append((case, controller, cell.outcome, exact, *cell.counts))
         ax.set_xlim(0, len(controllers))
         ax.set_ylim(len(cases), 0)
         ax.set_xticks([j + 0.5 for j in range(len(controllers))], list(headers))

@@ -161,9 +161,13 @@ def wind_tracks(scenes: Sequence[WindScene]) -> Plot:
                 marks = (round(every * i / max(len(s.traces), 1)), every)
                 along, across = offsets(tr, s.goal)
                 label = _ended(name, s.arrivals.get(name))
-                for ax, x, y in ((top, own[:, 0], own[:, 1]), (bottom, along, across)):
-                    ax.plot(x, y, **st.line(), linewidth=1.4, marker=st.marker, markersize=4,
-                            markevery=marks, path_effects=halo, zorder=3, label=label)
+                marked = {"marker": st.marker, "markersize": 4, "markevery": marks}
+                # the halo round the line only: round a marker it would blur its shape
+                top.plot(own[:, 0], own[:, 1], **st.line(), linewidth=1.4, path_effects=halo,
+                         zorder=3)  # fmt: skip
+                top.plot(own[:, 0], own[:, 1], color=st.color, linestyle="none", zorder=3.5,
+                         **marked)  # fmt: skip
+                bottom.plot(along, across, **st.line(), linewidth=1.4, label=label, **marked)
                 rows += [(s.name, name, *v) for v in zip(
                     *(fixed(c, 3) for c in (tr.t, own[:, 0], own[:, 1], along, across)),
                     strict=True)]  # fmt: skip
@@ -241,7 +245,7 @@ def arrival_differences(differences: Sequence[Difference], title: str) -> Plot:
     if not differences:
         raise UsvError("arrival_differences: no comparison")
     rows = []
-    with figure(WIDTH, 0.8 + 0.55 * len(differences)) as fig:
+    with figure(WIDTH, 0.9 + 0.7 * len(differences)) as fig:
         ax = fig.add_subplot()
         notes = []
         for i, d in enumerate(differences):

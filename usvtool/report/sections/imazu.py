@@ -5,10 +5,10 @@ arrival, collision, closest distance and COLREGs counts, with the totals per con
 
 The runs are those of the ``imazu`` scene family (their ``job.json``'s ``scene.family``), whatever
 the pipeline's entry is named; a case is the family's kind (``01`` ... ``22``). The scale the
-cases ran at is read from the runs' own files, never from the family's defaults: speeds, the
-targets' classes, ranges and time to CPA from the trace's first step (:func:`usvtool.encounter
-.assess`), lengths and the goal from the events' ``run`` object, the duration from the scenario
-the job wrote. docs/report-imazu.md says what each cell means.
+cases ran at is read from the runs' own files, never from the family's defaults: the ships'
+starts, speeds and the duration from the scenario the job wrote (so the targets' classes,
+ranges and time to CPA at the start, by :func:`usvtool.encounter.assess`), lengths and the goal
+from the events' ``run`` object. docs/report-imazu.md says what each cell means.
 """
 
 from __future__ import annotations
@@ -18,13 +18,14 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from usvtool.encounter import CLASS_NAMES, assess
+from usvtool.errors import UsvError
 from usvtool.pipeline import split_family_case
 from usvtool.report.data import JobResults, Results
 from usvtool.report.document import APPENDIX, Cell, Figure, Section, Table
 from usvtool.report.figures.imazu import Cell as GridCell
 from usvtool.report.figures.imazu import imazu_grid, outcome
-from usvtool.report.sections.encounters import run_facts, run_files, thresholds_table
-from usvtool.trace import OWN
+from usvtool.report.sections.encounters import run_facts, thresholds_table
+from usvtool.trace import read_events
 from usvtool.yamlfile import read_yaml
 
 FAMILY = "imazu"
@@ -37,7 +38,7 @@ SHORT = {"head-on": "HO", "crossing-give-way": "GW", "crossing-stand-on": "SO",
 
 @dataclass(frozen=True)
 class Start:
-    """A case's situation at the trace's first step: the own ship's speed, each target's class,
+    """A case's situation at the start: the own ship's speed, each target's class,
     speed, range and CPA (distance, time), the distance to the goal, every length, the
     scenario's duration."""
 
@@ -69,29 +70,34 @@ def imazu_runs(results: Results) -> dict[str, dict[str, JobResults]]:
 
 
 def start(job: JobResults) -> Start | None:
-    """The case's situation at the start of the run ``job`` (None without its files)."""
-    files = run_files(job)
-    if files is None:
+    """The case's situation at the start of the run ``job``, from the scenario its job wrote
+    (the run's ``scenario_file``: the ships' starts, headings and speeds, the duration) and its
+    events (lengths, goal); None without them."""
+    path = job.dir / "trace.events.json"
+    if not path.is_file():
         return None
-    trace, events, where = files
-    run = run_facts(events, where)
-    i = trace.ships.index(OWN)
-    others = [k for k in range(len(trace.ships)) if k != i]
-    own_xy = np.array([trace.x[0, i], trace.y[0, i]])
-    at = assess(own_xy, trace.heading[0, i], trace.speed[0, i],
-                np.column_stack([trace.x[0, others], trace.y[0, others]]),
-                trace.heading[0, others], trace.speed[0, others])  # fmt: skip
-    lengths = {s["name"]: float(s["length"]) for s in run["ships"]}
-    scenario = run.get("scenario_file")
-    duration = None
-    if scenario and (where.parent / scenario).is_file():
-        duration = (read_yaml(where.parent / scenario).get("sim") or {}).get("duration")
-    return Start(float(trace.speed[0, i]), tuple(CLASS_NAMES[c] for c in at.cls),
-                 tuple(float(trace.speed[0, k]) for k in others), tuple(map(float, at.range)),
-                 tuple(map(float, at.dcpa)), tuple(map(float, at.tcpa)),
-                 float(np.hypot(*(np.asarray(run["goal"], float) - own_xy))),
-                 lengths[OWN], tuple(lengths[trace.ships[k]] for k in others),
-                 None if duration is None else float(duration))  # fmt: skip
+    run = run_facts(read_events(path), path)
+    scenario = job.dir / str(run.get("scenario_file"))
+    if not run.get("scenario_file") or not scenario.is_file():
+        return None
+    data = read_yaml(scenario)
+    try:
+        own, targets = data["own"], data.get("targets") or []
+        own_xy = np.asarray(own["start"], float)
+        at = assess(own_xy, own["heading"], own["speed"],
+                    np.array([t["start"] for t in targets], float).reshape(-1, 2),
+                    [t["heading"] for t in targets], [t["speed"] for t in targets])  # fmt: skip
+        duration = (data.get("sim") or {}).get("duration")
+        speeds = tuple(float(t["speed"]) for t in targets)
+    except (KeyError, TypeError, ValueError) as e:
+        raise UsvError(f"{scenario}: not a scenario with own and targets' start, heading and "
+                       f"speed ({e})") from None  # fmt: skip
+    lengths = [float(s["length"]) for s in run["ships"]]
+    return Start(float(own["speed"]), tuple(CLASS_NAMES[c] for c in at.cls), speeds,
+                 tuple(map(float, at.range)), tuple(map(float, at.dcpa)),
+                 tuple(map(float, at.tcpa)),
+                 float(np.hypot(*(np.asarray(run["goal"], float) - own_xy))), lengths[0],
+                 tuple(lengths[1:]), None if duration is None else float(duration))  # fmt: skip
 
 
 def counts(job: JobResults) -> tuple[int, int, int, int]:
@@ -186,8 +192,9 @@ def section(results: Results) -> Section | None:
     plot = imazu_grid(cases, labels, controllers, cells, headers)
     top.blocks.append(Figure(
         "imazu-grid", "The Imazu cases with every controller",
-        "Each cell one run: its outcome (colour; the failures hatched) and its closest centre "
-        "distance to a target. A run that did not arrive is a failure, never compliant; an "
+        "Each cell one run: its outcome (colour; the failures hatched), its closest centre "
+        "distance to a target and its compliant encounters of all (no rule failed, none "
+        "excused). A run that did not arrive is a failure, its encounters never compliant; an "
         "arrived run's colour is its worst encounter.", plot.png, plot.data))
     rows = [[Cell(_label(case)), Cell(classes[case])]
             + [_run_text(runs[case][c]) if c in runs[case] else Cell("no run")
