@@ -452,16 +452,18 @@ def test_a_table_of_nan_is_invalid_everywhere_a_number_is_expected(usv, tmp_path
     base = ROOT / "baselines" / "ci.csv"
     head = write(tmp_path / "nan.csv", [replace(r, value="nan") for r in ci_rows()])
     groups = {r.group for r in ci_rows()}
-    words = {g for g in groups if g[3] == "failed_rules"}
-    assert len(groups) == 333 and len(words) == 10  # hand-counted from the file
+    words = {g for g in groups if g[3] in ("failed_rules", "excused_rules")}
+    # hand-counted from the file: 20 runs with 3 counts more since the COLREGs split (issue 25),
+    # the 4 runs that never arrive judging nothing (ccdwa's failed_rules gone)
+    assert len(groups) == 392 and len(words) == 9
     r = usv("compare", base, head, "-o", tmp_path / "out")
     assert r.exit_code == 1
     summary = json.loads(r.stdout)
-    assert summary["counts"]["invalid"] == 323 and summary["counts"]["changed"] == 10
-    assert len(summary["invalid"]) == 323 and summary["status"] == 1
+    assert summary["counts"]["invalid"] == 383 and summary["counts"]["changed"] == 9
+    assert len(summary["invalid"]) == 383 and summary["status"] == 1
     last = r.stderr.strip().splitlines()[-1]
-    assert last.startswith("Error: 0 regressed, 0 missing, 323 invalid")
-    assert "## usvtool compare: FAIL: 323 invalid" in r.stderr
+    assert last.startswith("Error: 0 regressed, 0 missing, 383 invalid")
+    assert "## usvtool compare: FAIL: 383 invalid" in r.stderr
 
 
 def test_one_infinite_length_is_invalid_and_shown_first_in_every_report(tables, tmp_path):
