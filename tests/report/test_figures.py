@@ -157,12 +157,12 @@ def plots(drawn) -> dict[str, F.Plot]:
 # --- every figure -----------------------------------------------------------------------------
 
 #: Pixels (width, height) at 150 dpi. The text width 182 mm = 7.165 in (1074 px: Matplotlib
-#: truncates); routes: a 100 m square view with the legend beside it, a map 7.165 - 2.3 in
-#: square and 0.8 in more, 5.665 in; convergence 7.2 x 4.4; boxplots two panels in one row,
-#: 2.9 + 0.4 in; snapshots three panels of (7.165 - 0.6) / 3 in and 0.25 in each, 0.9 in more,
-#: 3.338 in; states 7.2 x 5.6; nearest 7.2 x 3.9; wind (H3's) 8.6 x 7.0; preprocessing two
-#: panels of (7.165 - 0.5) / 2 in, a square grid, and 1.1 in, 4.433 in.
-SIZES = {"routes": (1074, 849), "routes_chart": (1074, 849), "convergence": (1080, 660),
+#: truncates); routes: a 100 m square view with the legend beside it, a map 7.165 - 0.85 - 0.15 -
+#: 2.3 = 3.865 in square and 0.35 + 0.55 in of margins, 4.765 in; convergence 7.2 x 4.4; boxplots
+#: two panels in one row, 2.9 + 0.4 in; snapshots three panels of (7.165 - 0.6) / 3 in and 0.25
+#: in each, 0.9 in more, 3.338 in; states 7.2 x 5.6; nearest 7.2 x 3.9; wind (H3's) 8.6 x 7.0;
+#: preprocessing two panels of (7.165 - 0.5) / 2 in, a square grid, and 1.1 in, 4.433 in.
+SIZES = {"routes": (1074, 714), "routes_chart": (1074, 714), "convergence": (1080, 660),
          "boxplots": (1080, 495), "snapshots": (1074, 500), "states": (1080, 840),
          "nearest": (1080, 585), "wind": (1290, 1050), "preprocessing": (1074, 664)}  # fmt: skip
 
@@ -331,9 +331,9 @@ def test_a_big_grid_draws_fast_and_keeps_a_one_cell_obstacle_line():
     seconds = time.perf_counter() - begin
     print(f"routes_on_grid on 3000 x 4000 cells: {seconds:.2f} s, {len(plot.png)} bytes")
     # the route's box padded by 638.4 m, 9256.8 x 1276.8 m, widened to 9256.8 x 2314.2 (aspect
-    # 4) and clipped to the chart's 8 km: 8000 x 2314.2 m, printed 6.465 x 1.870 in, 1.3 in more
-    # is 3.170 in, under the least height of 3.4 in
-    assert pixels(plot.png).shape == (510, 1074, 3)
+    # 4) and clipped to the chart's 8 km: 8000 x 2314.2 m (aspect 3.457), a map 7.165 - 1.0 =
+    # 6.165 in wide, 1.783 in high, with 0.9 in of margins and one legend row, 0.32 in: 3.003 in
+    assert pixels(plot.png).shape == (450, 1074, 3)
 
 
 # --- convergence and box plots ----------------------------------------------------------------

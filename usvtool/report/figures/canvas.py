@@ -43,10 +43,12 @@ class Plot:
 
 
 @contextmanager
-def figure(width: float, height: float) -> Iterator:
-    """A new constrained-layout figure of ``width`` x ``height`` inches under the fixed style and
-    the fonts that print at >= 7 pt at its width (:func:`~usvtool.report.figures.styles.rc_params`);
-    draw and :func:`png` it inside the block (the style applies when it is drawn)."""
+def figure(width: float, height: float, layout: str = "constrained") -> Iterator:
+    """A new figure of ``width`` x ``height`` inches under the fixed style and the fonts that
+    print at >= 7 pt at its width (:func:`~usvtool.report.figures.styles.rc_params`), laid out
+    by Matplotlib's ``layout`` (``compressed`` for maps: constrained layout that also closes the
+    gaps of equal-aspect axes, whose labels it would otherwise leave outside the figure); draw
+    and :func:`png` it inside the block (the style applies when it is drawn)."""
     import matplotlib as mpl
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
@@ -55,7 +57,7 @@ def figure(width: float, height: float) -> Iterator:
         mpl.rcdefaults()
         mpl.rcParams.update(STYLE)
         apply_rc(width)
-        fig = Figure(figsize=(width, height), dpi=DPI, layout="constrained")
+        fig = Figure(figsize=(width, height), dpi=DPI, layout=layout)
         FigureCanvasAgg(fig)
         yield fig
 

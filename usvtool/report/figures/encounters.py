@@ -115,7 +115,7 @@ def encounter_snapshots(trace: Trace, times: dict[str, float], lengths: dict[str
     columns = min(len(times), 3)
     panel_rows = -(-len(times) // columns)
     side = (PRINT_WIDTH_IN - 0.6) / columns
-    with figure(PRINT_WIDTH_IN, panel_rows * (side + 0.25) + 0.9) as fig:
+    with figure(PRINT_WIDTH_IN, panel_rows * (side + 0.25) + 0.9, "compressed") as fig:
         axes = fig.subplots(panel_rows, columns, squeeze=False).ravel()
         for ax in axes[len(times):]:
             ax.set_visible(False)

@@ -37,6 +37,13 @@ ASPECT = (0.6, 4.0)
 WIDE = 1.6
 #: The tallest map (inches): a taller view is drawn narrower.
 MAX_MAP_HEIGHT = 6.0
+#: A map's margins (inches: left for the northings, right, top for the title, bottom for the
+#: eastings), the legend's column beside a tall map, the height of a legend entry, and the
+#: columns of the legend under a wide map.
+MARGINS = (0.85, 0.15, 0.35, 0.55)
+LEGEND_WIDTH = 2.3
+ENTRY_HEIGHT = 0.17
+LEGEND_COLUMNS = 5
 #: Markers along a route: each optimizer's waypoints, at most about this many on a route.
 MARKS = 12
 
@@ -68,13 +75,11 @@ def routes_on_grid(grid: Grid, routes: dict[str, np.ndarray], start, goal, title
     every = np.vstack([start, goal, *points.values()])
     left, bottom, right, top = view = fit_view(every[:, 0], every[:, 1], VIEW_PAD, ASPECT,
                                                grid.bounds)  # fmt: skip
-    aspect = (right - left) / (top - bottom)
-    wide = aspect >= WIDE
-    map_w = PRINT_WIDTH_IN - (0.7 if wide else 2.3)
-    height = min(map_w / aspect, MAX_MAP_HEIGHT) + (1.3 if wide else 0.8)
+    entries = len(points) + 2 + (2 if chart is None else 3)
+    size, box, wide = map_layout((right - left) / (top - bottom), entries)
     halo = [patheffects.withStroke(linewidth=2.8, foreground="white", alpha=0.75)]
-    with figure(PRINT_WIDTH_IN, max(height, 3.4)) as fig:
-        ax = fig.add_subplot()
+    with figure(*size, layout=None) as fig:
+        ax = fig.add_axes(box)
         if chart is None:
             draw_grid(ax, grid, view)
         else:
@@ -93,14 +98,45 @@ def routes_on_grid(grid: Grid, routes: dict[str, np.ndarray], start, goal, title
         background = class_handles()[1:] if chart is None else chart_handles()[1:]
         handles = ax.get_legend_handles_labels()[0] + background
         if wide:
-            fig.legend(handles=handles, loc="outside lower center", ncols=5)
+            fig.legend(handles=handles, loc="lower center", ncols=LEGEND_COLUMNS,
+                       bbox_to_anchor=(0.5, 0.0))  # fmt: skip
         else:
-            fig.legend(handles=handles, loc="outside right upper")
+            ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.03, 1.0),
+                      borderaxespad=0.0)  # fmt: skip
         image = png(fig)
     rows = [("route", name, i, *fixed(xy, 3)) for name, p in points.items()
             for i, xy in enumerate(p)]  # fmt: skip
     rows += [("start", "", 0, *fixed(start, 3)), ("goal", "", 0, *fixed(goal, 3))]
     return Plot(image, csv_text(("kind", "algorithm", "vertex", "x", "y"), rows))
+
+
+def map_layout(aspect: float, entries: int):
+    """((width, height) inches, axes box in figure fractions, legend below) of a map of
+    width / height ``aspect`` with a legend of ``entries``: the page's text width; a view at
+    least :data:`WIDE` wide has the legend under it in :data:`LEGEND_COLUMNS` columns, any other
+    beside it, and its height is at most :data:`MAX_MAP_HEIGHT`. The axes is placed by hand, at
+    exactly the map's aspect (Matplotlib's constrained layout can leave the labels of an
+    equal-aspect axes outside the figure).
+
+    >>> map_layout(1.0, 10)  # 7.165 - 0.85 - 0.15 - 2.3 = 3.865 in square; 0.35 + 0.55 more
+    ((7.165, 4.765), (0.119, 0.115, 0.539, 0.811), False)
+    """
+    left, right, top, bottom = MARGINS
+    wide = aspect >= WIDE
+    if wide:
+        map_w = PRINT_WIDTH_IN - left - right
+        map_h = map_w / aspect
+        legend = ENTRY_HEIGHT * -(-entries // LEGEND_COLUMNS) + 0.15
+        height = top + map_h + bottom + legend
+        y0 = bottom + legend
+    else:
+        map_w = PRINT_WIDTH_IN - left - right - LEGEND_WIDTH
+        map_h = min(map_w / aspect, MAX_MAP_HEIGHT)
+        map_w = map_h * aspect
+        height = top + max(map_h, ENTRY_HEIGHT * entries + 0.1) + bottom
+        y0 = height - top - map_h
+    box = (left / PRINT_WIDTH_IN, y0 / height, map_w / PRINT_WIDTH_IN, map_h / height)
+    return (round(PRINT_WIDTH_IN, 3), round(height, 3)), tuple(round(v, 3) for v in box), wide
 
 
 def preprocessing(chart: ChartImage | None, grid: Grid, title: str) -> Plot:
@@ -116,7 +152,7 @@ def preprocessing(chart: ChartImage | None, grid: Grid, title: str) -> Plot:
     panels = 1 if chart is None else 2
     side = (PRINT_WIDTH_IN - 0.5) / panels
     aspect = (right - left) / (top - bottom)
-    with figure(PRINT_WIDTH_IN, min(side / aspect, MAX_MAP_HEIGHT) + 1.1) as fig:
+    with figure(PRINT_WIDTH_IN, min(side / aspect, MAX_MAP_HEIGHT) + 1.1, "compressed") as fig:
         axes = fig.subplots(1, panels, squeeze=False, sharex=True, sharey=True)[0]
         if chart is not None:
             draw_chart(axes[0], chart, grid.bounds)
