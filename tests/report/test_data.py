@@ -18,18 +18,18 @@ BASELINE = ROOT / "baselines" / "ci.csv"
 
 def test_a_table_of_nan_is_refused_in_one_line_and_nothing_is_written(usv, tmp_path):
     """The issue's case: exit 0 and a COLREGs claim "does not hold (0/1 runs)". The CI
-    baseline has 443 values; its 10 failed_rules are words, so 433 are numbers or True/False."""
+    baseline has 502 values; its 9 failed_rules are words, so 493 are numbers or True/False."""
     rows = read_results(BASELINE)
-    assert len(rows) == 443 and sum(r.metric == "failed_rules" for r in rows) == 10
+    assert len(rows) == 502 and sum(r.metric == "failed_rules" for r in rows) == 9
     table = tmp_path / "nan.csv"
     write_results(table, [replace(r, value="nan") for r in rows])
     r = usv("report", table, "-o", tmp_path / "out", "--no-pdf")
     assert r.exit_code == 1 and r.stdout == ""
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and len(lines[0]) - len(str(table)) <= 150, r.stderr
-    assert lines[0].startswith(f"Error: {table}: 433 values are not finite numbers or "
+    assert lines[0].startswith(f"Error: {table}: 493 values are not finite numbers or "
                                "True/False (arrival_time_s, arrived, attempt, ")  # fmt: skip
-    assert "and 14 more); line 2: " in lines[0]
+    assert "and 17 more); line 2: " in lines[0]
     assert not (tmp_path / "out").exists()
 
 
