@@ -26,12 +26,14 @@ from usvtool.trace import OWN, Trace
 
 #: The domain's full axes in ship lengths (:mod:`usvtool.encounter`, docs/colregs.md).
 DOMAIN_LENGTHS = (DOMAIN_LENGTH_FACTOR, DOMAIN_WIDTH_FACTOR)
-#: Target starts: "the purple circle represents the start point of the obstacle ship" (Okabe-Ito
-#: reddish purple). The ships' colours are :func:`~usvtool.report.figures.styles.ship_styles`:
-#: the own ship blue, the obstacle ships vermillion first, as in IWSO-DWA section 5.3 ("the blue
-#: boat indicates the USV and the red boat indicates the obstacle ship").
-TARGET_START = {"marker": "o", "color": "#CC79A7", "markersize": 5, "linestyle": "none",
-                "markeredgecolor": "black", "markeredgewidth": 0.5}  # fmt: skip
+#: Target starts: open circles in each target's colour (IWSO-DWA: "the purple circle represents
+#: the start point of the obstacle ship"; a purple of its own would be one more colour to tell
+#: from the targets'). The ships' colours are
+#: :func:`~usvtool.report.figures.styles.ship_styles`: the own ship blue, the obstacle ships
+#: vermillion first, as in IWSO-DWA section 5.3 ("the blue boat indicates the USV and the red
+#: boat indicates the obstacle ship").
+TARGET_START = {"marker": "o", "markerfacecolor": "white", "markersize": 5.5,
+                "markeredgewidth": 1.4, "linestyle": "none"}  # fmt: skip
 #: The hull outline, bow toward +x, two units long (scaled to the hull's length).
 HULL = np.array([(1.0, 0.0), (0.3, 0.32), (-1.0, 0.32), (-1.0, -0.32), (0.3, -0.32)])
 #: The hull is drawn at least this fraction of a panel's side long, to be seen.
@@ -126,7 +128,7 @@ def encounter_snapshots(trace: Trace, times: dict[str, float], lengths: dict[str
                 colour = looks[ship].color
                 x, y, h = trace.x[: i + 1, j], trace.y[: i + 1, j], trace.heading[i, j]
                 ax.plot(x, y, color=colour, linewidth=1.2, label=looks[ship].label, zorder=2)
-                start = START if ship == OWN else TARGET_START
+                start = START if ship == OWN else {**TARGET_START, "markeredgecolor": colour}
                 ax.plot(x[0], y[0], **start,
                         label=f"start of the {looks[ship].label}" if ship == OWN else None,
                         zorder=2.2)
@@ -176,7 +178,7 @@ def draw_ship(ax, x: float, y: float, heading: float, length: float, colour: str
 def _target_start_handle():
     from matplotlib.lines import Line2D
 
-    return Line2D([], [], **TARGET_START)
+    return Line2D([], [], markeredgecolor="0.3", **TARGET_START)
 
 
 def _step(trace: Trace, state: str, at) -> int:

@@ -31,7 +31,7 @@ OUTCOME_NAMES = tuple(o[0] for o in OUTCOMES)
 #: The figure's width (inches): it prints at the report's full text width.
 WIDTH = 7.2
 #: Inches per case row.
-ROW = 0.25
+ROW = 0.22
 
 
 @dataclass(frozen=True)

@@ -169,8 +169,8 @@ def preprocessing(chart: ChartImage | None, grid: Grid, title: str) -> Plot:
         fig.suptitle(title)
         handles = class_handles(grid.cells)
         if chart is not None and chart.outside.any():
-            handles.append(outside_handle())
-        fig.legend(handles=handles, loc="outside lower center", ncols=len(handles))
+            handles.append(outside_handle(100.0 * float(chart.outside.mean())))
+        fig.legend(handles=handles, loc="outside lower center", ncols=min(len(handles), 3))
         image = png(fig)
     rows = [(name, value, int(np.count_nonzero(grid.cells == value)),
              fixed([share(grid.cells, value)], 3)[0]) for value, name in CLASS_NAMES.items()]

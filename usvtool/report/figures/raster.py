@@ -148,13 +148,15 @@ def draw_outside(ax, chart: ChartImage) -> None:
     ax.imshow(rgba, extent=chart.extent, origin="upper", interpolation="nearest", zorder=0.5)
 
 
-def outside_handle():
-    """The legend patch of outside the chart: the preview's grey, hatched."""
+def outside_handle(percent: float | None = None):
+    """The legend patch of outside the chart: the preview's grey, hatched; with ``percent``, the
+    share of the map it covers (of the obstacle's share: the grid counts it as obstacle)."""
     from matplotlib.patches import Patch
 
+    label = OUTSIDE_NAME if percent is None else f"{OUTSIDE_NAME}: {percent:.1f} %, of obstacle's"
     return Patch(facecolor=np.array(PREVIEW_HATCH[0]) / 255,
                  edgecolor=np.array(PREVIEW_HATCH[1]) / 255, hatch="////", linewidth=0.6,
-                 label=OUTSIDE_NAME)  # fmt: skip
+                 label=label)  # fmt: skip
 
 
 def chart_handles() -> list:
