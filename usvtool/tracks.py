@@ -167,8 +167,10 @@ def check_columns(t) -> tuple[int, str, str] | None:
         if bad.any():
             i = int(np.argmax(bad))
             faults.append((i, column, f"{_show(getattr(t, column)[i])} is {problem}"))
-    names_bad = [i for i, s in enumerate(t.name) if not isinstance(s, str) or "\n" in s
-                 or "\r" in s]  # fmt: skip
+    names_bad = []
+    if any(not isinstance(s, str) or "\n" in s or "\r" in s for s in set(t.name.tolist())):
+        names_bad = [i for i, s in enumerate(t.name) if not isinstance(s, str) or "\n" in s
+                     or "\r" in s]  # fmt: skip
     if names_bad:
         faults.append((names_bad[0], "name", f"{_show(t.name[names_bad[0]])} is not a name "
                                              "(text without line breaks)"))  # fmt: skip

@@ -71,11 +71,10 @@ def clean(fx: Fixes, options: CleanOptions = CleanOptions()) -> tuple[Tracks, di
     with np.errstate(invalid="ignore"):
         valid = (np.abs(fx.lat) <= 90) & (np.abs(fx.lon) <= 180) & ~((fx.lat == 0) & (fx.lon == 0))
     counts["invalid_position"] = int((keep & ~valid).sum())
-    index = np.flatnonzero(keep & valid)
+    order = by_vessel_and_time(fx.mmsi, fx.time)
+    index = order[(keep & valid)[order]]  # the valid fixes by vessel and time
     mmsi, time = fx.mmsi[index], fx.time[index]
-    counts["out_of_order"] = _out_of_order(mmsi, time)
-    order = np.lexsort((time, mmsi))  # stable: the input order among equal times
-    index, mmsi, time = index[order], mmsi[order], time[order]
+    counts["out_of_order"] = _out_of_order(index, mmsi)
     dup = np.r_[False, (mmsi[1:] == mmsi[:-1]) & (time[1:] == time[:-1])]
     counts["duplicates"] = int(dup.sum())
     index, mmsi, time = index[~dup], mmsi[~dup], time[~dup]
@@ -88,7 +87,7 @@ def clean(fx: Fixes, options: CleanOptions = CleanOptions()) -> tuple[Tracks, di
     gap = np.r_[False, ~new_vessel[1:] & (np.diff(time) > max_gap_ns)]
     counts["gaps"] = int(gap.sum())
     track = np.cumsum(new_vessel | gap) - 1
-    static = _static(fx, mmsi)
+    static = _static(fx, mmsi, order)
     tracks = Tracks(mmsi=mmsi, time=time, lon=fx.lon[index], lat=fx.lat[index],
                     sog=fx.sog[index], cog=fx.cog[index], heading=fx.heading[index],
                     track=track, **static)  # fmt: skip
@@ -97,16 +96,33 @@ def clean(fx: Fixes, options: CleanOptions = CleanOptions()) -> tuple[Tracks, di
     return tracks, counts
 
 
-def _out_of_order(mmsi: np.ndarray, time: np.ndarray) -> int:
-    """How many fixes (in input order) are earlier than one before them of the same MMSI."""
-    if mmsi.size < 2:
+def by_vessel_and_time(mmsi: np.ndarray, time: np.ndarray) -> np.ndarray:
+    """The stable order by MMSI, then time (the input order among equal times), by one argsort
+    of one integer key (``np.lexsort`` on the two columns is three times slower).
+
+    >>> by_vessel_and_time(np.array([2, 1, 2, 1]), np.array([5, 9, 5, 3])).tolist()
+    [3, 1, 0, 2]
+    """
+    if mmsi.size == 0:
+        return np.zeros(0, np.int64)
+    rank = np.unique(time, return_inverse=True)[1].astype(np.int64)  # < n: no overflow
+    return np.argsort(mmsi * (int(rank.max()) + 1) + rank, kind="stable")
+
+
+def _out_of_order(index: np.ndarray, mmsi: np.ndarray) -> int:
+    """How many fixes are earlier than one before them in the input for the same MMSI: given
+    the fixes' input positions ``index`` sorted by vessel and time, those followed (in their
+    vessel) by one of a smaller input position.
+
+    >>> _out_of_order(np.array([0, 4, 1, 2, 3]), np.array([1, 1, 1, 1, 1]))  # the 2nd came last
+    1
+    """
+    if index.size < 2:
         return 0
-    by_vessel = np.argsort(mmsi, kind="stable")
-    rank = np.unique(time[by_vessel], return_inverse=True)[1].astype(np.int64)
-    group = np.cumsum(np.r_[True, np.diff(mmsi[by_vessel]) != 0]) - 1
-    key = group * (rank.max() + 1) + rank  # increasing from vessel to vessel
-    before = np.r_[-1, np.maximum.accumulate(key)[:-1]]
-    return int((key < before).sum())
+    group = np.cumsum(np.r_[True, mmsi[1:] != mmsi[:-1]]) - 1
+    key = group * (int(index.max()) + 1) + index  # a later vessel's keys are all larger
+    after = np.minimum.accumulate(key[::-1])[::-1]  # the least key from here to the end
+    return int((key[:-1] > after[1:]).sum())
 
 
 def _too_fast(mmsi, time, lon, lat, max_gap_ns: float, max_speed: float) -> np.ndarray:
@@ -117,7 +133,8 @@ def _too_fast(mmsi, time, lon, lat, max_gap_ns: float, max_speed: float) -> np.n
     if n < 2:
         return drop
     same = (mmsi[1:] == mmsi[:-1]) & (np.diff(time) <= max_gap_ns)
-    speed = haversine(lon[:-1], lat[:-1], lon[1:], lat[1:]) / (np.diff(time) / NS)
+    with np.errstate(divide="ignore", invalid="ignore"):  # a new vessel at the same time
+        speed = haversine(lon[:-1], lat[:-1], lon[1:], lat[1:]) / (np.diff(time) / NS)
     suspects = np.unique(mmsi[1:][same & (speed > max_speed)])
     if suspects.size == 0:
         return drop
@@ -127,7 +144,7 @@ def _too_fast(mmsi, time, lon, lat, max_gap_ns: float, max_speed: float) -> np.n
         if last < 0 or mmsi[i] != mmsi[last] or time[i] - time[last] > max_gap_ns:
             last = i
             continue
-        d = float(haversine(lon[last], lat[last], lon[i], lat[i]))
+        d = _distance(lon[last], lat[last], lon[i], lat[i])
         if d / ((time[i] - time[last]) / NS) > max_speed:
             drop[i] = True
         else:
@@ -135,27 +152,37 @@ def _too_fast(mmsi, time, lon, lat, max_gap_ns: float, max_speed: float) -> np.n
     return drop
 
 
-def _static(fx: Fixes, mmsi: np.ndarray) -> dict:
+def _distance(lon1: float, lat1: float, lon2: float, lat2: float) -> float:
+    """:func:`haversine` of two points, in plain floats (the greedy loop's)."""
+    p1, p2 = math.radians(lat1), math.radians(lat2)
+    a = (math.sin((p2 - p1) / 2) ** 2
+         + math.cos(p1) * math.cos(p2) * math.sin(math.radians(lon2 - lon1) / 2) ** 2)  # fmt: skip
+    return 2 * EARTH_RADIUS * math.asin(math.sqrt(min(1.0, a)))
+
+
+def _static(fx: Fixes, mmsi: np.ndarray, order: np.ndarray) -> dict:
     """The static columns of fixes of vessels ``mmsi`` (sorted): each vessel's last reported
-    value of each (module docstring)."""
+    value of each (module docstring). ``order``: the positions' order by vessel and time, that
+    of the static reports too when they are the positions (a CSV format's rows)."""
     vessels, first = np.unique(mmsi, return_index=True)
     per_row = np.repeat(np.arange(vessels.size), np.diff(np.r_[first, mmsi.size]))
-    order = np.lexsort((fx.static_time, fx.static_mmsi))
+    if not (fx.static_mmsi is fx.mmsi and fx.static_time is fx.time):
+        order = by_vessel_and_time(fx.static_mmsi, fx.static_time)
     s_mmsi = fx.static_mmsi[order]
     out = {}
     for column, missing in (("length", np.nan), ("beam", np.nan), ("name", ""),
                             ("ship_type", 0)):  # fmt: skip
-        values = getattr(fx, column)[order]
-        known = ~np.isnan(values) if column in ("length", "beam") else (
-            values != missing)  # fmt: skip
-        v_mmsi, v = s_mmsi[known], values[known]
-        last = np.r_[v_mmsi[1:] != v_mmsi[:-1], True] if v.size else np.zeros(0, bool)
-        v_mmsi, v = v_mmsi[last], v[last]
+        values = getattr(fx, column)
+        known = ~np.isnan(values) if column in ("length", "beam") else values != missing
+        rows = order[known[order]]  # the known reports, by vessel and time (indices only)
+        v_mmsi = s_mmsi[known[order]]
+        last = np.r_[v_mmsi[1:] != v_mmsi[:-1], True] if rows.size else np.zeros(0, bool)
+        v_mmsi, rows = v_mmsi[last], rows[last]
         at = np.searchsorted(v_mmsi, vessels)
         found = at < v_mmsi.size
         found[found] = v_mmsi[at[found]] == vessels[found]
         dtype = object if column == "name" else float if column in ("length", "beam") else np.int64
         per_vessel = np.full(vessels.size, missing, dtype=dtype)
-        per_vessel[found] = v[at[found]]
+        per_vessel[found] = values[rows[at[found]]]
         out[column] = per_vessel[per_row]
     return out
