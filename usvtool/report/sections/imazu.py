@@ -24,13 +24,19 @@ from usvtool.report.data import JobResults, Results
 from usvtool.report.document import APPENDIX, Cell, Figure, Section, Table
 from usvtool.report.figures.imazu import Cell as GridCell
 from usvtool.report.figures.imazu import imazu_grid, outcome
-from usvtool.report.sections.encounters import run_facts, thresholds_table
+from usvtool.report.sections.encounters import (
+    COUNTS,
+    TALLY_COLUMNS,
+    VERDICTS,
+    Tally,
+    median_iqr,
+    run_facts,
+    thresholds_table,
+)
 from usvtool.trace import read_events
 from usvtool.yamlfile import read_yaml
 
 FAMILY = "imazu"
-#: The COLREGs counts of a run (usvtool/metrics/tabulate.py, docs/colregs.md "Counting").
-COUNTS = ("compliant", "compliant_excused", "noncompliant", "not_judged")
 #: Short names of the encounter classes at the start, for the case labels.
 SHORT = {"head-on": "HO", "crossing-give-way": "GW", "crossing-stand-on": "SO",
          "overtaking": "OT", "overtaken": "OD", "none": "-"}  # fmt: skip
@@ -101,8 +107,9 @@ def start(job: JobResults) -> Start | None:
 
 
 def counts(job: JobResults) -> tuple[int, int, int, int]:
-    """The run's COLREGs counts (:data:`COUNTS`; 0 where the table has none)."""
-    return tuple(int(job.number(c) or 0) for c in COUNTS)  # type: ignore[return-value]
+    """The run's COLREGs counts (:data:`~usvtool.report.sections.encounters.VERDICTS`; 0 where
+    the table has none)."""
+    return tuple(int(job.number(c) or 0) for c in VERDICTS)  # type: ignore[return-value]
 
 
 def grid_cell(job: JobResults) -> GridCell:
@@ -149,12 +156,20 @@ def _run_text(job: JobResults) -> Cell:
     return Cell(f"{head}{distance}; {c}/{e}/{n}/{j}", css)
 
 
-def totals(runs: dict[str, dict[str, JobResults]], controller: str) -> dict[str, int]:
-    jobs = [r[controller] for r in runs.values() if controller in r]
-    split = np.sum([counts(j) for j in jobs], axis=0) if jobs else np.zeros(4, int)
-    return {"runs": len(jobs), "arrived": sum(bool(j.number("arrived")) for j in jobs),
-            "collided": sum(bool(j.text("collision")) for j in jobs),
-            **{name: int(v) for name, v in zip(COUNTS, split, strict=True)}}  # fmt: skip
+def totals_table(runs: dict[str, dict[str, JobResults]], controllers: list[str]) -> Table:
+    """Per controller over the cases: the runs' outcomes and their encounters' COLREGs counts
+    (the columns of the encounters section's families table) and the closest distance."""
+    rows = []
+    for c in controllers:
+        jobs = [r[c] for r in runs.values() if c in r]
+        closest = [v for v in (j.number("closest_distance_m") for j in jobs) if v is not None]
+        rows.append([Cell(c), Cell(str(len(jobs)), "num"), *Tally.of(jobs).cells(),
+                     median_iqr(closest)])  # fmt: skip
+    return Table("imazu-totals", "The Imazu cases: totals per controller",
+                 f"Each controller's runs of the cases and their encounters. {COUNTS} "
+                 "Closest: the median over the runs of the closest centre distance to a target "
+                 "(m) and the width of its IQR; every run's in the appendix's table.",
+                 ["controller", "cases", *TALLY_COLUMNS, "closest (m)"], rows)  # fmt: skip
 
 
 def _label(case: str) -> str:
@@ -172,9 +187,9 @@ def section(results: Results) -> Section | None:
     classes = {case: " ".join(SHORT.get(c, c) for c in s.classes) if s else "?"
                for case, s in starts.items()}  # fmt: skip
     labels = [f"{_label(case)} {classes[case]}" for case in cases]
-    sums = {c: totals(runs, c) for c in controllers}
-    headers = [f"{c}\n{s['arrived']}/{s['runs']} arrived\n{s['collided']} collided"
-               for c, s in sums.items()]  # fmt: skip
+    tallies = {c: Tally.of([r[c] for r in runs.values() if c in r]) for c in controllers}
+    headers = [f"{c}\n{sum(t.outcomes.values())} runs: {t.outcomes['arrived']} arrived\n"
+               f"{t.outcomes['collided']} collided" for c, t in tallies.items()]  # fmt: skip
     cells = {(case, c): grid_cell(job) for case, r in runs.items() for c, job in r.items()}
     known = [s for s in starts.values() if s is not None]
     scale = scale_text(known) if known else "the runs' files are missing"
@@ -196,31 +211,19 @@ def section(results: Results) -> Section | None:
         "distance to a target and its compliant encounters of all (no rule failed, none "
         "excused). A run that did not arrive is a failure, its encounters never compliant; an "
         "arrived run's colour is its worst encounter.", plot.png, plot.data))
+    top.blocks.append(totals_table(runs, controllers))
     rows = [[Cell(_label(case)), Cell(classes[case])]
             + [_run_text(runs[case][c]) if c in runs[case] else Cell("no run")
                for c in controllers] for case in cases]  # fmt: skip
-    total_cells = [Cell("all"), Cell(f"{len(cases)} cases")]
-    for c in controllers:
-        s = sums[c]
-        encounters = sum(s[k] for k in COUNTS)
-        total_cells.append(Cell(
-            f"arrived {s['arrived']}/{s['runs']}; collided {s['collided']}; compliant "
-            f"{s['compliant']}/{encounters} encounters (excused {s['compliant_excused']}, "
-            f"non-compliant {s['noncompliant']}, not judged {s['not_judged']})",
-            "fails" if s["collided"] or s["arrived"] < s["runs"] else ""))
-    rows.append(total_cells)
-    jobs = [j for r in runs.values() for j in r.values()]
-    thresholds = thresholds_table(jobs)
+    thresholds = thresholds_table([j for r in runs.values() for j in r.values()])
     top.blocks.append(Table(
-        "imazu-table", "The Imazu cases: arrival, closest distance and COLREGs",
+        "imazu-table", "The Imazu cases: every run",
         "Per run: a failure first (a collision, naming what was hit, or no arrival), the "
         "closest centre distance to a target, then its encounters compliant / compliant only "
         "through an excused Rule 2 departure / non-compliant / not judged (every encounter of "
-        "a failed run is not judged; docs/colregs.md, Counting). The last row totals each "
-        "controller, compliant against all its encounters."
-        + (" The thresholds of the verdicts: the appendix's table of the Imazu thresholds."
-           if thresholds else ""),
-        ["case", "targets", *controllers], rows))
+        "a failed run is not judged; docs/colregs.md, Counting)."
+        + (" The thresholds of the verdicts: the next table." if thresholds else ""),
+        ["case", "targets", *controllers], rows, placement=APPENDIX))
     if thresholds is not None:
         top.blocks.append(replace(
             thresholds, id="imazu-thresholds", title="The thresholds of the Imazu verdicts",
