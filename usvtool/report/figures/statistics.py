@@ -40,10 +40,10 @@ def convergence_bands(where: str, runs: list[list[float]]) -> np.ndarray:
 
 def convergence(curves: dict[str, list[list[float]]], title: str) -> Plot:
     """Best cost against iteration (1, 2, …) per algorithm: the median over its seeds as a line
-    and the interquartile range as a band, family by family
-    (:func:`~usvtool.report.figures.styles.ordered`), each in its registered
-    style (:func:`~usvtool.report.figures.styles.style`: its family's line and marker, marked
-    at ten points).
+    and the interquartile range as a band (markers at ten iterations, staggered between the
+    algorithms so that they do not hide one another), family by family
+    (:func:`~usvtool.report.figures.styles.ordered`), each in its registered style
+    (:func:`~usvtool.report.figures.styles.style`: its family's line and marker).
 
     Data: ``algorithm,iteration,median,q1,q3`` in that order, costs to 6 decimals.
     """
@@ -51,12 +51,12 @@ def convergence(curves: dict[str, list[list[float]]], title: str) -> Plot:
              for name in ordered(curves)}  # fmt: skip
     with figure(7.2, 4.4) as fig:
         ax = fig.add_subplot()
-        for name, (median, q1, q3) in bands.items():
+        for k, (name, (median, q1, q3)) in enumerate(bands.items()):
             it = np.arange(1, median.size + 1)
             look = style(name)
             n = len(curves[name])
             ax.plot(it, median, linewidth=1.3, marker=look.marker, markersize=3.5,
-                    markevery=max(1, median.size // 10),
+                    markevery=_marks(median.size, k, len(bands)),
                     label=f"{look.label} ({n} seed{'s' * (n != 1)})", **look.line())
             ax.fill_between(it, q1, q3, color=look.color, alpha=0.15, linewidth=0)
         ax.set_xlabel("iteration")
@@ -67,6 +67,17 @@ def convergence(curves: dict[str, list[list[float]]], title: str) -> Plot:
     rows = [(name, i + 1, *fixed(b[:, i], DECIMALS)) for name, b in bands.items()
             for i in range(b.shape[1])]  # fmt: skip
     return Plot(image, csv_text(("algorithm", "iteration", "median", "q1", "q3"), rows))
+
+
+def _marks(n: int, k: int, of: int) -> tuple[int, int]:
+    """``markevery`` of the ``k``-th of ``of`` curves of ``n`` points: every ``n // 10`` points
+    from an offset of ``k / of`` of that step.
+
+    >>> _marks(300, 0, 3), _marks(300, 2, 3), _marks(5, 1, 2)
+    ((0, 30), (20, 30), (0, 1))
+    """
+    step = max(1, n // 10)
+    return k * step // of, step
 
 
 def boxplots(values: dict[str, dict[str, list[float]]], title: str) -> Plot:
