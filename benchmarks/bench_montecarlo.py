@@ -4,15 +4,16 @@ runs one by one and as a batch, and PythonRobotics' DWA beside ours.
 1. The control step of each controller at the defaults (10 s at 0.2 s) and at 3 s at 0.1 s,
    beside the previous revision's NumPy core and the plain per-sample loop: the table of
    benchmarks/bench_simulate.py (imported, not copied).
-2. A family batch at ``-j 1`` and ``-j 2``: ``usvtool batch`` from the command line on a subset
-   of pipelines/families.yaml (the first ``--scenes`` scenes of every seeded kind, the 22 Imazu
-   cases, every controller; ``--full``: the pipeline itself, 1 460 runs), each into a fresh
-   directory: its wall time, runs per second, the jobs running at once on average, the table's
-   time, what 600 runs and the full pipeline take at that rate, and whether the two tables are
-   the same bytes. Beside it the plain way, a new ``usvtool simulate`` process per run, on ten of
-   the batch's runs (their own command lines): what a run pays for its start-up.
-3. The per-run wall of each family kind (the ``-j 1`` batch's ``timings.csv``): runs, mean,
-   median and longest.
+2. A family batch at ``-j 1`` and ``-j 2`` (``--workers``: those given): ``usvtool batch`` from
+   the command line on a subset of pipelines/families.yaml (the first ``--scenes`` scenes of
+   every seeded kind, the 22 Imazu cases, every controller; ``--full``: the pipeline itself,
+   1 460 runs), each into a fresh directory: its wall time, runs per second, the jobs running at
+   once on average, the table's time, what 600 runs and the full pipeline take at that rate, and
+   whether the tables are the same bytes. Beside it (unless ``--no-plain``) the plain way, a new
+   ``usvtool simulate`` process per run, on ten of the batch's runs (their own command lines):
+   what a run pays for its start-up.
+3. The per-run wall of each family kind (the first batch's ``timings.csv``): runs, mean, median
+   and longest.
 4. ``--peer FILE``: PythonRobotics' ``dynamic_window_approach.py`` (a copy the user gives; the
    project does not carry it), loaded from FILE, and one step of its ``dwa_control`` at its own
    defaults (its ``Config()``, the start of its ``main``: at rest at the origin heading pi/8,
@@ -21,7 +22,7 @@ runs one by one and as a batch, and PythonRobotics' DWA beside ours.
    Without it, one line says it is skipped.
 
 Usage: python benchmarks/bench_montecarlo.py [--runs 7] [--scenes 2 | --full] [--peer FILE]
-       [--no-steps] [--no-batch]
+       [--no-steps] [--no-batch] [--workers 1 2] [--no-plain]
 """
 
 from __future__ import annotations
@@ -131,7 +132,7 @@ def one_process_per_run(out: Path, count: int = 10) -> tuple[float, float]:
     return statistics.median(alone), statistics.median(r["wall_time_s"] for r in records)
 
 
-def batches(scenes: int | None) -> None:
+def batches(scenes: int | None, workers: list[int], plain: bool) -> None:
     with tempfile.TemporaryDirectory(prefix="bench-montecarlo-") as name:
         tmp = Path(name)
         pipeline = tmp / "families.yaml"
@@ -142,29 +143,34 @@ def batches(scenes: int | None) -> None:
         print(f"{'':5} {'runs':>5} {'wall s':>7} {'runs/s':>7} {'at once':>7} {'table s':>7} | "
               f"{f'{TARGET_RUNS} runs s':>10} {'1460 runs s':>11}")  # fmt: skip
         tables = {}
-        for workers in (1, 2):
-            out = tmp / f"j{workers}"
-            wall, summary = run_batch(pipeline, out, workers)
+        for count in workers:
+            out = tmp / f"j{count}"
+            wall, summary = run_batch(pipeline, out, count)
             runs = summary["done"]
             busy = sum(w for _, w in job_walls(out)) / wall
             rate = runs / wall
-            print(f"-j {workers:<2} {runs:5d} {wall:7.1f} {rate:7.2f} {busy:7.2f} "
+            print(f"-j {count:<2} {runs:5d} {wall:7.1f} {rate:7.2f} {busy:7.2f} "
                   f"{summary['stage_time_s']['table']:7.2f} | {TARGET_RUNS / rate:10.0f} "
                   f"{1460 / rate:11.0f}")  # fmt: skip
-            tables[workers] = (out / "metrics.csv").read_bytes()
-        print(f"metrics.csv of -j 1 and -j 2: {same_table(tables[1], tables[2])}")
-        alone, in_worker = one_process_per_run(tmp / "j1")
-        print(f"the plain way, a new usvtool simulate process per run (10 of the runs): median "
-              f"{alone:.3f} s a run, {in_worker:.3f} s in the batch's worker: "
-              f"{alone - in_worker:.3f} s of start-up a run")  # fmt: skip
-        per_kind(job_walls(tmp / "j1"))
+            tables[count] = (out / "metrics.csv").read_bytes()
+        first = tmp / f"j{workers[0]}"
+        for count in workers[1:]:
+            print(f"metrics.csv of -j {workers[0]} and -j {count}: "
+                  f"{same_table(tables[workers[0]], tables[count])}")  # fmt: skip
+        if plain:
+            alone, in_worker = one_process_per_run(first)
+            print(f"the plain way, a new usvtool simulate process per run (10 of the runs): "
+                  f"median {alone:.3f} s a run, {in_worker:.3f} s in the batch's worker: "
+                  f"{alone - in_worker:.3f} s of start-up a run")  # fmt: skip
+        per_kind(job_walls(first), workers[0])
 
 
-def per_kind(walls: list[tuple[str, float]]) -> None:
+def per_kind(walls: list[tuple[str, float]], workers: int) -> None:
     kinds: dict[str, list[float]] = defaultdict(list)
     for case, wall in walls:
         kinds[case.rsplit("/", 1)[0]].append(wall)
-    print("\nper-run wall of each family kind (s, the -j 1 batch's timings.csv)")
+    print(f"\nper-run wall of each family kind (s, the -j {workers} batch's timings.csv; load "
+          f"average {os.getloadavg()[0]:.2f} at the end)")  # fmt: skip
     print(f"{'family/kind':26} {'runs':>4} {'mean':>6} {'median':>6} {'longest':>7}")
     for kind, values in sorted(kinds.items()):
         print(f"{kind:26} {len(values):4d} {statistics.mean(values):6.3f} "
@@ -270,12 +276,16 @@ def main(argv=None) -> None:
                     "ours")  # fmt: skip
     ap.add_argument("--no-steps", action="store_true", help="skip the step's table")
     ap.add_argument("--no-batch", action="store_true", help="skip the family batches")
+    ap.add_argument("--workers", type=int, nargs="+", default=[1, 2], metavar="N",
+                    help="the batches' -j, in order (the per-kind walls: the first's)")  # fmt: skip
+    ap.add_argument("--no-plain", action="store_true",
+                    help="skip the plain way (a new process per run)")  # fmt: skip
     args = ap.parse_args(argv)
     print(f"bench_montecarlo: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f}")
     if not args.no_steps:
         steps(args.runs)
     if not args.no_batch:
-        batches(None if args.full else args.scenes)
+        batches(None if args.full else args.scenes, args.workers, not args.no_plain)
     peer(args.peer, args.runs)
 
 

@@ -137,25 +137,18 @@ def ramp_points(x0, y0, chord, u, x, y) -> np.ndarray:
     for t in range(steps):
         for k in range(rates):
             u_x[k], u_y[k] = u[t, k].real, u[t, k].imag
-        for i in range(speeds):  # as np.cumsum: the first term, then each sum
-            base = i * rates
+        for i in range(speeds):  # as np.cumsum: the first term, then each sum; x and y at once
+            base, c = i * rates, chord[t, i]
             if t == 0:
                 for k in range(rates):
-                    sx[base + k] = chord[0, i] * u_x[k]
+                    sx[base + k] = c * u_x[k]
+                    sy[base + k] = c * u_y[k]
             else:
                 for k in range(rates):
-                    sx[base + k] += chord[t, i] * u_x[k]
+                    sx[base + k] += c * u_x[k]
+                    sy[base + k] += c * u_y[k]
             for k in range(rates):
                 x[t, base + k] = sx[base + k] + x0
-        for i in range(speeds):
-            base = i * rates
-            if t == 0:
-                for k in range(rates):
-                    sy[base + k] = chord[0, i] * u_y[k]
-            else:
-                for k in range(rates):
-                    sy[base + k] += chord[t, i] * u_y[k]
-            for k in range(rates):
                 y[t, base + k] = sy[base + k] + y0
     run = np.zeros(speeds)
     radius = np.zeros(steps)
