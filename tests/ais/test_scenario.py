@@ -49,9 +49,10 @@ def test_scenario_in_the_local_utm_frame(usv, ny_files, tmp_path):
     start, end, row = _short_window(ny_files)
     out = tmp_path / "sc"
     result = usv("ais", "scenario", tracks_path, "--own", OWN, "--start", start, "--end", end,
-                 "--radius", 1500, "-o", out)  # fmt: skip
+                 "--radius", 1500, "-o", out, "--summary", tmp_path / "s.json")  # fmt: skip
     assert result.exit_code == 0, result.output
     summary = json.loads(result.stdout)
+    assert (tmp_path / "s.json").read_text() == result.stdout
     text = (out / "scenario.yaml").read_text()
     scenario = yaml.safe_load(text)
     # the own ship at her position at the window's start, independently interpolated

@@ -7,6 +7,10 @@ stage.
 """
 
 from usvtool.ais.clean import CleanOptions
+from usvtool.ais.encounters import EncounterOptions, EncounterResult, find_encounters
 from usvtool.ais.read import ReadOptions, ReadResult, read_ais
+from usvtool.ais.scenario import ScenarioOptions, ScenarioResult, make_scenario
 
-__all__ = ["CleanOptions", "ReadOptions", "ReadResult", "read_ais"]
+__all__ = ["CleanOptions", "EncounterOptions", "EncounterResult", "ReadOptions", "ReadResult",
+           "ScenarioOptions", "ScenarioResult", "find_encounters", "make_scenario",
+           "read_ais"]  # fmt: skip

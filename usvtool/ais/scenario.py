@@ -155,10 +155,17 @@ def make_scenario(tracks: Tracks, options: ScenarioOptions,
     return ScenarioResult(files, figures)
 
 
-def write_scenario(directory: str | os.PathLike, result: ScenarioResult) -> list[Path]:
-    """Write the files into ``directory`` (made if missing; its parent must exist), all renamed
-    at the end or none (:class:`usvtool.atomic.staged`); the paths written, the scenario
-    first."""
+def scenario_paths(directory: str | os.PathLike, result: ScenarioResult) -> list[Path]:
+    """The paths :func:`write_scenario` writes, the scenario first."""
+    out = Path(directory)
+    return [out / SCENARIO] + [out / n for n in result.files if n != SCENARIO]
+
+
+def write_scenario(directory: str | os.PathLike, result: ScenarioResult,
+                   extra: dict | None = None) -> list[Path]:  # fmt: skip
+    """Write the files into ``directory`` (made if missing; its parent must exist), and the
+    texts ``extra`` (path: text, e.g. the summary), all renamed at the end or none
+    (:class:`usvtool.atomic.staged`); the paths of :func:`scenario_paths`."""
     from usvtool.atomic import staged
 
     out = Path(directory)
@@ -167,11 +174,11 @@ def write_scenario(directory: str | os.PathLike, result: ScenarioResult) -> list
     if not out.parent.is_dir():
         raise UsvError(f"-o {out}: directory {out.parent} does not exist")
     out.mkdir(exist_ok=True)
-    names = [SCENARIO] + [n for n in result.files if n != SCENARIO]
-    paths = [out / n for n in names]
-    with staged(*paths) as temporaries:
-        for name, tmp in zip(names, temporaries, strict=True):
-            tmp.write_text(result.files[name], encoding="utf-8")
+    paths = scenario_paths(out, result)
+    texts = [result.files[p.name] for p in paths] + list((extra or {}).values())
+    with staged(*paths, *(extra or {})) as temporaries:
+        for text, tmp in zip(texts, temporaries, strict=True):
+            tmp.write_text(text, encoding="utf-8")
     return paths
 
 

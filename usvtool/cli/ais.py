@@ -135,18 +135,22 @@ def scenario(tracks, output, own, start, end, encounter, encounters_path, pad, r
     --radius of her as a replayed track."""
     from pathlib import Path
 
-    from usvtool.ais.scenario import ScenarioOptions, make_scenario, write_scenario
+    from usvtool.ais.scenario import (
+        ScenarioOptions,
+        make_scenario,
+        scenario_paths,
+        write_scenario,
+    )
     from usvtool.atomic import check_outputs
-    from usvtool.cli.options import write_summary
+    from usvtool.cli.options import summary_text
     from usvtool.tracks import read_tracks
 
     check_outputs([("--summary", summary_path)])
     options = ScenarioOptions(own, start, end, encounter, encounters_path, radius, map_path,
                               vessel, controller, pad, duration)  # fmt: skip
     result = make_scenario(read_tracks(tracks), options, output)
-    paths = write_scenario(output, result)
+    paths = scenario_paths(output, result)
     summary = {"output": str(Path(output) / "scenario.yaml"),
                "files": [str(p) for p in paths[1:]], **result.summary()}  # fmt: skip
-    if summary_path:
-        write_summary(summary_path, summary)
+    write_scenario(output, result, {summary_path: summary_text(summary)} if summary_path else {})
     emit(summary)
