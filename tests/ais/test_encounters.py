@@ -184,3 +184,15 @@ def test_csv_round_trip_and_cli(usv, tmp_path):
     assert rows[0]["mmsi_a"] == whole.rows[0]["mmsi_a"]
     bad = usv("ais", "encounters", tracks, "-o", tmp_path / "x.csv", "--bbox", "1,2,3")
     assert bad.exit_code == 2 and not (tmp_path / "x.csv").exists()
+
+
+def test_bbox_rows_name_the_files_track_ids():
+    """A vessel outside the box drops out of the search; the rows still name the tracks by
+    their ids in the tracks given (1 and 2, not the search's renumbered 0 and 1)."""
+    far = (111000000, [(-1000, 90000.0, 0.0), (1000, 90000.0, 100.0)])  # track 0, 90 km east
+    a = (111000001, [(-1000, 0.0, -5000.0), (1000, 0.0, 5000.0)])
+    b = (111000002, [(-1000, 6500.0, 1000.0), (1000, -3500.0, 1000.0)])
+    tracks = tracks_from_metres([far, a, b])
+    box = (-0.1, -0.1, 0.1, 0.1)  # degrees: some 11 km around (0, 0)
+    rows = find_encounters(tracks, EncounterOptions(cpa=400, tcpa=905, bbox=box)).rows
+    assert [(r["track_a"], r["track_b"]) for r in rows] == [(1, 2)]

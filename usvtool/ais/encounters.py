@@ -120,8 +120,9 @@ def _text(column: str, value) -> str:
 def find_encounters(tracks: Tracks, options: EncounterOptions = EncounterOptions()
                     ) -> EncounterResult:  # fmt: skip
     """The encounters in ``tracks`` (module docstring)."""
+    ids = tracks.track  # the tracks file's ids, which the rows name
     if options.bbox is not None:
-        tracks = _in_box(tracks, options.bbox)
+        tracks, ids = _in_box(tracks, options.bbox)
     step_ns = round(options.step * NS)
     grid = _Samples(tracks, step_ns)
     figures = {"tracks": tracks.n_tracks, "tracks_searched": grid.n_tracks,
@@ -130,15 +131,16 @@ def find_encounters(tracks: Tracks, options: EncounterOptions = EncounterOptions
     figures["candidate_pairs"] = int(len(pairs))
     rows = []
     for chunk in _chunks(grid, pairs):
-        rows += grid.follow(chunk, options, tracks)
+        rows += grid.follow(chunk, options, tracks, ids)
     rows.sort(key=lambda r: (r["cpa_m"], r["start"], r["mmsi_a"], r["mmsi_b"]))
     for i, r in enumerate(rows, start=1):
         r["rank"] = i
     return EncounterResult(rows, figures)
 
 
-def _in_box(tracks: Tracks, box) -> Tracks:
-    """The fixes inside ``box``; a track that leaves it and comes back is two tracks."""
+def _in_box(tracks: Tracks, box) -> tuple[Tracks, np.ndarray]:
+    """The fixes inside ``box`` (a track that leaves it and comes back is two tracks), and the
+    track id in ``tracks`` of each."""
     inside = ((tracks.lon >= box[0]) & (tracks.lon <= box[2]) & (tracks.lat >= box[1])
               & (tracks.lat <= box[3]))  # fmt: skip
     index = np.flatnonzero(inside)
@@ -149,7 +151,7 @@ def _in_box(tracks: Tracks, box) -> Tracks:
     columns = {c: getattr(tracks, c)[index] for c in ("mmsi", "time", "lon", "lat", "sog", "cog",
                                                       "heading", "length", "beam", "name",
                                                       "ship_type")}  # fmt: skip
-    return Tracks(**columns, track=np.cumsum(new) - 1)
+    return Tracks(**columns, track=np.cumsum(new) - 1), t
 
 
 class _Samples:
@@ -249,8 +251,10 @@ class _Samples:
         pairs = np.unique(np.concatenate(found))
         return np.column_stack([pairs // self.n_tracks, pairs % self.n_tracks])
 
-    def follow(self, pairs: np.ndarray, options: EncounterOptions, tracks: Tracks) -> list[dict]:
-        """The encounters of candidate ``pairs`` over their common grid times."""
+    def follow(self, pairs: np.ndarray, options: EncounterOptions, tracks: Tracks,
+               ids: np.ndarray) -> list[dict]:  # fmt: skip
+        """The encounters of candidate ``pairs`` over their common grid times (``ids``: each
+        row's track id in the file)."""
         a, b = pairs[:, 0], pairs[:, 1]
         k_lo = np.maximum(self.k0[a], self.k0[b])
         k_hi = np.minimum(self.k0[a] + self.count[a], self.k0[b] + self.count[b]) - 1
@@ -313,7 +317,7 @@ class _Samples:
             pair[np.minimum(e, len(pair) - 1)] != i)  # fmt: skip
         columns = {
             "mmsi_a": tracks.mmsi[ra], "mmsi_b": tracks.mmsi[rb],
-            "track_a": tracks.track[ra], "track_b": tracks.track[rb],
+            "track_a": ids[ra], "track_b": ids[rb],
             "name_a": tracks.name[ra], "name_b": tracks.name[rb],
             "length_a": tracks.length[ra], "length_b": tracks.length[rb],
             "start": np.array(format_time(self.time[ia[s]])),

@@ -326,6 +326,10 @@ class _Frame:
         return [round(float(x), 2), round(float(y), 2)]
 
     def track_csv(self, t: np.ndarray, lon: np.ndarray, lat: np.ndarray) -> str:
+        """A track CSV (docs/scenario.md); fixes less than a millisecond apart (its ``t``'s
+        resolution) as one."""
+        keep = np.r_[True, np.diff(np.round(t, 3)) > 0]
+        t, lon, lat = t[keep], lon[keep], lat[keep]
         if self.grid is not None:
             rows = [f"{a:.3f},{b:.7f},{c:.7f}" for a, b, c in zip(t, lon, lat, strict=True)]
             return "t,lon,lat\n" + "\n".join(rows) + "\n"
