@@ -32,10 +32,9 @@ from usvtool.grid import read_grid
 from usvtool.report import figures, inference
 from usvtool.report.data import JobResults, Results, stats
 from usvtool.report.document import APPENDIX, Cell, Figure, Section, Table, number
-from usvtool.report.papers import CLAIMS
+from usvtool.report.papers import CLAIMS, UDWA_WIND
 from usvtool.report.sections import published
 from usvtool.trace import Trace, read_events, read_trace
-from usvtool.wind import read_wind_field
 
 #: The run table: (metric, column, decimals).
 COLUMNS = (("arrival_time_s", "arrival (s)", 1), ("closest_distance_m", "closest (m)", 1),
@@ -144,11 +143,9 @@ def scenario_section(results: Results, scenario: str) -> Section:
             for c in controllers}  # fmt: skip
     main = primary(scenario, controllers)
     files = run_files(runs[main])
-    field_path = None
     if files is not None:
         trace, events, where = files
         grid_path = run_file(events, "map", where)
-        field_path = run_file(events, "wind_field", where)
         grid = read_grid(grid_path) if grid_path else None
         times = figures.snapshot_times(trace, events)
         sizes = lengths(trace, events, where)
@@ -164,15 +161,6 @@ def scenario_section(results: Results, scenario: str) -> Section:
             f"encounter-{scenario}-states", f"{scenario} with {main}: states",
             "The own ship's x, y and heading against time.", plot.png, plot.data))
     traces = {c: f.trace for c, f in ((c, run_files(j)) for c, j in runs.items()) if f}
-    if field_path is not None and traces:
-        field = read_wind_field(field_path)
-        plot = figures.wind_runs(field.layers[0], field.layers[1], field.extent, traces,
-                                 f"{scenario}: tracks over the wind field")  # fmt: skip
-        section.blocks.append(Figure(
-            f"encounter-{scenario}-wind", f"{scenario}: tracks over the wind field",
-            "Wind speed (colour) and direction (arrows, where it blows) of the scenario's "
-            "field, with each controller's track (UDWA paper, Figs. 19-20).", plot.png,
-            plot.data))
     if traces and any(len(t.ships) > 1 for t in traces.values()):
         plot = figures.nearest_distance(traces, f"{scenario}: distance to the nearest ship")
         section.blocks.append(Figure(
@@ -509,7 +497,7 @@ def section(results: Results) -> Section | None:
         "IWSO-DWA (gdwa), CCDWA and UDWA; their plots are in the appendix. A run that did not "
         "arrive or collided is a failure in its own column, and its encounters are never "
         "counted compliant.")
-    top.blocks += published.tables(results, "runs")
+    top.blocks += published.tables(results, "runs", exclude=(UDWA_WIND.id,))
     counted = [j for j in results.select("runs") if not is_family(j.case)
                or j.case.split("/")[0] not in OWN_SECTION]  # fmt: skip
     if any(j.number("not_judged") is None for j in counted):

@@ -70,9 +70,10 @@ def table(results: Results, paper_table: PaperTable) -> Table:
                  headings, rows)
 
 
-def tables(results: Results, kind: str) -> list[Table]:
-    """The published tables of ``kind`` with a counterpart metric and some case of ours."""
+def tables(results: Results, kind: str, exclude: tuple[str, ...] = ()) -> list[Table]:
+    """The published tables of ``kind`` with a counterpart metric and some case of ours, but
+    those whose ids are in ``exclude`` (a section of their own shows them)."""
     have = set(results.cases(kind))
     return [table(results, t) for t in TABLES.values()
-            if t.kind == kind and any(c.metric for c in t.columns)
+            if t.kind == kind and t.id not in exclude and any(c.metric for c in t.columns)
             and have & {r.case for r in t.rows}]  # fmt: skip
