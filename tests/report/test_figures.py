@@ -263,6 +263,20 @@ def test_routes_over_a_chart_show_the_chart_not_the_grid(plots):
         assert near(img, hex_rgb(style(name).color), 30) > 400
 
 
+def test_outside_the_chart_is_in_the_legend_when_the_view_shows_some():
+    """chart_image's outside (x, y 40..60) lies in the whole-map view of two_routes, not in the
+    view of a route from (75, 5) to (95, 25): 20 m padded by 1.6 m, x and y 73.4..96.6."""
+    def legend(routes):
+        fig = capture_figures(lambda: F.routes_on_grid(small_grid(), routes, (75, 5), (95, 25),
+                                                       "", chart_image()))[0]  # fmt: skip
+        return [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+
+    assert "outside the chart (no data)" in legend(two_routes())
+    texts = legend({"wso": np.array([[75.0, 5.0], [95.0, 25.0]])})
+    assert texts == ["wso", "start", "goal", "obstacle (tinted red)",
+                     "safety margin (tinted yellow)"]  # fmt: skip
+
+
 def test_a_preview_png_gives_its_map_over_the_grid_and_its_outside(tmp_path):
     """A preview of small_grid (20 x 20 cells): a 40 x 40 map above the 80-pixel strip; the
     obstacle cells (rows, columns 8-11: pixels 16-23) half hatched (outside the chart), and the

@@ -11,6 +11,7 @@ from usvtool.report.figures.raster import (
     CLASS_NAMES,
     ChartImage,
     chart_handles,
+    chart_window,
     class_handles,
     draw_chart,
     draw_grid,
@@ -55,11 +56,11 @@ def routes_on_grid(grid: Grid, routes: dict[str, np.ndarray], start, goal, title
     whatever the order of ``routes``; drawn and listed family by family,
     :func:`~usvtool.report.figures.styles.ordered`), marked at its vertices (at most about
     :data:`MARKS`), the start and the goal marked, over ``chart`` (the chart as its preview draws
-    it: obstacles tinted, outside the chart hatched, each in the legend) or else the grid (obstacles
-    dark, margin grey). The view is the box around the routes padded by :data:`VIEW_PAD`, widened to
-    an aspect within :data:`ASPECT` and kept within the grid: the whole of env1, the harbour reach
-    of a large chart, never the empty rest of its frame. The figure is as wide as the page's text
-    and as high as the view needs.
+    it: obstacles tinted, outside the chart hatched, each in the legend, outside the chart when the
+    view shows some) or else the grid (obstacles dark, margin grey). The view is the box around the
+    routes padded by :data:`VIEW_PAD`, widened to an aspect within :data:`ASPECT` and kept within
+    the grid: the whole of env1, the harbour reach of a large chart, never the empty rest of its
+    frame. The figure is as wide as the page's text and as high as the view needs.
 
     Data: ``kind,algorithm,vertex,x,y``, one row per route vertex (``kind`` ``route``, the
     routes in the legend's order), then
@@ -75,7 +76,12 @@ def routes_on_grid(grid: Grid, routes: dict[str, np.ndarray], start, goal, title
     every = np.vstack([start, goal, *points.values()])
     left, bottom, right, top = view = fit_view(every[:, 0], every[:, 1], VIEW_PAD, ASPECT,
                                                grid.bounds)  # fmt: skip
-    entries = len(points) + 2 + (2 if chart is None else 3)
+    if chart is None:
+        background = class_handles()[1:]
+    else:
+        rows, cols, _ = chart_window(chart, view)
+        background = chart_handles(bool(chart.outside[rows, cols].any()))[1:]
+    entries = len(points) + 2 + len(background)
     size, box, wide = map_layout((right - left) / (top - bottom), entries)
     halo = [patheffects.withStroke(linewidth=2.8, foreground="white", alpha=0.75)]
     with figure(*size, layout=None) as fig:
@@ -95,7 +101,6 @@ def routes_on_grid(grid: Grid, routes: dict[str, np.ndarray], start, goal, title
         ax.set_ylim(bottom, top)
         map_axes(ax, max(right - left, top - bottom), grid.crs)
         ax.set_title(title)
-        background = class_handles()[1:] if chart is None else chart_handles()[1:]
         handles = ax.get_legend_handles_labels()[0] + background
         if wide:
             fig.legend(handles=handles, loc="lower center", ncols=LEGEND_COLUMNS,

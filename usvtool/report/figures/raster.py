@@ -120,19 +120,26 @@ def preview_chart(path: str | Path, grid: Grid) -> ChartImage | None:
     return ChartImage(rgb, (left, right, bottom, top), grey & blocked)
 
 
-def draw_chart(ax, chart: ChartImage, view: tuple[float, float, float, float]) -> None:
-    """Draw the pixels of ``chart`` within ``view`` (left, bottom, right, top) on ``ax`` in map
-    metres, at the back; the limits are left to the caller."""
+def chart_window(chart: ChartImage, view: tuple[float, float, float, float]):
+    """(rows, columns, extent): the slices of ``chart``'s pixels within ``view`` (left, bottom,
+    right, top; the pixels it cuts included) and their extent (left, right, bottom, top)."""
     left, right, bottom, top = chart.extent
     h, w = chart.rgb.shape[:2]
     px, py = (right - left) / w, (top - bottom) / h
     c0, c1 = np.clip([math.floor((view[0] - left) / px), math.ceil((view[2] - left) / px)], 0, w)
     r0, r1 = np.clip([math.floor((top - view[3]) / py), math.ceil((top - view[1]) / py)], 0, h)
-    if c0 >= c1 or r0 >= r1:
-        return
-    ax.imshow(chart.rgb[r0:r1, c0:c1], extent=(left + c0 * px, left + c1 * px, top - r1 * py,
-                                               top - r0 * py),
-              origin="upper", interpolation="antialiased", zorder=0)  # fmt: skip
+    c1, r1 = max(c0, c1), max(r0, r1)
+    extent = (left + c0 * px, left + c1 * px, top - r1 * py, top - r0 * py)
+    return slice(r0, r1), slice(c0, c1), tuple(float(v) for v in extent)
+
+
+def draw_chart(ax, chart: ChartImage, view: tuple[float, float, float, float]) -> None:
+    """Draw the pixels of ``chart`` within ``view`` (left, bottom, right, top) on ``ax`` in map
+    metres, at the back; the limits are left to the caller."""
+    rows, cols, extent = chart_window(chart, view)
+    if rows.start < rows.stop and cols.start < cols.stop:
+        ax.imshow(chart.rgb[rows, cols], extent=extent, origin="upper",
+                  interpolation="antialiased", zorder=0)  # fmt: skip
 
 
 def draw_outside(ax, chart: ChartImage) -> None:
@@ -159,9 +166,9 @@ def outside_handle(percent: float | None = None):
                  label=label)  # fmt: skip
 
 
-def chart_handles() -> list:
+def chart_handles(outside: bool = True) -> list:
     """Legend patches of a chart drawn by its preview: the classes as its own legend draws them
-    (each over :data:`PREVIEW_WATER`), then outside the chart."""
+    (each over :data:`PREVIEW_WATER`), then outside the chart when ``outside``."""
     from matplotlib.patches import Patch
 
     water = np.array(PREVIEW_WATER, float)
@@ -171,7 +178,7 @@ def chart_handles() -> list:
     names = {NAVIGABLE: "navigable (the chart)", OBSTACLE: "obstacle (tinted red)",
              MARGIN: "safety margin (tinted yellow)"}  # fmt: skip
     return [*(Patch(facecolor=colours[c] / 255, edgecolor="0.3", linewidth=0.6, label=names[c])
-              for c in (NAVIGABLE, OBSTACLE, MARGIN)), outside_handle()]
+              for c in (NAVIGABLE, OBSTACLE, MARGIN)), *([outside_handle()] if outside else [])]
 
 
 def fit_view(x, y, pad_fraction: float, aspect_range: tuple[float, float],
