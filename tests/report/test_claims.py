@@ -11,7 +11,7 @@ import pytest
 from scipy.stats import beta
 
 from usvtool.report.data import load, statistic
-from usvtool.report.papers import UDWA_TABLE_1, Claim, Precondition, Quote
+from usvtool.report.papers import CLAIMS, UDWA_TABLE_1, Claim, Precondition, Quote
 from usvtool.report.sections import claims, published
 from usvtool.results import Row, write_results
 
@@ -54,8 +54,7 @@ def test_does_not_hold_when_significantly_worse(tmp_path):
     rows = SEPARATED + _routes("env1", "ssa", [600, 601, 602, 603, 604, 605])
     v = claims.judge(_results(tmp_path, rows), _claim(rivals=("wso", "ssa")))
     assert v.verdict == claims.FAILS
-    assert claims.headline(v) == ("1/2 better; worse env1 vs ssa: 702 vs 602, "
-                                  "δ -1.00 [-1.00, -1.00]")
+    assert claims.headline(v) == "1/2 better; worse env1/ssa δ -1.00 [-1.00, -1.00]"
 
 
 def test_inconclusive_when_neither_and_on_ties(tmp_path):
@@ -170,8 +169,8 @@ def test_a_turn_claim_whose_routes_cannot_turn_enough_is_not_testable(tmp_path):
     v = claims.judge(results, claim)
     # Table 2: IWSO 5, WSO 7 turns in env1; 5 points turn at most 3 times
     assert v.verdict == claims.UNTESTABLE and v.tests == ()
-    assert v.reason == ("our routes turn at most 3 times (5 points), the paper's up to 7: "
-                        "needs more waypoints")
+    assert v.reason == "our routes turn at most 3 times (5 points), the paper's up to 7"
+    assert v.why == "needs more waypoints"
     for j in results.jobs:
         (j.dir / "summary.json").write_text(json.dumps({"points": 22}))
     assert claims.judge(results, claim).verdict == claims.INCONCLUSIVE  # all tied at 3
@@ -245,10 +244,14 @@ def test_the_section_counts_five_verdicts_and_judges_variants_apart(tmp_path):
     s = claims.section(results)
     main, cases = s.tables()
     assert main.id == "claims-table" and cases.placement == "appendix"
-    assert len(main.rows) == len(judged)
+    # one row per claim, the variant's verdict in its own column
+    assert [r[0].text for r in main.rows] == [c.id for c in CLAIMS]
+    row = next(r for r in main.rows if r[0].text == "iwso-shorter")
+    assert row[5].text == f"iwso+g: {judged['iwso-shorter (iwso+g)'].verdict}"
+    assert row[1].text.count("Compared with the WSO") == 1  # the quote once
+    # medians (IQR: 701.25 to 703.75) and the runs of each case
+    assert row[2].text == "env1: 702 (2.5) vs 802 (2.5); env2: 1.5 (0.5) vs 3.5 (0.5); n 6/6, 2/2"
     counts = claims.counts([s])
     assert list(counts) == list(claims.VERDICTS)
-    assert sum(counts.values()) == sum(not v.variant for v in judged.values())
-    # the quote once per claim: a variant's row leaves it out
-    row = next(r for r in main.rows if r[0].text == "iwso-shorter (iwso+g)")
-    assert row[1].text == ""
+    assert sum(counts.values()) == len(CLAIMS)
+    assert any(r[0].text == "iwso-shorter (iwso+g), env1 vs wso" for r in cases.rows)

@@ -43,7 +43,7 @@ def test_the_summary_states_what_was_compared_and_the_claims_own_verdicts(tmp_pa
     assert [r[-1].text for r in table.rows] == [v.verdict for v in verdicts]
     row = next(r for r in table.rows if r[0].text == "iwso-shorter")
     assert row[-1].text == claims.HOLDS
-    assert row[1].text == "iwso vs wso: 710.873 vs 847.487 m; 927.925 vs 1044.975 m"  # as printed
+    assert row[1].text == "710.873 vs 847.487 m; 927.925 vs 1044.975 m"  # as printed
     # both cases better (p = 2 / 924 each, Holm over the table's two tested p: 4 / 924)
     assert row[2].text.startswith("2/2 better; weakest env")
     # every identical closest distance: ties, inconclusive

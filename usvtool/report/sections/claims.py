@@ -106,8 +106,9 @@ class Tally:
 
 @dataclass(frozen=True)
 class Verdict:
-    """A claim's verdict, why (``reason``: a failed precondition, the runs missing), and its
-    comparisons (relative) or tallies (absolute). ``variant``: our variant of the method."""
+    """A claim's verdict, why (``reason``: what fails of a precondition, with ``why`` the
+    precondition's own reason; the runs missing), and its comparisons (relative) or tallies
+    (absolute). ``variant``: our variant of the method."""
 
     claim: Claim
     verdict: str
@@ -115,6 +116,7 @@ class Verdict:
     tests: tuple[Test, ...] = ()
     tallies: tuple[Tally, ...] = ()
     variant: bool = False
+    why: str = ""
 
 
 # --- runs ------------------------------------------------------------------------------------
@@ -212,13 +214,14 @@ def _turns_reachable(results: Results, claim: Claim) -> str:
 CHECKS: dict[str, Callable[[Results, Claim], str]] = {"turns-reachable": _turns_reachable}
 
 
-def _unmet(results: Results, claim: Claim) -> str:
-    """Why the claim cannot move on our runs ('' when every precondition holds)."""
+def _unmet(results: Results, claim: Claim) -> tuple[str, str]:
+    """What fails of the first precondition that does, and that precondition's reason (two
+    empty strings when every precondition holds)."""
     for p in claim.preconditions:
         fails = CHECKS[p.check](results, claim)
         if fails:
-            return f"{fails}: {p.reason}"
-    return ""
+            return fails, p.reason
+    return "", ""
 
 
 # --- verdicts --------------------------------------------------------------------------------
@@ -308,12 +311,12 @@ def _claims(results: Results) -> list[tuple[Claim, bool]]:
 def judge_all(results: Results, claims: Sequence[tuple[Claim, bool]]) -> list[Verdict]:
     """The verdicts of ``claims`` ((claim, is a variant) pairs), the p of the relative ones
     Holm-corrected together, the papers' methods' and the variants' as two families."""
-    pending: list[tuple[Claim, bool, str, list[Test]]] = []
+    pending: list[tuple[Claim, bool, tuple[str, str], list[Test]]] = []
     for claim, variant in claims:
         has_runs = any(outcome(j, claim) is not None for case in claim.cases
                        for j in results.group(claim.kind, case, claim.method))  # fmt: skip
-        unmet = _unmet(results, claim) if has_runs else ""
-        tests = [] if unmet or not claim.rivals else [
+        unmet = _unmet(results, claim) if has_runs else ("", "")
+        tests = [] if unmet[0] or not claim.rivals else [
             _test(results, claim, case, rival) for case in claim.cases for rival in claim.rivals]
         pending.append((claim, variant, unmet, tests))
     for family in (False, True):
@@ -325,8 +328,8 @@ def judge_all(results: Results, claims: Sequence[tuple[Claim, bool]]) -> list[Ve
                 ts[:] = [replace(t, p=next(corrected)) for t in ts]
     out = []
     for claim, variant, unmet, tests in pending:
-        if unmet:
-            out.append(Verdict(claim, UNTESTABLE, unmet, variant=variant))
+        if unmet[0]:
+            out.append(Verdict(claim, UNTESTABLE, unmet[0], variant=variant, why=unmet[1]))
         elif claim.rivals:
             out.append(_relative(claim, tests, variant))
         else:
@@ -397,8 +400,9 @@ def _column(claim: Claim) -> Column | None:
                  if c.metric == claim.metric and c.statistic == statistic), None)  # fmt: skip
 
 
-def paper_figure(claim: Claim) -> str:
-    """The paper's figures of the claim: method against its first rival, per paper case."""
+def paper_figure(claim: Claim, named: bool = True) -> str:
+    """The paper's figures of the claim: method against its first rival, per paper case
+    (``named``: after the two methods' names)."""
     column = _column(claim)
     if column is None or not claim.rivals:
         return "-"
@@ -415,7 +419,7 @@ def paper_figure(claim: Claim) -> str:
         parts.append(f"{mine} vs {theirs}{unit}")
     if len(parts) > LISTED:
         return f"{len(parts)} cases ({table.label})"
-    head = f"{claim.method} vs {claim.rivals[0]}: " if parts else ""
+    head = f"{claim.method} vs {claim.rivals[0]}: " if parts and named else ""
     return head + "; ".join(parts) if parts else "-"
 
 
@@ -424,8 +428,9 @@ def _figures(t: Test, claim: Claim) -> str:
     fail, when some did)."""
     a, b = t.sides
     text = _percent(change(a.figure, b.figure, claim.better))
-    if a.failed or b.failed:
-        text += f" (without failures {_percent(change(a.clean, b.clean, claim.better))})"
+    clean = _percent(change(a.clean, b.clean, claim.better))
+    if (a.failed or b.failed) and (text, clean) != ("-", "-"):
+        text += f" (without failures {clean})"
     return text
 
 
@@ -436,26 +441,30 @@ def _percent(value: float | None) -> str:
 def _ours(t: Test) -> str:
     a, b = t.sides
     failures = f", failed {a.failed}/{b.failed}" if a.failed or b.failed else ""
-    return (f"{_g(a.median)} (IQR {_g(a.iqr, 2)}) vs {_g(b.median)} (IQR {_g(b.iqr, 2)}), "
-            f"n {a.n}/{b.n}{failures}")
+    return f"{_g(a.median)} ({_g(a.iqr, 2)}) vs {_g(b.median)} ({_g(b.iqr, 2)}){failures}"
 
 
 def _effect(c: Comparison | None) -> str:
     if c is None:
         return "-"
     symbol = "r" if c.effect_name == inference.PAIRED_R else "δ"
-    return f"{symbol} {c.effect:+.2f} [{c.low:+.2f}, {c.high:+.2f}]"
+    effect, low, high = (f"{round(x, 2) + 0.0:.2f}" for x in (c.effect, c.low, c.high))
+    return f"{symbol} {effect} [{low}, {high}]"
 
 
 def _label(t: Test, claim: Claim) -> str:
+    """The comparison's case (a family's kind without the family: the claim names it) and
+    its rival, when the claim has several."""
     rival = f" vs {t.rival}" if len(claim.rivals) > 1 else ""
-    return f"{t.case}{rival}: " if len(claim.cases) > 1 or len(claim.rivals) > 1 else ""
+    case = t.case.rpartition("/")[2]
+    return f"{case}{rival}: " if len(claim.cases) > 1 or len(claim.rivals) > 1 else ""
 
 
 def headline(v: Verdict) -> str:
-    """Ours in one line: the comparison (or, for several, the most significant loss if there is
-    one, else the weakest: the highest corrected p) with its effect and interval; an absolute
-    claim's runs meeting the target with the interval."""
+    """Ours in one line: the comparison's medians, effect and interval (for several, how many
+    are better and the effect of the most significant loss if there is one, else of the
+    weakest: the highest corrected p); an absolute claim's runs meeting the target with the
+    interval."""
     if v.reason and not (v.tests or v.tallies):
         return v.reason
     if v.tallies:
@@ -471,41 +480,50 @@ def headline(v: Verdict) -> str:
     else:
         shown, word = max(done, key=lambda t: (t.p is None, t.p or 0.0)), "weakest"
     a, b = shown.sides
-    text = f"{_g(a.median)} vs {_g(b.median)}, {_effect(shown.comparison)}"
-    if len(done) > 1:
-        better = sum(t.outcome == "better" for t in done)
-        text = f"{better}/{len(done)} better; {word} {shown.case} vs {shown.rival}: {text}"
-    return text
+    if len(done) == 1:
+        return f"{_g(a.median)} vs {_g(b.median)}, {_effect(shown.comparison)}"
+    better = sum(t.outcome == "better" for t in done)
+    return (f"{better}/{len(done)} better; {word} {shown.case}/{shown.rival} "
+            f"{_effect(shown.comparison)}")
 
 
-def _row(v: Verdict) -> list[Cell]:
+def _test_text(t: Test) -> str:
+    short = "W" if t.comparison.test == inference.WILCOXON else "U"
+    return f"{short} p {_p(t.p)}, {_effect(t.comparison)}"
+
+
+def _row(v: Verdict, mine: Sequence[Verdict]) -> list[Cell]:
+    """The claim's row; ``mine``: the verdicts of our variants of its method."""
     c = v.claim
     quote = c.quotes[0]
-    words = "" if v.variant else (f"{PAPERS[c.paper].id} §{quote.section}: "
-                                  f"\u201c{quote.text}\u201d")  # fmt: skip
+    paper = f"{PAPERS[c.paper].id} §{quote.section}: \u201c{quote.text}\u201d"
+    if (figure := paper_figure(c)) != "-":
+        paper += f" Figures: {figure}."
     stated = ", ".join(x for x in c.paper_change if x) if c.paper_change else ""
     tests = [t for t in v.tests if t.comparison is not None]
     if v.tallies:
         ours = "; ".join(f"{t.case}: {t.met}/{t.n} ({100 * t.low:.0f}-{100 * t.high:.0f} %)"
                          for t in v.tallies) if len(v.tallies) <= LISTED else headline(v)
-        cells = [ours, "-", "Clopper-Pearson 95 %", "-"]
+        ours, change, test = ours + " runs meet it", "-", "Clopper-Pearson 95 %"
     elif tests and len(v.tests) <= LISTED:
-        cells = ["; ".join(_label(t, c) + f(t) for t in tests) for f in (
-            _ours, lambda t: _figures(t, c),
-            lambda t: f"{'W' if t.comparison.test == inference.WILCOXON else 'U'}, "
-                      f"p {_p(t.p)}", lambda t: _effect(t.comparison))]  # fmt: skip
+        ours, change, test = ("; ".join(_label(t, c) + f(t) for t in tests) for f in (
+            _ours, lambda t: _figures(t, c), _test_text))  # fmt: skip
+        sizes = {(t.sides[0].n, t.sides[1].n) for t in tests}
+        ours += (f"; n {'/'.join(map(str, sizes.pop()))}" if len(sizes) == 1 else
+                 "; n " + ", ".join(f"{t.sides[0].n}/{t.sides[1].n}" for t in tests))
     elif tests:
         low, high = (_p(f(t.p or 1.0 for t in tests)) for f in (min, max))
-        cells = [headline(v), "-", f"{tests[0].comparison.test}: corrected p "
-                 + (low if low == high else f"{low}-{high}"), "-"]
+        ours, change = headline(v), "-"
+        test = f"{tests[0].comparison.test}: corrected p " + (low if low == high else
+                                                              f"{low}-{high}")  # fmt: skip
     else:
-        cells = [v.reason or "-", "-", "-", "-"]
+        ours, change, test = v.reason or "-", "-", "-"
     if v.reason and (v.tests or v.tallies):
-        cells[0] += f" ({v.reason})"
-    return [Cell(c.id), Cell(words), Cell(paper_figure(c) if not v.variant else "", "paper"),
-            Cell(cells[0]), Cell(cells[1], "num"), Cell(f"{stated} %" if stated else "-",
-                                                         "num paper"),
-            Cell(cells[2]), Cell(cells[3]), Cell(v.verdict, CSS[v.verdict])]  # fmt: skip
+        ours += f" ({v.reason})"
+    change = "; ".join([f"ours {change}"] * (change != "-") + [f"paper {stated}"] * bool(stated))
+    variant = "; ".join(f"{m.claim.method}: {m.verdict}" for m in mine) or "-"
+    return [Cell(c.id), Cell(paper), Cell(ours), Cell(change or "-", "num"), Cell(test),
+            Cell(variant), Cell(v.verdict, CSS[v.verdict])]  # fmt: skip
 
 
 def _case_rows(vs: Sequence[Verdict]) -> list[list[Cell]]:
@@ -514,19 +532,15 @@ def _case_rows(vs: Sequence[Verdict]) -> list[list[Cell]]:
         for t in v.tests:
             a, b = t.sides
             c = t.comparison
-            rows.append([Cell(v.claim.id), Cell(t.case), Cell(t.rival),
-                         Cell(f"{_g(a.median)} ({_g(a.iqr, 2)})", "num"),
-                         Cell(f"{_g(b.median)} ({_g(b.iqr, 2)})", "num"),
-                         Cell(f"{a.n}/{b.n}", "num"), Cell(f"{a.failed}/{b.failed}", "num"),
-                         Cell(_figures(t, v.claim), "num"),
-                         Cell("-" if c is None else c.test), Cell(_p(None if c is None else c.p),
-                                                                  "num"),
-                         Cell(_p(t.p), "num"), Cell(_effect(c)),
+            p = "-" if c is None else f"{c.test}: {_p(c.p)}, {_p(t.p)}"
+            rows.append([Cell(f"{v.claim.id}, {t.case} vs {t.rival}"),
+                         Cell(_ours(t).partition(", failed")[0], "num"),
+                         Cell(f"{a.n}/{b.n} ({a.failed}/{b.failed})", "num"),
+                         Cell(_figures(t, v.claim), "num"), Cell(p), Cell(_effect(c)),
                          Cell(t.outcome)])  # fmt: skip
         for t in v.tallies:
-            rows.append([Cell(v.claim.id), Cell(t.case), Cell("-"), Cell(f"{t.met}/{t.n}", "num"),
-                         Cell("-"), Cell(f"{t.n}", "num"), Cell(t.note or "-"), Cell("-"),
-                         Cell("Clopper-Pearson"), Cell("-"), Cell("-"),
+            rows.append([Cell(f"{v.claim.id}, {t.case}"), Cell(f"{t.met} meet it", "num"),
+                         Cell(f"{t.n}", "num"), Cell(t.note or "-"), Cell("Clopper-Pearson"),
                          Cell(f"{100 * t.low:.0f}-{100 * t.high:.0f} %"),
                          Cell("met" if t.met == t.n else "not met")])  # fmt: skip
     return rows
@@ -550,8 +564,8 @@ def section(results: Results) -> Section:
         "deviation on the runs' absolute deviations from their median. Effects lie in [-1, 1], "
         "> 0 the method better, with their 95 % bootstrap interval; a failed run (a colliding "
         "route, a run that collided or did not arrive) counts as the worst. "
-        f"The {tested} p of the papers' methods are Holm-corrected together (our variants' "
-        f"rows, in brackets, as a family of their own). A claim holds when the method is "
+        f"The {tested} p of the papers' methods are Holm-corrected together (our variants', "
+        f"udwa+ and iwso+g, as a family of their own). A claim holds when the method is "
         f"better with corrected p < {ALPHA} against every rival in every case, does not hold "
         "when it is significantly worse in one, and is inconclusive otherwise; not testable "
         "when our set-up cannot move the metric (the reason is given), not tested when runs "
@@ -560,21 +574,24 @@ def section(results: Results) -> Section:
         "ours, as the paper states its change (> 0: better); docs/statistics.md.")
     s.blocks.append(Table(
         "claims-table", "Claims and verdicts",
-        "One row per claim: the paper's words and figures, ours (median with IQR of each side "
-        "and the runs n), our change beside the paper's, the test with its Holm-corrected p, "
-        "the effect with its 95 % interval and the verdict; a claim of more than "
-        f"{LISTED} comparisons shows the weakest (all are in the appendix).",
-        ["claim", "paper's words", "paper's figure", "ours", "our change %",
-         "paper's change %", "test, corrected p", "effect [95 %]", "verdict"],
-        [_row(v) for v in vs]))  # fmt: skip
+        "One row per claim: the paper's words and figures (its method against its first "
+        "rival), ours (medians with IQR of the method and the rival, the runs n of each, the "
+        "failed runs), our change beside the paper's (per cent, > 0 better), the test (W, U) "
+        "with its Holm-corrected p and the effect (r, δ) with its 95 % interval, the verdict "
+        "for our variants of the method and the verdict; a claim of more than "
+        f"{LISTED} comparisons shows the one that decides (all are in the appendix).",
+        ["claim", "the paper", "ours", "change %", "test, effect", "our variants", "verdict"],
+        [_row(v, [m for m in vs if m.variant and m.claim.id.startswith(v.claim.id + " (")])
+         for v in mine]))  # fmt: skip
     s.blocks.append(Table(
         "claims-cases", "Claims: every comparison",
-        "Each claim's comparison of the method with one rival in one case (an absolute "
-        "claim: its runs meeting the target, what the others did and the interval of the "
-        "share): medians (IQR), runs, failed runs, our change %, the test, its p before and "
-        "after Holm's correction, the effect [95 % interval] and the outcome.",
-        ["claim", "case", "rival", "method", "rival's", "n", "failed", "our change %", "test",
-         "p", "corrected p", "effect [95 %]", "outcome"], _case_rows(vs),
+        "Each claim's comparison of the method with one rival in one case (a claim in "
+        "brackets: for our variant of the method): the medians (IQR), the runs n (failed), "
+        "our change %, the test with its p before and after Holm's correction, the effect "
+        "[95 % interval] and the outcome. An absolute claim: its runs meeting the target, "
+        "what the others did, and the 95 % Clopper-Pearson interval of the share.",
+        ["claim, case", "medians (IQR)", "n (failed)", "our change %", "test: p, corrected",
+         "effect [95 %]", "outcome"], _case_rows(vs),
         placement=APPENDIX))  # fmt: skip
     return s
 

@@ -24,8 +24,22 @@ def _by_seeds(results: Results, kind: str) -> str:
     seeds: dict[int, list[str]] = {}
     for case in sorted(results.cases(kind), key=_natural):
         seeds.setdefault(max(n for (c, _), n in per.items() if c == case), []).append(case)
-    return "; ".join(f"{', '.join(cases)}: {n} seed{'s' * (n > 1)}"
+    return "; ".join(f"{_names(cases)}: {n} seed{'s' * (n > 1)}"
                      for n, cases in seeds.items())  # fmt: skip
+
+
+def _names(cases: list[str]) -> str:
+    """``F1-F10`` for a run of numbered names, else the names (their number, beyond three).
+
+    >>> _names(["F1", "F2", "F3"]), _names(["env1", "env2"]), _names(list("abcd"))
+    ('F1-F3', 'env1, env2', '4 others')
+    """
+    numbered = [re.fullmatch(r"([A-Za-z]+)(\d+)", c) for c in cases]
+    if len(cases) > 2 and all(numbered) and len({m.group(1) for m in numbered}) == 1:
+        numbers = [int(m.group(2)) for m in numbered]
+        if numbers == list(range(numbers[0], numbers[0] + len(numbers))):
+            return f"{cases[0]}-{cases[-1]}"
+    return ", ".join(cases) if len(cases) <= 3 else f"{len(cases)} others"
 
 
 def _families(results: Results) -> str:
@@ -61,30 +75,38 @@ def compared(results: Results) -> str:
             text += (f", and on {len(single)} bundled scenario{'s' * (len(single) > 1)} (one "
                      "run each, as illustrations)")
         parts.append(text)
-    papers = "; ".join(p.citation for p in PAPERS.values())
-    return (f"Compared: the claims and published figures of {len(PAPERS)} papers ({papers}) "
+    papers = ", ".join(f"{p.id} ({_cited(p.citation)})" for p in PAPERS.values())
+    return (f"Compared: the claims and published figures of {len(PAPERS)} papers, {papers}, "
             f"with {'; '.join(parts) or 'no runs'}.")
+
+
+def _cited(citation: str) -> str:
+    """``Liang & Liu 2023``, ``Liu et al. 2023`` from ``Authors, Title, Journal Year, ...``.
+
+    >>> _cited("Liu, Zhang, Ma & Pan, Path Planning, J. Mar. Sci. Eng. 2023, 11, 2292")
+    'Liu et al. 2023'
+    """
+    parts = citation.split(", ")
+    last = next((i for i, part in enumerate(parts) if "&" in part), 0)
+    year = re.search(r"\b(1[89]|20)\d\d\b", citation)
+    authors = parts[0] if last == 0 else f"{parts[0]} et al."
+    return f"{authors} {year.group(0)}" if year else authors
 
 
 def caveats(results: Results, verdicts: list[claims.Verdict]) -> list[str]:
     """What differs from the papers' set-ups, in short sentences."""
     out = [
-        "Maps: env1, env2 and grid20 are rebuilt from the papers' descriptions "
-        "(charts/make_synthetic.py; the papers' figures are not in their texts): compare "
-        "orders and trends, not values.",
-        "Scales: the UDWA emergencies and wind fields run a 15 m USV (udwa-usv) for minutes, "
-        "where the paper's wind runs last about an hour; the IWSO-DWA encounters a 2.5 m one "
-        "(iwso-dwa-usv); the Imazu cases are set at a USV scale (docs/families.md).",
-        "The papers give one figure per method and case (one run, or they do not say); we "
-        "judge every claim over seeds or seeded scenes, the encounter claims over the scene "
-        "families, not over the bundled single scenarios.",
+        "Our env1, env2 and grid20 are rebuilt from the papers' descriptions, not their maps: "
+        "compare orders and trends, not values.",
+        "The UDWA emergencies, wind fields and Imazu cases run a 15 m USV for minutes (the "
+        "paper's wind runs take an hour), the IWSO-DWA encounters a 2.5 m one.",
+        "The papers give one figure per method and case, we judge over seeds and scenes.",
     ]
     functions = Counter((j.case, j.method) for j in results.select("functions")).values()
     if functions and IWSO_DWA_TABLE_1.runs:
         runs = "-".join(map(str, sorted({min(functions), max(functions)})))
-        out.append(f"Benchmark functions: {runs} runs per function and "
-                   f"algorithm against the paper's {IWSO_DWA_TABLE_1.runs}, too few for Holm's "
-                   "correction over the table to find a difference.")
+        out.append(f"Benchmark functions: {runs} runs per function and algorithm against the "
+                   f"paper's {IWSO_DWA_TABLE_1.runs}, too few to hold after Holm's correction.")
     for v in verdicts:
         if v.verdict == claims.UNTESTABLE:
             out.append(f"{v.claim.id} is not testable: {v.reason}.")
@@ -96,19 +118,16 @@ def section(results: Results) -> Section:
     counts = Counter(v.verdict for v in verdicts)
     s = Section("summary", "Summary")
     s.paragraphs.append(compared(results))
-    s.paragraphs.append(
-        f"Of the papers' {len(verdicts)} claims, for their own methods: "
-        + ", ".join(f"{counts[k]} {k}" for k in claims.VERDICTS if counts[k]) + " "
-        "(the claims section gives the tests, p and effects; docs/statistics.md the rules).")
+    tally = ", ".join(f"{counts[k]} {k}" for k in claims.VERDICTS if counts[k])
     s.blocks.append(Table(
-        "summary-verdicts", "The papers' claims: headline verdicts",
-        "The paper's figure (its method against its first rival), ours: the medians and the "
-        "effect (r paired by scene, δ Cliff's delta; > 0 better) with its 95 % bootstrap "
-        "interval, for a claim of several comparisons the weakest, for an absolute claim the "
-        "runs meeting it with the 95 % Clopper-Pearson interval; the verdict after Holm's "
-        "correction across the claims table.",
+        "summary-verdicts", f"The papers' {len(verdicts)} claims for their own methods: {tally}",
+        "The paper's figure (its method against its first rival); ours: the medians and the "
+        "effect (r paired, δ Cliff's delta; > 0 better) [95 % interval], for several "
+        "comparisons the effect of the one that decides, or the runs meeting an absolute "
+        "claim [95 % interval]; the verdict after "
+        "Holm's correction (the claims section gives the tests; docs/statistics.md the rules).",
         ["claim", "paper's figure", "ours", "verdict"],
-        [[Cell(v.claim.id), Cell(claims.paper_figure(v.claim), "paper"),
+        [[Cell(v.claim.id), Cell(claims.paper_figure(v.claim, named=False), "paper"),
           Cell(claims.headline(v)), Cell(v.verdict, claims.CSS[v.verdict])]
          for v in verdicts]))  # fmt: skip
     s.paragraphs.append("Caveats. " + " ".join(caveats(results, verdicts)))
