@@ -11,7 +11,7 @@ import zlib
 import pytest
 
 from usvtool.report.document import APPENDIX, HTML, Cell, Figure, Section, Table, layout
-from usvtool.report.page import html, long, pdf, png_width_mm
+from usvtool.report.page import html, pdf, png_width_mm
 
 
 def table(name: str, placement: str = "main") -> Table:
@@ -76,14 +76,14 @@ def test_an_unknown_placement_is_refused_naming_the_block():
         layout([Section("one", "One", blocks=[table("t9", "pdf")])])
 
 
-def png(width: int, per_metre: int | None) -> bytes:
+def png(width: int, per_metre: int | None, height: int = 1) -> bytes:
     def chunk(name: bytes, data: bytes) -> bytes:
         return struct.pack(">I", len(data)) + name + data + struct.pack(
             ">I", zlib.crc32(name + data))  # fmt: skip
 
-    head = chunk(b"IHDR", struct.pack(">IIBBBBB", width, 1, 8, 0, 0, 0, 0))
+    head = chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0))
     phys = chunk(b"pHYs", struct.pack(">IIB", per_metre, per_metre, 1)) if per_metre else b""
-    pixels = chunk(b"IDAT", zlib.compress(b"\0" + b"\0" * width))
+    pixels = chunk(b"IDAT", zlib.compress((b"\0" + b"\xff" * width) * height))
     return b"\x89PNG\r\n\x1a\n" + head + phys + pixels + chunk(b"IEND", b"")
 
 
@@ -98,22 +98,21 @@ def test_a_figure_prints_at_its_own_resolution():
         "</style>")[1]  # fmt: skip
 
 
-def test_a_section_of_four_blocks_or_more_is_long():
-    assert not long(Section("a", "A", blocks=[table("1"), table("2")],
-                            subsections=[Section("b", "B", blocks=[table("3")])]))  # fmt: skip
-    assert long(Section("a", "A", blocks=[table("1"), table("2")],
-                        subsections=[Section("b", "B", blocks=[table("3"), table("4")])]))
-
-
 @pytest.mark.slow  # two WeasyPrint layouts
-def test_the_pdf_counts_the_main_bodys_pages_up_to_the_appendix():
-    """Page 1: the summary and the contents; page 2: a long section (four tables: it starts a
-    page); page 3: the appendix (it starts a page)."""
-    pytest.importorskip("weasyprint")
+def test_the_pdf_keeps_a_heading_with_its_figure_and_counts_the_main_body_up_to_the_appendix():
+    """A figure 199.8 mm tall (1180 px at 150 dpi) does not fit below the title, summary and
+    contents (A4: 265 mm of text height), so it starts page 2, its section's heading with it;
+    the appendix starts page 3."""
+    weasyprint = pytest.importorskip("weasyprint")
+    tall = Figure("tall", "Tall", "c", png(1050, 5906, height=1180), "x\n1\n")
     sections = [Section("summary", "Summary", ["first"]),
-                Section("one", "One", blocks=[table(f"t{i}") for i in range(4)]),
+                Section("one", "One", ["text"], [tall]),
                 Section("two", "Two", blocks=[table("t9")], placement=APPENDIX)]  # fmt: skip
-    _, pages, main = pdf(html("T", "s", sections, "print"))
+    page = html("T", "s", sections, "print")
+    anchors = [set(p.anchors) for p in weasyprint.HTML(string=page).render().pages]
+    assert [("summary" in a, "one" in a, "tall" in a, "appendix" in a) for a in anchors] == [
+        (True, False, False, False), (False, True, True, False), (False, False, False, True)]
+    _, pages, main = pdf(page)
     assert (pages, main) == (3, 2)
     _, pages, main = pdf(html("T", "s", sections[:2], "print"))
     assert (pages, main) == (2, 2)  # no appendix: every page is the main body's

@@ -34,8 +34,6 @@ def csv_uri(text: str) -> str:
     return "data:text/csv;base64," + base64.b64encode(text.encode("utf-8")).decode("ascii")
 
 
-#: A top-level section of at least this many tables and figures starts a new printed page.
-LONG = 4
 #: The anchor of the appendix's heading (the template's ``<div id="appendix">``).
 APPENDIX_ANCHOR = "appendix"
 
@@ -58,20 +56,12 @@ def png_width_mm(png: bytes) -> float | None:
     return None
 
 
-def long(section: Section) -> bool:
-    """Whether the section has :data:`LONG` tables and figures or more (subsections too)."""
-    def count(s: Section) -> int:
-        return len(s.blocks) + sum(count(sub) for sub in s.subsections)
-
-    return count(section) >= LONG
-
-
 def html(title: str, subtitle: str, sections: list[Section], medium: str = "screen") -> str:
     """The report page for ``medium``: ``screen`` (index.html) or ``print`` (the PDF's)."""
     main, appendix = layout(sections)
     return render("report.html.j2", title=title, subtitle=subtitle, main=main,
                   appendix=appendix, medium=medium, png_uri=png_uri, csv_uri=csv_uri,
-                  png_width_mm=png_width_mm, long=long)  # fmt: skip
+                  png_width_mm=png_width_mm)  # fmt: skip
 
 
 def pdf(page: str) -> tuple[bytes, int, int]:

@@ -353,14 +353,18 @@ def section(results: Results) -> Section:
         "job's command line in the HTML report.")
     s.blocks.append(Table("methods-rerun", "One example per stage", "",
                           ["stage", "command"], examples(results)))  # fmt: skip
-    software = [[Cell("Python"), Cell(platform.python_version())],
-                [Cell("usvtool"), Cell(__version__)], [Cell("git commit"), Cell(git_commit())]]
-    software += [[Cell(name), Cell(_version(name))] for name in LIBRARIES]
+    versions = [("Python", platform.python_version()), ("usvtool", __version__),
+                *((name, _version(name)) for name in LIBRARIES)]  # fmt: skip
+    half = (len(versions) + 1) // 2  # two pairs of columns: half the rows
+    versions += [("", "")] * (2 * half - len(versions))
+    software = [[Cell(a), Cell(b), Cell(c), Cell(d)]
+                for (a, b), (c, d) in zip(versions[:half], versions[half:], strict=True)]
     machine = (f"{platform.system()} {platform.machine()}, "
                f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
                f"{_memory_gib()}")  # fmt: skip
-    s.blocks.append(Table("methods-software", "Software and machine", f"Machine: {machine}.",
-                          ["package", "version"], software))  # fmt: skip
+    s.blocks.append(Table("methods-software", "Software and machine",
+                          f"usvtool's git commit: {git_commit()}. Machine: {machine}.",
+                          ["package", "version", "package", "version"], software))  # fmt: skip
     s.blocks += [t for t in (optimizers(results), controllers(results), vessels(results),
                              families(results)) if t is not None]  # fmt: skip
     s.blocks.append(jobs_table(results))

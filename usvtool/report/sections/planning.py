@@ -1,5 +1,7 @@
-"""The report's global-planning section: per chart, the routes of every algorithm, their
-convergence, box plots over seeds and a table of the papers' route metrics.
+"""The report's global-planning section: the papers' tables beside ours, one table of every
+algorithm on every chart and the routes on the charts of the papers' tables in the main body;
+per chart, in the appendix, the routes of every algorithm (the other charts'), box plots over
+seeds and a table of the route metrics, and (HTML only) the convergence curves.
 
 A route job's grid is that of its grid job (:meth:`JobResults.grid_dir`); the route drawn for an
 algorithm is that of its first seed, the figures over seeds use all of them.
@@ -15,7 +17,8 @@ import numpy as np
 from usvtool.grid import read_grid
 from usvtool.report import figures
 from usvtool.report.data import JobResults, Results, seed_text, stats
-from usvtool.report.document import Cell, Figure, Section, Table, number
+from usvtool.report.document import APPENDIX, HTML, Cell, Figure, Section, Table, number
+from usvtool.report.papers import TABLES
 from usvtool.report.sections import published
 from usvtool.route import read_path_geojson
 
@@ -53,7 +56,7 @@ def chart_section(results: Results, chart: str) -> Section:
     methods = results.methods("routes", chart)
     jobs = {m: results.select("routes", chart, m) for m in methods}
     seeds = sorted({j.seed for js in jobs.values() for j in js if j.seed is not None})
-    section = Section(f"routes-{chart}", f"Chart {chart}")
+    section = Section(f"routes-{chart}", f"Chart {chart}", placement=APPENDIX)
     section.paragraphs.append(
         f"{len(methods)} algorithms, {len(seeds)} seed(s) each for the optimizers "
         f"(seeds {seed_text(seeds)}); the exact planners run once.")
@@ -81,7 +84,7 @@ def chart_section(results: Results, chart: str) -> Section:
         section.blocks.append(Figure(f"routes-{chart}-convergence", f"Convergence on {chart}",
                                      "Best cost (m) after each iteration: the median over "
                                      "seeds and the interquartile band.",
-                                     plot.png, plot.data))  # fmt: skip
+                                     plot.png, plot.data, HTML))  # fmt: skip
     if len(seeds) > 1:
         values = {label: {m: results.values("routes", chart, m, metric) for m in methods}
                   for metric, label in BOXES}  # fmt: skip
@@ -111,6 +114,25 @@ def metrics_table(results: Results, chart: str, methods: list[str]) -> Table:
                  "planning time of the machine of the methods section.", columns, rows)
 
 
+def overview_table(results: Results, charts: list[str]) -> Table:
+    """Every algorithm on every chart: the median over seeds of its route's length over the
+    any-angle optimum (``length_ratio``), and its collision-free share over all its runs."""
+    rows = []
+    for m in results.methods("routes"):
+        cells = [Cell(m)]
+        for chart in charts:
+            ratio = results.values("routes", chart, m, "length_ratio")
+            cells.append(number(stats(ratio)["median"], 3))
+        free = [v for c in charts for v in results.values("routes", c, m, "collision_free")]
+        cells.append(number(100 * float(np.mean(free)) if free else None, 0))
+        rows.append(cells)
+    return Table("routes-overview", "Route length over the optimum, every chart",
+                 "Median over seeds of each route's length divided by the any-angle optimum's "
+                 "(length_ratio, docs/metrics.md; - : not run there), and the share of "
+                 "collision-free routes over all the algorithm's runs. Per chart: the appendix.",
+                 ["algorithm", *charts, "collision-free (%)"], rows)  # fmt: skip
+
+
 def _convergence(job: JobResults) -> list[float]:
     route = _route(job)
     return list(route[1].get("convergence") or []) if route else []
@@ -127,5 +149,12 @@ def section(results: Results) -> Section | None:
         "(length, turn cost, inside-obstacle penalty). The any-angle route is the optimum of "
         "length; the optimizers run over several seeds.")
     top.blocks += published.tables(results, "routes")
-    top.subsections = [chart_section(results, c) for c in charts]
+    top.blocks.append(overview_table(results, charts))
+    papers = {r.case for t in TABLES.values() if t.kind == "routes" for r in t.rows}
+    for chart in charts:
+        sub = chart_section(results, chart)
+        if chart in papers:  # its route map stands in the main body
+            top.blocks += [b for b in sub.blocks if b.id == f"routes-{chart}-map"]
+            sub.blocks = [b for b in sub.blocks if b.id != f"routes-{chart}-map"]
+        top.subsections.append(sub)
     return top

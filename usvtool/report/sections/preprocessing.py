@@ -1,17 +1,19 @@
-"""The report's preprocessing section: each chart's preview (the chart with its obstacle and
-margin cells, legend and scale, as ``usvtool preprocess --preview`` draws it) beside its
-navigation grid, and a table of the grids' figures (their ``summary.json``)."""
+"""The report's preprocessing section: a table of the grids' figures (their ``summary.json``)
+and, in the appendix, each chart's preview (the chart with its obstacle and margin cells,
+legend and scale, as ``usvtool preprocess --preview`` draws it) beside its navigation grid."""
 
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import numpy as np
 
 from usvtool.grid import read_grid
 from usvtool.report import figures
 from usvtool.report.data import Results
-from usvtool.report.document import Cell, Figure, Section, Table, number
+from usvtool.report.document import APPENDIX, Cell, Figure, Section, Table, number
+from usvtool.report.sections.methods import shown_path
 
 
 def section(results: Results) -> Section | None:
@@ -26,7 +28,8 @@ def section(results: Results) -> Section | None:
     s = Section("preprocessing", "Charts and their navigation grids")
     s.paragraphs.append(
         "Each chart as usvtool preprocess turns it into a grid: obstacle cells (land, shallows, "
-        "hazards) and the safety margin around them; docs/preprocess.md gives the method.")
+        "hazards) and the safety margin around them (docs/preprocess.md gives the method); "
+        "each chart beside its grid is in the appendix.")
     rows = []
     for chart, where in grids.items():
         grid = read_grid(where / "grid.tif")
@@ -34,9 +37,10 @@ def section(results: Results) -> Section | None:
         info = json.loads(summary.read_text(encoding="utf-8")) if summary.is_file() else {}
         obstacle = float(np.mean(grid.cells == 1))
         margin = float(np.mean(grid.cells == 2))
-        rows.append([Cell(chart), Cell(str(info.get("source", "-"))),
+        source = info.get("source")
+        rows.append([Cell(chart), Cell(shown_path(Path(source)) if source else "-"),
                      number(grid.cell_size, 2), Cell(f"{grid.width} x {grid.height}", "num"),
-                     number(100 * obstacle, 1), number(100 * margin, 1),
+                     number(100 * obstacle, 2), number(100 * margin, 2),
                      Cell(str(grid.crs) if grid.crs else "local metres")])  # fmt: skip
         if grid.crs is None:
             continue  # a synthetic map: its routes figure shows it
@@ -45,7 +49,8 @@ def section(results: Results) -> Section | None:
         s.blocks.append(Figure(f"chart-{chart}", f"Chart {chart}",
                                "Left: the chart with its obstacle (red) and margin (yellow) "
                                "cells; right: the navigation grid (obstacle dark, margin grey, "
-                               "outside the chart hatched).", plot.png, plot.data))
+                               "outside the chart hatched).", plot.png, plot.data,
+                               APPENDIX))  # fmt: skip
     s.blocks.append(Table("charts-table", "Navigation grids",
                           "Cell size, size, and the share of obstacle and margin cells.",
                           ["chart", "source", "cell (m)", "cells", "obstacle (%)", "margin (%)",
