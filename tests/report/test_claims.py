@@ -255,3 +255,9 @@ def test_the_section_counts_five_verdicts_and_judges_variants_apart(tmp_path):
     assert list(counts) == list(claims.VERDICTS)
     assert sum(counts.values()) == len(CLAIMS)
     assert any(r[0].text == "iwso-shorter (iwso+g), env1 vs wso" for r in cases.rows)
+
+
+def test_changes_print_short():
+    # a rival's near-zero spread makes huge per cents: they stay one word of the cell
+    assert claims._percent(-2.4e140) == "-2.4e+140" and claims._percent(-0.04) == "+0.0"
+    assert claims._percent(15.04) == "+15.0" and claims._percent(None) == "-"

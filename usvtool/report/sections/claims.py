@@ -435,7 +435,10 @@ def _figures(t: Test, claim: Claim) -> str:
 
 
 def _percent(value: float | None) -> str:
-    return "-" if value is None else f"{round(value, 1) + 0.0:+.1f}"
+    """A change in per cent to one decimal (two significant digits beyond 10 000 %)."""
+    if value is None:
+        return "-"
+    return f"{value:+.1e}" if abs(value) >= 1e4 else f"{round(value, 1) + 0.0:+.1f}"
 
 
 def _ours(t: Test) -> str:
