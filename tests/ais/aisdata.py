@@ -5,8 +5,8 @@ from pathlib import Path
 
 import numpy as np
 
-from usvtool.ais.clean import EARTH_RADIUS
 from usvtool.tracks import NS, Tracks
+from usvtool.traffic import EARTH_RADIUS
 
 AIS = Path(__file__).resolve().parents[2] / "charts" / "ais"
 NY = AIS / "AIS_2022_01_03_NYharbor_0000-0030.csv"

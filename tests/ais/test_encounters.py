@@ -7,14 +7,10 @@ import json
 import numpy as np
 import pytest
 
-from usvtool.ais.encounters import (
-    EncounterOptions,
-    find_encounters,
-    read_encounters,
-    segment_min,
-)
+from usvtool.ais.encounters import EncounterOptions, find_encounters, segment_min
 from usvtool.encounter import CLASS_NAMES, classify
 from usvtool.tracks import NS, format_time, read_tracks
+from usvtool.traffic import read_encounters
 
 from .aisdata import M_PER_DEG, NY, T0, tracks_from_metres
 

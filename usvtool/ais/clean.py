@@ -30,9 +30,7 @@ import numpy as np
 from usvtool.ais.fixes import Fixes
 from usvtool.errors import UsvError
 from usvtool.tracks import MAX_MMSI, NS, Tracks
-
-EARTH_RADIUS = 6_371_008.8  # m, IUGG mean radius
-KNOT = 1852.0 / 3600.0  # m/s
+from usvtool.traffic import EARTH_RADIUS, KNOT
 
 
 @dataclass(frozen=True)

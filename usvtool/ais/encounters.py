@@ -29,29 +29,22 @@ followed over their whole common time.
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 import os
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from usvtool.ais.clean import EARTH_RADIUS, KNOT
 from usvtool.ais.fixes import check_bbox
 from usvtool.angles import wrap180, wrap360
 from usvtool.encounter import CLASS_NAMES, assess
 from usvtool.encounter import cpa as straight_cpa
-from usvtool.errors import UsvError, check_input_file
+from usvtool.errors import UsvError
 from usvtool.tracks import NS, Tracks, format_time
+from usvtool.traffic import EARTH_RADIUS, KNOT, STILL, encounters_csv
 
-COLUMNS = ("rank", "mmsi_a", "mmsi_b", "track_a", "track_b", "name_a", "name_b", "length_a",
-           "length_b", "start", "end", "cpa_time", "cpa_m", "tcpa_s", "range_m", "class_a",
-           "class_b", "sog_a", "sog_b", "cog_a", "cog_b", "lon", "lat", "censored")  # fmt: skip
 #: Pair samples followed at once in the second phase (bounds its memory: some 40 B each x 20).
 CHUNK = 2_000_000
-#: Below this speed (m/s) a vessel's course is her reported heading (else COG, else 0).
-STILL = 0.05
 
 
 @dataclass(frozen=True)
@@ -77,7 +70,8 @@ class EncounterOptions:
 
 @dataclass
 class EncounterResult:
-    """The encounters (one dict per row, :data:`COLUMNS`, ranked) and the search's figures."""
+    """The encounters (one dict per row, :data:`usvtool.traffic.COLUMNS`, ranked) and the
+    search's figures."""
 
     rows: list[dict]
     figures: dict = field(default_factory=dict)
@@ -94,27 +88,7 @@ class EncounterResult:
                 **self.figures}  # fmt: skip
 
     def to_csv(self) -> str:
-        out = io.StringIO()
-        writer = csv.writer(out, lineterminator="\n")
-        writer.writerow(COLUMNS)
-        for r in self.rows:
-            writer.writerow([_text(c, r[c]) for c in COLUMNS])
-        return out.getvalue()
-
-
-_DECIMALS = {"length_a": 1, "length_b": 1, "cpa_m": 1, "tcpa_s": 1, "range_m": 1, "sog_a": 2,
-             "sog_b": 2, "cog_a": 1, "cog_b": 1, "lon": 6, "lat": 6}  # fmt: skip
-
-
-def _text(column: str, value) -> str:
-    if column in _DECIMALS:
-        if value is None or (isinstance(value, float) and math.isnan(value)):
-            return ""
-        text = f"{value:.{_DECIMALS[column]}f}"
-        return text[1:] if text.startswith("-") and float(text) == 0 else text
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    return str(value)
+        return encounters_csv(self.rows)
 
 
 def find_encounters(tracks: Tracks, options: EncounterOptions = EncounterOptions()
@@ -368,38 +342,8 @@ def _chunks(grid: _Samples, pairs: np.ndarray):
 
 
 def write_encounters(path: str | os.PathLike, result: EncounterResult) -> None:
-    """Write the encounters CSV (:data:`COLUMNS`, one row per encounter), atomically."""
+    """Write the encounters CSV (:data:`usvtool.traffic.COLUMNS`, one row per encounter; read by
+    :func:`usvtool.traffic.read_encounters`), atomically."""
     from usvtool.atomic import write_text
 
     write_text(path, result.to_csv())
-
-
-def read_encounters(path: str | os.PathLike) -> list[dict]:
-    """The rows of an encounters CSV: numbers as floats (empty: NaN), MMSIs, tracks and ranks
-    as ints, ``censored`` a bool; one line naming the line and column at fault."""
-    check_input_file(path)
-    with open(path, encoding="utf-8", newline="") as f:
-        reader = csv.reader(f)
-        header = next(reader, [])
-        if tuple(header) != COLUMNS:
-            raise UsvError(f"{path}: line 1: the header must be {','.join(COLUMNS)!r} (usvtool "
-                           "ais encounters)")  # fmt: skip
-        rows = []
-        for fields in reader:
-            if len(fields) != len(COLUMNS):
-                raise UsvError(f"{path}: line {reader.line_num}: {len(fields)} fields, expected "
-                               f"{len(COLUMNS)}")  # fmt: skip
-            row = dict(zip(COLUMNS, fields, strict=True))
-            for c in COLUMNS:
-                try:
-                    if c in ("rank", "mmsi_a", "mmsi_b", "track_a", "track_b"):
-                        row[c] = int(row[c])
-                    elif c in _DECIMALS:
-                        row[c] = float(row[c]) if row[c] else math.nan
-                    elif c == "censored":
-                        row[c] = {"true": True, "false": False}[row[c]]
-                except (ValueError, KeyError):
-                    raise UsvError(f"{path}: line {reader.line_num}, column {c}: {row[c]!r} is "
-                                   "not of its kind") from None  # fmt: skip
-            rows.append(row)
-    return rows
