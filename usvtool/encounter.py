@@ -1,9 +1,12 @@
 """Encounters between ships: geometry, CPA, the COLREGs classes and the ship domain.
 
 A contract below the stages: the simulation classifies its targets with it, step by step
-(:mod:`usvtool.sim.tracking`) and over a finished run (:mod:`usvtool.sim.verdicts`), its
-controllers keep the targets out of the domain, the report draws the domain. It imports no
-stage, so any stage (one of recorded AIS encounters too) classifies with the same classifier.
+(:mod:`usvtool.sim.tracking`, through a compiled copy of :func:`assess` that gives the same bits,
+:mod:`usvtool.sim.tracking_kernels`: a change here is made there too, and
+tests/sim/test_tracking_kernels.py compares the two) and over a finished run
+(:mod:`usvtool.sim.verdicts`), its controllers keep the targets out of the domain, the report
+draws the domain. It imports no stage, so any stage (one of recorded AIS encounters too)
+classifies with the same classifier.
 
 Conventions. Positions are map metres, ``x`` east and ``y`` north. Angles in every argument and
 result are compass degrees: 0 = north, clockwise, headings and bearings in ``[0, 360)``

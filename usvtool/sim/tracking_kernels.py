@@ -16,7 +16,10 @@ contracts none without ``fastmath``). So classes, bearings, ranges and CPA are t
 
 Signatures are given, so that importing this module compiles the kernels or loads them from
 numba's cache; imported lazily, by :class:`usvtool.sim.tracking.EncounterTracker` when it is
-made, so that reading a scenario or building the command line does not import numba.
+made, so that reading a scenario or building the command line does not import numba. numba's
+cache keys a kernel on this file only: the thresholds imported from :mod:`usvtool.encounter`
+are compiled in as constants, so after changing one there, remove
+``usvtool/sim/__pycache__/tracking_kernels.*.nb*`` (or touch this file).
 """
 
 from __future__ import annotations
