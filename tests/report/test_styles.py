@@ -57,6 +57,7 @@ def test_the_planners_are_three_families_told_apart_by_line_and_marker():
     assert len(set().union(*looks.values())) == 3  # three looks
 
 
+@pytest.mark.slow  # a fresh interpreter
 def test_the_fallback_is_deterministic_here_and_in_a_fresh_process():
     new = S.style("my-new-optimizer")
     assert new == S.style("my-new-optimizer")
