@@ -59,13 +59,6 @@ def two_ship_trace() -> Trace:
     return Trace.from_states(t, ["own", "target"], np.stack([own, target], axis=1))
 
 
-def wind_field():
-    """10 x 10 cells over (0, 100, 0, 100): 1 m/s east in the north half, 5 m/s in the south."""
-    u = np.ones((10, 10))
-    u[5:] = 5.0
-    return u, np.zeros((10, 10)), (0.0, 100.0, 0.0, 100.0)
-
-
 def chart_image() -> ChartImage:
     """40 x 40 pixels over small_grid's 100 m: red west, blue east; the obstacle's pixels (rows
     and columns 16-23) outside the chart."""
@@ -83,7 +76,6 @@ def all_plots() -> dict[str, F.Plot]:
     shifted = trace.states()
     shifted[:, 0, 1] += 1.0  # the own ship 1 m further north
     other = Trace.from_states(trace.t, trace.ships, shifted)
-    u, v, extent = wind_field()
     return {
         "routes": F.routes_on_grid(grid, two_routes(), (5, 5), (95, 95), "routes"),
         "routes_chart": F.routes_on_grid(grid, two_routes(), (5, 5), (95, 95), "on the chart",
@@ -98,7 +90,6 @@ def all_plots() -> dict[str, F.Plot]:
                                            title="snapshots", goal=(100, 0)),  # fmt: skip
         "states": F.states_against_time(trace),
         "nearest": F.nearest_distance({"ccdwa": trace, "udwa": other}, "nearest", limit=20),
-        "wind": F.wind_runs(u, v, extent, {"udwa": trace, "dwa": other}, "wind"),
         "preprocessing": F.preprocessing(chart_image(), grid, "preprocessing"),
     }
 
@@ -160,11 +151,11 @@ def plots(drawn) -> dict[str, F.Plot]:
 #: truncates); routes: a 100 m square view with the legend beside it, a map 7.165 - 0.85 - 0.15 -
 #: 2.3 = 3.865 in square and 0.35 + 0.55 in of margins, 4.765 in; convergence 7.2 x 4.4; boxplots
 #: two panels in one row, 2.9 + 0.4 in; snapshots three panels of (7.165 - 0.6) / 3 in and 0.25
-#: in each, 0.9 in more, 3.338 in; states 7.2 x 5.6; nearest 7.2 x 3.9; wind (H3's) 8.6 x 7.0;
+#: in each, 0.9 in more, 3.338 in; states 7.2 x 5.6; nearest 7.2 x 3.9;
 #: preprocessing two panels of (7.165 - 0.5) / 2 in, a square grid, and 1.1 in, 4.433 in.
 SIZES = {"routes": (1074, 714), "routes_chart": (1074, 714), "convergence": (1080, 660),
          "boxplots": (1080, 495), "snapshots": (1074, 500), "states": (1080, 840),
-         "nearest": (1080, 585), "wind": (1290, 1050), "preprocessing": (1074, 664)}  # fmt: skip
+         "nearest": (1080, 585), "preprocessing": (1074, 664)}  # fmt: skip
 
 
 @pytest.mark.parametrize("name", sorted(SIZES))
@@ -502,17 +493,6 @@ def test_nearest_distance_data_are_the_hand_computed_distances(plots):
     assert all(near(img, hex_rgb(style(c).color), 30) > 300 for c in ("ccdwa", "udwa"))
 
 
-def test_wind_runs_show_the_field_and_the_tracks(plots):
-    got = rows(plots["wind"])
-    assert got[0] == ["controller", "t", "x", "y"]
-    assert got[1] == ["udwa", "0.000", "0.000", "0.000"] and got[12][0] == "dwa"
-    img = pixels(plots["wind"].png)
-    # coolwarm at 1 of 5 m/s (blue) and 5 of 5 (dark red) fill the two halves of the field
-    assert near(img, (59, 76, 192), 40) > 20_000 or near(img, (98, 130, 234), 30) > 20_000
-    assert near(img, (180, 4, 38), 30) > 20_000
-    assert near(img, hex_rgb(style("udwa").color), 40) > 100
-
-
 def test_preprocessing_shows_the_chart_and_counts_the_classes(plots):
     assert rows(plots["preprocessing"]) == [["class", "value", "cells", "percent"],
                                             ["navigable", "0", "364", "91.000"],
@@ -545,10 +525,6 @@ def test_preprocessing_shows_the_chart_and_counts_the_classes(plots):
     (lambda: F.snapshot_times(two_ship_trace(), {"steps": []}), "no 'encounters' list"),
     (lambda: F.nearest_distance({"a": Trace.from_states([0], ["own"], [[[0, 0, 0, 1, 0]]])},
                                 ""), "no ship but the own ship"),  # fmt: skip
-    (lambda: F.wind_runs(np.ones((2, 2)), np.ones((2, 3)), (0, 1, 0, 1), {}, ""),
-     "u has shape (2, 2) and v (2, 3)"),
-    (lambda: F.wind_runs(np.ones((2, 2)), np.ones((2, 2)), (1, 0, 0, 1), {"a": two_ship_trace()},
-                         ""), "is not (left, right, bottom, top)"),  # fmt: skip
 ])  # fmt: skip
 def test_bad_input_is_one_line_naming_the_argument(call, message):
     with pytest.raises(UsvError) as info:

@@ -8,7 +8,7 @@ from usvtool.report.figures.canvas import Plot
 from usvtool.report.figures.encounters import encounter_snapshots, snapshot_times
 from usvtool.report.figures.maps import preprocessing, routes_on_grid
 from usvtool.report.figures.raster import ChartImage, preview_chart
-from usvtool.report.figures.runs import nearest_distance, states_against_time, wind_runs
+from usvtool.report.figures.runs import nearest_distance, states_against_time
 from usvtool.report.figures.statistics import boxplots, convergence
 
 __all__ = [
@@ -23,5 +23,4 @@ __all__ = [
     "routes_on_grid",
     "snapshot_times",
     "states_against_time",
-    "wind_runs",
 ]

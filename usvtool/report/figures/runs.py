@@ -4,8 +4,6 @@
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from usvtool.errors import UsvError
@@ -14,17 +12,11 @@ from usvtool.report.figures.canvas import (
     Plot,
     csv_text,
     figure,
-    finite_array,
     fixed,
     png,
 )
-from usvtool.report.figures.raster import MAX_SIDE, map_axes
 from usvtool.report.figures.styles import ordered, style
 from usvtool.trace import OWN, Trace
-
-#: Quiver arrows along the longer side of the wind field.
-ARROWS = 20
-
 
 def unwrapped_heading(heading) -> np.ndarray:
     """Compass headings unwrapped into a continuous curve (no jump at 0/360), shifted by whole
@@ -99,55 +91,3 @@ def nearest_distance(traces: dict[str, Trace], title: str, limit: float | None =
     rows = [(name, tt, dd) for name, d in series.items()
             for tt, dd in zip(fixed(traces[name].t, 3), fixed(d, 3), strict=True)]  # fmt: skip
     return Plot(image, csv_text(("controller", "t", "distance_m"), rows))
-
-
-def wind_runs(u, v, extent, traces: dict[str, Trace], title: str) -> Plot:
-    """The wind field, ``u`` and ``v`` ``(h, w)`` (m/s toward east and north, row 0 the northern
-    edge, cells covering ``extent`` = (left, right, bottom, top) map metres), as its speed in a
-    colour map with a colour bar and arrows (one every ``ceil(max(h, w) / 20)`` cells, at cell
-    centres, pointing where the wind blows), and each controller's own-ship track over it
-    (each in its registered style; the legend gives the time of its last step).
-
-    Data: ``controller,t,x,y`` (3 decimals), the tracks; the field is the scenario's raster.
-    """
-    u = finite_array("wind_runs: u", u, ndim=2)
-    v = finite_array("wind_runs: v", v, ndim=2)
-    if u.shape != v.shape:
-        raise UsvError(f"wind_runs: u has shape {u.shape} and v {v.shape}")
-    left, right, bottom, top = finite_array("wind_runs: extent", extent, ndim=1, columns=4)
-    if not (left < right and bottom < top):
-        raise UsvError(f"wind_runs: extent {tuple(extent)} is not (left, right, bottom, top)")
-    if not traces:
-        raise UsvError("wind_runs: no trace")
-    h, w = u.shape
-    speed = np.hypot(u, v)
-    shown = speed[:: math.ceil(h / MAX_SIDE), :: math.ceil(w / MAX_SIDE)]
-    k = math.ceil(max(h, w) / ARROWS)
-    rows_i, cols_j = np.arange(k // 2, h, k), np.arange(k // 2, w, k)
-    ax_x = left + (cols_j + 0.5) * (right - left) / w
-    ax_y = top - (rows_i + 0.5) * (top - bottom) / h
-    from matplotlib import patheffects
-
-    outline = [patheffects.withStroke(linewidth=3.2, foreground="white")]
-    with figure(8.6, 7.0) as fig:
-        ax = fig.add_subplot()
-        image = ax.imshow(shown, extent=(left, right, bottom, top), origin="upper",
-                          cmap="coolwarm", vmin=0.0, interpolation="nearest", zorder=0)
-        fig.colorbar(image, ax=ax, label="wind speed (m/s)", shrink=0.85)
-        ax.quiver(*np.meshgrid(ax_x, ax_y), u[np.ix_(rows_i, cols_j)], v[np.ix_(rows_i, cols_j)],
-                  color="black", alpha=0.6, pivot="middle", zorder=1)  # fmt: skip
-        for name, tr in traces.items():
-            own = tr.ship(OWN)
-            ax.plot(own[:, 0], own[:, 1], linewidth=1.8, path_effects=outline, zorder=2,
-                    label=f"{style(name).label} ({tr.t[-1]:.1f} s)", **style(name).line())
-        ax.set_xlim(left, right)
-        ax.set_ylim(bottom, top)
-        ax.grid(False)
-        map_axes(ax, max(right - left, top - bottom))
-        ax.set_title(title)
-        ax.legend(loc="best")
-        picture = png(fig)
-    rows = [(name, *values) for name, tr in traces.items()
-            for values in zip(*(fixed(c, 3) for c in (tr.t, tr.ship(OWN)[:, 0],
-                                                       tr.ship(OWN)[:, 1])), strict=True)]
-    return Plot(picture, csv_text(("controller", "t", "x", "y"), rows))
