@@ -1,6 +1,6 @@
-"""Figures of runs against time and over the weather: the own ship's x, y and heading
-(IWSO-DWA Figs. 12, 14, …, 26), the distance to the nearest ship per controller (UDWA Figs. 10,
-13, 16), and the own-ship tracks over the wind field (UDWA Figs. 19-20)."""
+"""Figures of runs against time: the own ship's x, y and heading (IWSO-DWA Figs. 12, 14, …, 26)
+and the distance to the nearest ship per controller (UDWA Figs. 10, 13, 16); the tracks over
+the wind field are the wind section's (:mod:`usvtool.report.figures.wind`)."""
 
 from __future__ import annotations
 
@@ -17,6 +17,7 @@ from usvtool.report.figures.canvas import (
 )
 from usvtool.report.figures.styles import ordered, style
 from usvtool.trace import OWN, Trace
+
 
 def unwrapped_heading(heading) -> np.ndarray:
     """Compass headings unwrapped into a continuous curve (no jump at 0/360), shifted by whole
