@@ -87,7 +87,7 @@ def test_every_table_the_report_promises_is_there_with_the_papers_numbers(report
     for t in ("claims-table", "colregs-compliance", "functions-table", "charts-table",
               "methods-software", "routes-env1-table", "routes-grid20-table",
               "encounter-emergency-head-on-table", "encounter-emergency-head-on-snapshots",
-              "encounter-emergency-head-on-distance", "encounter-wind-southeast-strong-wind",
+              "encounter-emergency-head-on-distance",
               "routes-env1-map", "routes-env1-convergence", "routes-env1-boxes"):  # fmt: skip
         assert t in ids, t
     for paper_table in ("iwso-dwa-table-1", "iwso-dwa-table-2", "issa-table-3", "udwa-table-1"):
@@ -95,8 +95,8 @@ def test_every_table_the_report_promises_is_there_with_the_papers_numbers(report
         printed = {p for r in TABLES[paper_table].rows for p in r.printed if p}
         missing = [p for p in printed if f">{p}<" not in html]
         assert not missing, (paper_table, missing[:5])
-    assert set(summary["sections"]) == {"claims", "planning", "functions", "encounters",
-                                        "preprocessing", "methods"}  # fmt: skip
+    assert set(summary["sections"]) == {"summary", "claims", "planning", "functions", "encounters",
+                                        "wind", "preprocessing", "methods"}  # fmt: skip
 
 
 def test_each_figure_is_embedded_written_and_its_data_beside_it(report):
@@ -115,17 +115,23 @@ def test_each_figure_is_embedded_written_and_its_data_beside_it(report):
         assert data.count("\n") >= 2  # a header and data
 
 
-def test_the_pdf_has_a_page_per_section_at_least_and_a_first_page_that_is_not_blank(report):
+def test_the_pdf_main_body_then_the_appendix_and_the_html_only_parts_left_out(report):
     pdfium = pytest.importorskip("pypdfium2")
     out, summary = report
     pdf = pdfium.PdfDocument(str(out / "report.pdf"))
-    assert len(pdf) == summary["pdf_pages"]
-    # the title and contents, then each top-level section starts a page (style.css)
-    assert len(pdf) >= 1 + len(summary["sections"])
-    starts = [i for i in range(len(pdf))
-              for s in ("The papers' claims on our maps", "Global path planning", "Methods")
-              if pdf[i].get_textpage().get_text_range().startswith(s)]  # fmt: skip
-    assert len(starts) == 3 and starts == sorted(starts)
+    text = [pdf[i].get_textpage().get_text_range() for i in range(len(pdf))]
+    assert len(pdf) == summary["pdf_pages"] > summary["main_pages"] >= 1
+    # the appendix starts the page after the main body's last (style.css), and only there
+    assert text[summary["main_pages"]].startswith("Appendix")
+    assert not any(t.startswith("Appendix") for t in text[:summary["main_pages"]])
+    assert text[0].startswith("usvtool: path planning")
+    if "summary" in summary["sections"]:  # page 1 is the summary, the contents after it
+        assert text[0].index("Summary") < text[0].find("Contents") or "Contents" not in text[0]
+    # every job's command line: folded in the HTML, not in the PDF
+    page = (out / "index.html").read_text(encoding="utf-8")
+    folded = page.index('<details class="html-only"><summary>Every job')
+    assert page.index('id="methods-jobs"') > folded
+    assert not any("Every job's command line" in t for t in text)
     image = np.asarray(pdf[0].render(scale=1).to_pil().convert("L"))
     assert (image < 128).mean() > 0.005 and len(np.unique(image)) > 10
 
