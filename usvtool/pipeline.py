@@ -79,13 +79,15 @@ class FileOptions:
 @dataclass(frozen=True)
 class FamilySpec:
     """What the simulation tells the reader of a scene family: its kinds, whether its scenes
-    are seeded (else each kind is one scene, 0), and ``check(options, where)``, which returns
+    are seeded (else each kind is one scene, 0), ``check(options, where)``, which returns
     the options checked (every one, defaults filled in) or raises a :class:`UsvError` naming
-    the option as ``where(name)`` does."""
+    the option as ``where(name)`` does, and ``files``, its options that name a file it reads
+    (the reader makes each an absolute :class:`Path`, relative to the root as written)."""
 
     kinds: tuple[str, ...]
     seeded: bool = True
     check: Callable[[Mapping, Callable[[str], str]], dict] | None = None
+    files: frozenset[str] = frozenset()
 
 
 @dataclass(frozen=True)
@@ -162,7 +164,8 @@ class FamilyEntry:
     scenes: tuple[int, ...]
     controllers: tuple[str, ...]
     seeds: tuple[int, ...]
-    options: tuple[tuple[str, object], ...] = ()  # the family's options as given, sorted
+    options: tuple[tuple[str, object], ...] = ()  # the family's options as given, sorted; a
+    # file it reads: its absolute Path
 
 
 @dataclass(frozen=True)
@@ -417,7 +420,8 @@ def _load(path: Path, names: Names | None, including: tuple[Path, ...]) -> Pipel
     functions = None
     if data.get("functions") is not None:
         functions = _functions(r, data["functions"], names)
-    families = _families(r, data["families"], names) if data.get("families") is not None else ()
+    families = () if data.get("families") is None else _families(r, root, data["families"],
+                                                                  names)  # fmt: skip
     if not including and not (routes or simulation or functions or families):
         r.fail("routes", "missing: a pipeline needs routes, simulation, families or functions")
     return Pipeline(path, root, charts, routes, simulation, functions, families)
@@ -550,7 +554,8 @@ def _functions(r: _Reader, entry, names) -> FunctionMatrix:
     )
 
 
-def _families(r: _Reader, value, names: Names | None) -> tuple[FamilyEntry, ...]:
+def _families(r: _Reader, root: Path, value,
+              names: Names | None) -> tuple[FamilyEntry, ...]:  # fmt: skip
     if not isinstance(value, list) or not value:
         r.fail("families", f"expected a list of family entries, got {_show(value)}")
     entries: dict[str, FamilyEntry] = {}
@@ -589,25 +594,31 @@ def _families(r: _Reader, value, names: Names | None) -> tuple[FamilyEntry, ...]
         controllers = r.names(e["controllers"], f"{where}.controllers", "controller",
                               _known(names, "controller"))  # fmt: skip
         seeds = r.seeds(e["seeds"], f"{where}.seeds")
-        options = _family_options(r, e.get("options"), f"{where}.options", spec)
+        options = _family_options(r, e.get("options"), f"{where}.options", spec, root)
         entries[name] = FamilyEntry(name, family, kinds, scenes, controllers, seeds, options)
     return tuple(entries.values())
 
 
-def _family_options(r: _Reader, value, field: str, spec: FamilySpec | None):
-    """A family's options (name: number or word), checked by the family when it is known."""
-    if value is None:
-        return ()
+def _family_options(r: _Reader, value, field: str, spec: FamilySpec | None, root: Path):
+    """A family's options (name: number or word), checked by the family when it is known; an
+    option naming a file it reads must name a file (relative to ``root``) and becomes its
+    absolute :class:`Path`."""
+    value = {} if value is None else value
     if not isinstance(value, dict):
         r.fail(field, f"expected a mapping of option: value, got {_show(value)}")
+    options: dict[str, object] = {}
     for key, v in value.items():
         if not isinstance(key, str) or not _FAMILY_OPTION.match(key):
             r.fail(f"{field}.{key}", "not a family option name (lower case, e.g. own_speed)")
         if isinstance(v, bool) or not isinstance(v, int | float | str):
             r.fail(f"{field}.{key}", f"expected a number or a word, got {_show(v)}")
+        if spec is not None and key in spec.files:
+            v = root / r.files(root, [v], f"{field}.{key}", glob_ok=False)[0]
+        options[key] = v
     if spec is not None and spec.check is not None:
         try:
-            spec.check(value, lambda key: f"{field}.{key}")
+            spec.check({k: str(v) if isinstance(v, Path) else v for k, v in options.items()},
+                       lambda key: f"{field}.{key}")  # fmt: skip
         except UsvError as exc:
             raise UsvError(f"{r.path}: {exc}") from None
-    return tuple(sorted(value.items()))
+    return tuple(sorted(options.items()))

@@ -151,7 +151,7 @@ def pick_encounter(rows: list[dict], kind: str, number: int, min_speed: float, p
     return moving[number - 1]
 
 
-def encounter_times(row: dict, path) -> tuple[int, int]:
+def _encounter_times(row: dict, path) -> tuple[int, int]:
     """The encounter's ``start`` and ``end`` (ns since the epoch)."""
     import pyarrow as pa
 
@@ -161,7 +161,7 @@ def encounter_times(row: dict, path) -> tuple[int, int]:
     return int(ends[0]), int(ends[1])
 
 
-def vessel_track(tracks: Tracks, row: dict, vessel: str, path) -> int:
+def _vessel_track(tracks: Tracks, row: dict, vessel: str, path) -> int:
     """The ordinal (in :meth:`Tracks.track_bounds`) of the track of the encounter's ``vessel``
     (``"a"`` or ``"b"``); one line when the tracks file does not hold it."""
     first, _ = tracks.track_bounds()
@@ -171,6 +171,41 @@ def vessel_track(tracks: Tracks, row: dict, vessel: str, path) -> int:
         raise UsvError(f"{path}: encounter {row['rank']}: track {track} of {mmsi} is not in the "
                        "tracks file (made from other tracks?)")  # fmt: skip
     return int(ordinal[0])
+
+
+@dataclass(frozen=True)
+class SceneEncounter:
+    """An encounter as a scene: its row, the own vessel's track (an ordinal of
+    :meth:`Tracks.track_bounds`), the other vessel's MMSI, the encounter's start and end and
+    the scenario's window (ns): those widened by the pad on each side, cut to the own track."""
+
+    row: dict
+    own: int
+    other: int
+    times: tuple[int, int]
+    window: tuple[int, int]
+
+
+def scene_encounter(tracks: Tracks, row: dict, own: str, pad: float, path) -> SceneEncounter:
+    """The encounter ``row`` of the encounters file ``path`` with its vessel ``own`` (``"a"``
+    or ``"b"``) as the own ship, the window ``pad`` s wider on each side."""
+    ordinal = _vessel_track(tracks, row, own, path)
+    t0, t1 = _encounter_times(row, path)
+    widen = round(pad * NS)
+    window = cut_window(tracks, ordinal, (t0 - widen, t1 + widen))
+    return SceneEncounter(row, ordinal, row["mmsi_b" if own == "a" else "mmsi_a"], (t0, t1),
+                          window)  # fmt: skip
+
+
+def cut_window(tracks: Tracks, own: int, window: tuple[int, int]) -> tuple[int, int]:
+    """``window`` (ns) cut to the track ``own``; one line when they do not overlap."""
+    first, stop = tracks.track_bounds()
+    t0 = max(window[0], int(tracks.time[first[own]]))
+    t1 = min(window[1], int(tracks.time[stop[own] - 1]))
+    if t1 <= t0:
+        raise UsvError(f"MMSI {tracks.mmsi[first[own]]}: her track {tracks.track[first[own]]} "
+                       f"holds no time of the window {' … '.join(format_time(list(window)))}")
+    return t0, t1
 
 
 # --- tracks in the local frame ---------------------------------------------------------------
@@ -248,19 +283,30 @@ class Manoeuvre:
     speed_max: float
 
 
+def summarise(course: np.ndarray, speed: np.ndarray, start: tuple[float, float],
+              end: tuple[float, float]) -> Manoeuvre:  # fmt: skip
+    """The :class:`Manoeuvre` of course (compass deg) and speed (m/s) samples over a window,
+    ``start`` and ``end`` its (course, speed) at its ends; the largest turn over the samples
+    of at least :data:`STILL`."""
+    course, speed = np.asarray(course, float), np.asarray(speed, float)
+    turns = wrap180(course[speed >= STILL] - start[0])
+    largest = float(turns[np.argmax(np.abs(turns))]) if turns.size else 0.0
+    return Manoeuvre(float(start[0]), float(end[0]), float(wrap180(end[0] - start[0])), largest,
+                     start[1] / KNOT, end[1] / KNOT, float(speed.min()) / KNOT,
+                     float(speed.max()) / KNOT)  # fmt: skip
+
+
 def manoeuvre(tracks: Tracks, ordinal: int, t0: int, t1: int) -> Manoeuvre:
-    """The manoeuvre of track ``ordinal`` over ``t0`` … ``t1`` (ns; within her track)."""
+    """The manoeuvre of track ``ordinal`` over ``t0`` … ``t1`` (ns; within her track): her
+    segments there, her course and speed at ``t0`` (the segment from it) and at ``t1`` (the
+    segment to it)."""
     first, stop = tracks.track_bounds()
     rows = slice(first[ordinal], stop[ordinal])
     t = tracks.time[rows]
     j = np.arange(_segment(t, t0, "right"), _segment(t, t1, "left") + 1)
     course, speed = _segments(tracks, rows, j)
-    c0, v0 = course_speed(tracks, rows, t0, "right")
-    c1, v1 = course_speed(tracks, rows, t1, "left")
-    turns = wrap180(course[speed >= STILL] - c0)
-    largest = float(turns[np.argmax(np.abs(turns))]) if turns.size else 0.0
-    return Manoeuvre(c0, c1, float(wrap180(c1 - c0)), largest, v0 / KNOT, v1 / KNOT,
-                     float(speed.min()) / KNOT, float(speed.max()) / KNOT)  # fmt: skip
+    return summarise(course, speed, course_speed(tracks, rows, t0, "right"),
+                     course_speed(tracks, rows, t1, "left"))  # fmt: skip
 
 
 # --- the scenario ----------------------------------------------------------------------------
@@ -290,11 +336,7 @@ def traffic_scenario(tracks: Tracks, own: int, window: tuple[int, int], *, radiu
     comments."""
     first, stop = tracks.track_bounds()
     mmsi = int(tracks.mmsi[first[own]])
-    t0, t1 = max(window[0], int(tracks.time[first[own]])), min(window[1],
-                                                                int(tracks.time[stop[own] - 1]))
-    if t1 <= t0:
-        raise UsvError(f"MMSI {mmsi}: her track {tracks.track[first[own]]} holds no time of the "
-                       f"window {' … '.join(format_time(list(window)))}")  # fmt: skip
+    t0, t1 = cut_window(tracks, own, window)
     own_rows = slice(first[own], stop[own])
     own_lon, own_lat = positions_at(tracks, own_rows, times_in(tracks.time[own_rows], t0, t1))
     frame = _Frame(tracks.lon[first[own]], tracks.lat[first[own]], own_lon[0], own_lat[0],

@@ -24,14 +24,13 @@ from pathlib import Path
 import numpy as np
 
 from usvtool.errors import UsvError
-from usvtool.tracks import NS, Tracks
+from usvtool.tracks import Tracks
 from usvtool.traffic import (
-    encounter_times,
     pick_encounter,
     read_encounters,
     scenario_yaml,
+    scene_encounter,
     traffic_scenario,
-    vessel_track,
 )
 
 SCENARIO = "scenario.yaml"
@@ -121,7 +120,7 @@ def write_scenario(directory: str | os.PathLike, result: ScenarioResult,
 
 
 def _window(tracks: Tracks, options: ScenarioOptions) -> tuple[int, tuple[int, int], int | None]:
-    """(the own ship's track ordinal, the window (ns, before the cut to her track), the
+    """(the own ship's track ordinal, the window (ns; an encounter's cut to her track), the
     encounter's rank or None)."""
     if options.encounter is not None:
         rows = read_encounters(options.encounters)
@@ -131,11 +130,9 @@ def _window(tracks: Tracks, options: ScenarioOptions) -> tuple[int, tuple[int, i
         if own not in (row["mmsi_a"], row["mmsi_b"]):
             raise UsvError(f"--own {own}: not a vessel of encounter {options.encounter} "
                            f"({row['mmsi_a']}, {row['mmsi_b']})")  # fmt: skip
-        ordinal = vessel_track(tracks, row, "a" if own == row["mmsi_a"] else "b",
-                               options.encounters)  # fmt: skip
-        t0, t1 = encounter_times(row, options.encounters)
-        pad = round(options.pad * NS)
-        return ordinal, (t0 - pad, t1 + pad), options.encounter
+        scene = scene_encounter(tracks, row, "a" if own == row["mmsi_a"] else "b", options.pad,
+                                options.encounters)  # fmt: skip
+        return scene.own, scene.window, options.encounter
     import pyarrow as pa
 
     from usvtool.csvtable import time_ns

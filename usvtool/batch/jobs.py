@@ -10,7 +10,8 @@ included: the content of its input files (a grid's: a chart's source, extra inpu
 its options name, :func:`~usvtool.batch.commands.chart_files`; a run's: a scenario and the files
 it names, its map, route, target tracks and wind field), each with its companions (GDAL's
 sidecars of a raster, an S-57 cell's update files: :mod:`usvtool.companions`); a family run's
-family, kind, scene and options (it reads no file: it makes its scene); the options, the
+family, kind, scene and options, the content standing for the path of an option that names a
+file the family reads (the ``ais`` family's encounters and tracks); the options, the
 algorithm or controller, the seed, and the code of the stage that runs it (the stage's
 package, its command module, the CLI basics and the contract modules), so that a change of any
 of them gives new keys and the jobs run again.
@@ -167,8 +168,11 @@ def expand(pipeline: Pipeline, names: Names,
                                  simulate_command(path, controller, seed),
                                  info={"scenario": str(path)}))  # fmt: skip
     for j in pipeline.family_jobs():
-        scene = {"family": j.family, "kind": j.kind, "scene": j.scene, "options": dict(j.options)}
-        key = _key({"kind": "runs", "scene": scene, "controller": j.controller, "seed": j.seed})
+        scene = {"family": j.family, "kind": j.kind, "scene": j.scene,
+                 "options": {k: str(v) if isinstance(v, Path) else v for k, v in j.options}}
+        read = {k: content(v) if isinstance(v, Path) else v for k, v in j.options}
+        key = _key({"kind": "runs", "scene": {**scene, "options": read},
+                    "controller": j.controller, "seed": j.seed})  # fmt: skip
         _claim(pipeline, owners, ("runs", j.case, j.controller, j.seed), key,
                f"families.{j.entry}")  # fmt: skip
         jobs.setdefault(key, Job("runs", key, j.case, j.controller, j.seed, family_command(j),

@@ -65,7 +65,8 @@ def stage_names() -> Names:
     from usvtool.sim.families import FAMILIES
 
     files = {"preprocess": file_options(preprocess), "plan": file_options(plan)}
-    families = {name: FamilySpec(cls.kinds, cls.seeded, cls().check_options)
+    families = {name: FamilySpec(cls.kinds, cls.seeded, cls().check_options,
+                                 frozenset(k for k, o in cls.options.items() if o.file))
                 for name, cls in FAMILIES.items()}  # fmt: skip
     return Names(tuple(OPTIMIZERS), tuple(EXACT), tuple(CONTROLLERS), tuple(FUNCTIONS), files,
                  families)  # fmt: skip

@@ -17,6 +17,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from usvtool.errors import UsvError
+from usvtool.sim.families.ais import Ais
 from usvtool.sim.families.base import Draw, Family, Option, Scene, Where
 from usvtool.sim.families.emergency import Emergency
 from usvtool.sim.families.imazu import Imazu
@@ -43,7 +44,7 @@ def unregister(name: str) -> None:
     del FAMILIES[name]
 
 
-for _cls in (Emergency, Iwso, Imazu, Wind):
+for _cls in (Emergency, Iwso, Imazu, Wind, Ais):
     register(_cls)
 
 

@@ -19,6 +19,7 @@ import math
 import zlib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import ClassVar
 
 import numpy as np
@@ -37,12 +38,15 @@ Where = Callable[[str], str]
 @dataclass(frozen=True)
 class Option:
     """A family option: its default (a number or a word), what it sets; a number must be > 0
-    (``positive``) or >= 0; a word one of ``choices`` when given."""
+    (``positive``) or >= 0; a word one of ``choices`` when given. A ``file`` option names a
+    file the family reads (its default ``""``: it must be given, and the file must exist; a
+    pipeline gives it relative to its root, and its content keys the jobs)."""
 
     default: Value
     help: str
     positive: bool = True
     choices: tuple[str, ...] = ()
+    file: bool = False
 
 
 def vessel_option(default: str) -> Option:
@@ -56,12 +60,15 @@ def duration_option(default: float) -> Option:
 
 @dataclass(frozen=True)
 class Draw:
-    """One drawn scene: its scenario mapping and the rasters it names, by the scenario field
-    that names them (``"map"``, ``"weather.field"``) -> (the file's suffix, an object with
-    ``write(path)``); the scenario file gives them as ``<its stem>.<suffix>`` beside it."""
+    """One drawn scene: its scenario mapping and the files it names, by the scenario field
+    that names them (``"map"``, ``"weather.field"``; a list item by its index,
+    ``"targets.0.track"``) -> (the file's suffix, an object with ``write(path)``); the scenario
+    file gives them as ``<its stem>.<suffix>`` beside it. ``comments``: lines added to the
+    file's header (what the scene is made of)."""
 
     scenario: dict
     files: dict[str, tuple[str, object]] = field(default_factory=dict)
+    comments: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -81,8 +88,9 @@ class Scene:
 
     @property
     def name(self) -> str:
-        """The scenario's name: ``emergency-head-on-s007``, the options given that differ from
-        the defaults appended (``-own_speed=5``), so two scenes of one name are the same."""
+        """The scenario's name: ``emergency-head-on-s007`` (or the name the draw gave itself),
+        the options given that differ from the defaults appended (``-own_speed=5``; not the
+        files, which the draw's name stands for), so two scenes of one name are the same."""
         return self.draw.scenario["name"]
 
     def summary(self) -> dict:
@@ -114,6 +122,11 @@ class Family:
         """Why ``draw`` breaks the family's promise for ``kind`` (a few words), or None."""
         raise NotImplementedError
 
+    def draw_scene(self, kind: str, scene: int, rng: np.random.Generator, opts: dict) -> Draw:
+        """One candidate of scene ``scene`` of ``kind``: :meth:`draw` (a family whose scenes
+        are numbered, not drawn, such as recorded encounters, overrides this instead)."""
+        return self.draw(kind, rng, opts)
+
     def generator(self, kind: str, scene: int) -> np.random.Generator:
         """The draws' generator of scene ``scene`` of ``kind``: seeded by the family's name, the
         kind and the scene's number only (CRC-32 of the names: the same on every machine)."""
@@ -128,6 +141,9 @@ class Family:
                 raise UsvError(f"{where(key)}: not an option of family {self.name} (known: "
                                f"{', '.join(sorted(self.options))})")  # fmt: skip
             out[key] = _checked(self.options[key], value, where(key))
+        for key, o in self.options.items():
+            if o.file and key not in out:
+                raise UsvError(f"{where(key)}: missing: {o.help} (family {self.name} reads it)")
         return {key: out.get(key, o.default) for key, o in self.options.items()}
 
     def scene(self, kind: str, scene: int = 0, given: Mapping | None = None,
@@ -146,14 +162,14 @@ class Family:
         opts = self.check_options(given, where)
         rng = self.generator(kind, scene)
         rejected: dict[str, int] = {}
-        label = f"{self.name}-{kind}-s{scene:03d}" + "".join(
-            f"-{k}={v}" for k, v in sorted(given.items()) if v != self.options[k].default
-        )
+        suffix = "".join(f"-{k}={v}" for k, v in sorted(given.items())
+                         if v != self.options[k].default and not self.options[k].file)
         for draws in range(1, self.max_draws + 1):
-            draw = self.draw(kind, rng, opts)
+            draw = self.draw_scene(kind, scene, rng, opts)
             reason = self.reject(kind, draw, opts)
             if reason is None:
-                draw.scenario["name"] = label
+                own = draw.scenario.get("name") or f"{self.name}-{kind}-s{scene:03d}"
+                draw.scenario["name"] = own + suffix
                 return Scene(self.name, kind, scene, opts, given, draw, draws, rejected)
             rejected[reason] = rejected.get(reason, 0) + 1
         counts = ", ".join(f"{n} {r}" for r, n in sorted(rejected.items(), key=lambda i: -i[1]))
@@ -162,6 +178,12 @@ class Family:
 
 
 def _checked(option: Option, value, where: str) -> Value:
+    if option.file:
+        if not isinstance(value, str) or not value:
+            raise UsvError(f"{where}: must be a file's path, not {show(value)}")
+        if not Path(value).is_file():
+            raise UsvError(f"{where}: {value}: no such file")
+        return value
     if isinstance(option.default, str):
         if not isinstance(value, str) or not value:
             raise UsvError(f"{where}: must be a word, not {show(value)}")

@@ -1,6 +1,7 @@
 """A scene as an ordinary scenario file: its YAML (a comment header saying which scene it is and
-how many draws it took) and, beside it, the rasters it names (``<stem>.map.tif``,
-``<stem>.wind.tif``), written all or none (:class:`usvtool.atomic.staged`)."""
+how many draws it took) and, beside it, the files it names (``<stem>.map.tif``,
+``<stem>.wind.tif``, a replayed target's ``<stem>.ais-MMSI.csv``), written all or none
+(:class:`usvtool.atomic.staged`)."""
 
 from __future__ import annotations
 
@@ -13,17 +14,17 @@ from usvtool.sim.families.base import Scene
 
 
 def scene_files(scene: Scene, path: str | Path) -> list[Path]:
-    """The files :func:`write_scene` writes for ``scene`` at ``path``: the scenario, then its
-    rasters."""
+    """The files :func:`write_scene` writes for ``scene`` at ``path``: the scenario, then the
+    files it names."""
     path = Path(path)
     return [path, *(_beside(path, suffix) for suffix, _ in scene.draw.files.values())]
 
 
 def scene_text(scene: Scene, stem: str) -> str:
-    """The scenario file's text, its rasters named ``<stem>.<suffix>``."""
+    """The scenario file's text, the files it names as ``<stem>.<suffix>``."""
     mapping = copy.deepcopy(scene.draw.scenario)
     for where, (suffix, _) in scene.draw.files.items():
-        *parents, key = where.split(".")
+        *parents, key = (int(p) if p.isdigit() else p for p in where.split("."))
         holder = mapping
         for p in parents:
             holder = holder[p]
@@ -37,13 +38,14 @@ def scene_text(scene: Scene, stem: str) -> str:
         f"# Written again by: usvtool scene --family {scene.family} --kind {scene.kind} --scene "
         f"{scene.scene}" + "".join(f" --family-option {k}={v}" for k, v in
                                    sorted(scene.given.items())) + " -o FILE",
+        *(f"# {line}" for line in scene.draw.comments),
     ]  # fmt: skip
     body = yaml.safe_dump(mapping, sort_keys=False, default_flow_style=None, width=100)
     return "\n".join(header) + "\n" + body
 
 
 def write_scene(scene: Scene, path: str | Path) -> list[Path]:
-    """Write ``scene`` as the scenario file ``path`` and its rasters beside it, all or none;
+    """Write ``scene`` as the scenario file ``path`` and its files beside it, all or none;
     the files written (:func:`scene_files`)."""
     from usvtool.atomic import staged
 

@@ -1,0 +1,297 @@
+"""The report's real-traffic section: the runs of the ``ais`` scene family (recorded
+close-quarters encounters, docs/ais.md), every controller in each encounter beside what the
+real vessel did there.
+
+A scene is one encounter of an encounters file (``usvtool ais encounters``), the USV in the
+place of one of its two vessels, the others replayed from their tracks. What the scene was is
+read from the run's own files: its ``summary.json`` names the family's options (every one, the
+defaults filled in: the encounters file, the tracks file, which vessel the USV replaces, the
+pad), and from those files, through :mod:`usvtool.traffic` (the contract the family made the
+scenario with), the encounter's row (its vessels, class at first detection, window and
+recorded CPA), the scenario's window and the own vessel's recorded manoeuvre over the
+encounter's window (:func:`usvtool.traffic.manoeuvre`). Per run: its outcome (a run that did
+not arrive or collided is a failure), the closest distance to any ship (the results table's)
+and to the encounter's other vessel (its trace), the USV's heading and speed over the same
+window (its trace, :func:`usvtool.traffic.summarise`), and its encounters' COLREGs counts.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from functools import cache
+from pathlib import Path
+
+import numpy as np
+
+from usvtool.errors import UsvError
+from usvtool.report.data import JobResults, Results
+from usvtool.report.document import Cell, Section, Table, number
+from usvtool.report.sections.encounters import (
+    COUNTS,
+    MARKS,
+    VERDICT_HEADINGS,
+    VERDICTS,
+    outcome,
+    run_facts,
+    run_files,
+)
+from usvtool.tracks import NS, Tracks, read_tracks
+from usvtool.traffic import (
+    Manoeuvre,
+    SceneEncounter,
+    manoeuvre,
+    pick_encounter,
+    read_encounters,
+    scene_encounter,
+    summarise,
+)
+
+FAMILY = "ais"
+
+
+@cache
+def _tracks(path: str) -> Tracks:
+    return read_tracks(path)
+
+
+@cache
+def _encounters(path: str) -> list[dict]:
+    return read_encounters(path)
+
+
+@dataclass(frozen=True)
+class Recorded:
+    """A scene's encounter as recorded: which it is, its files, the own vessel's letter
+    (``a``/``b``), her name and MMSI, the other's, the encounter as a scene and her
+    manoeuvre over the encounter's window."""
+
+    kind: str
+    number: int
+    encounters: str
+    at: SceneEncounter
+    own: str
+    manoeuvre: Manoeuvre
+
+    def vessel(self, letter: str) -> str:
+        row = self.at.row
+        name = row[f"name_{letter}"]
+        return f"{name} ({row[f'mmsi_{letter}']})" if name else str(row[f"mmsi_{letter}"])
+
+    @property
+    def other_letter(self) -> str:
+        return "b" if self.own == "a" else "a"
+
+
+def traffic_runs(results: Results) -> dict[str, dict[str, JobResults]]:
+    """The ``ais`` family's runs (their ``job.json``'s ``scene.family``): case
+    (``ENTRY/KIND/sNNN``) -> controller -> the run of its lowest seed."""
+    runs: dict[str, dict[str, JobResults]] = {}
+    for job in results.select("runs"):
+        if (job.config.get("scene") or {}).get("family") != FAMILY:
+            continue
+        mine = runs.setdefault(job.case, {})
+        if job.method not in mine or (job.seed or 0) < (mine[job.method].seed or 0):
+            mine[job.method] = job
+    return dict(sorted(runs.items()))
+
+
+def recorded(job: JobResults) -> Recorded | None:
+    """The encounter of the run ``job`` as recorded, from its ``summary.json``'s scene and the
+    files it names (None without the summary; refused when those files are gone)."""
+    path = job.dir / "summary.json"
+    if not path.is_file():
+        return None
+    try:
+        scene = json.loads(path.read_text(encoding="utf-8"))["scene"]
+        options, kind, number = scene["options"], scene["kind"], int(scene["scene"])
+        files = {k: str(options[k]) for k in ("encounters", "tracks")}
+        own, pad, min_speed = options["own"], float(options["pad"]), float(options["min_speed"])
+    except (ValueError, KeyError, TypeError) as e:
+        raise UsvError(f"{path}: not the summary of an ais family run ({e})") from None
+    for key, file in files.items():
+        if not Path(file).is_file():
+            raise UsvError(f"{path}: scene.options.{key} {file}: no such file (moved or removed "
+                           "since the run?)")  # fmt: skip
+    tracks = _tracks(files["tracks"])
+    row = pick_encounter(_encounters(files["encounters"]), kind, number, min_speed,
+                         files["encounters"], f"{path}: scene")  # fmt: skip
+    at = scene_encounter(tracks, row, own, pad, files["encounters"])
+    return Recorded(kind, number, files["encounters"], at, own,
+                    manoeuvre(tracks, at.own, *at.times))  # fmt: skip
+
+
+@dataclass(frozen=True)
+class Sailed:
+    """What the USV did in a run, from its trace: the closest distance to the encounter's
+    other vessel (any of her tracks) and its manoeuvre over the encounter's window (None when
+    the run ended before the window)."""
+
+    closest_other: float | None
+    manoeuvre: Manoeuvre | None
+    contacts: int
+
+
+def sailed(job: JobResults, rec: Recorded) -> Sailed | None:
+    """What the USV did in ``job`` (None without its trace and events)."""
+    files = run_files(job)
+    if files is None:
+        return None
+    trace, events = files.trace, files.events
+    ships = run_facts(events, files.path)["ships"]
+    prefix = f"ais-{rec.at.other}"
+    other = [i for i, name in enumerate(trace.ships) if name == prefix
+             or name.startswith(prefix + "-")]  # fmt: skip
+    closest = None
+    if other:
+        gaps = np.hypot(trace.x[:, other] - trace.x[:, :1], trace.y[:, other] - trace.y[:, :1])
+        closest = float(gaps.min())
+    w0 = rec.at.window[0]
+    t0, t1 = ((t - w0) / NS for t in rec.at.times)
+    inside = (trace.t >= t0) & (trace.t <= t1)
+    done = None
+    if inside.any():
+        heading, speed = trace.heading[inside, 0], trace.speed[inside, 0]
+        done = summarise(heading, speed, (heading[0], speed[0]), (heading[-1], speed[-1]))
+    return Sailed(closest, done, len(ships) - 1)
+
+
+def _course(m: Manoeuvre) -> str:
+    return (f"{m.course_start:.0f} → {m.course_end:.0f} (net {m.course_change:+.0f}, largest "
+            f"{m.largest_turn:+.0f})")
+
+
+def _speed(m: Manoeuvre) -> str:
+    return f"{m.speed_start:.1f} → {m.speed_end:.1f} ({m.speed_min:.1f}-{m.speed_max:.1f})"
+
+
+def _turn(m: Manoeuvre | None) -> Cell:
+    if m is None:
+        return Cell("-", "num")
+    return Cell(f"{m.course_change:+.0f} / {m.largest_turn:+.0f}", "num")
+
+
+def _speeds(m: Manoeuvre | None) -> Cell:
+    return Cell("-", "num") if m is None else Cell(f"{m.speed_start:.1f} → {m.speed_end:.1f}",
+                                                   "num")  # fmt: skip
+
+
+def _outcome(job: JobResults) -> Cell:
+    """The run's outcome, a failure marked: arrived (its time), collided (with what), did not
+    arrive."""
+    what = outcome(job)
+    if what == "arrived":
+        time = job.number("arrival_time_s")
+        return Cell("arrived" + ("" if time is None else f" ({time:.0f} s)"), "holds")
+    if what == "collided":
+        return Cell(f"collided ({job.text('collision')})", "fails")
+    return Cell("did not arrive", "fails")
+
+
+def _counts(job: JobResults) -> list[Cell]:
+    cells = []
+    for v in VERDICTS:
+        n = job.number(v)
+        cells.append(Cell("-" if n is None else str(int(n)),
+                          "num" + (MARKS.get(v, "") if n else "")))  # fmt: skip
+    return cells
+
+
+def encounters_table(scenes: dict[str, Recorded], contacts: dict[str, int | None]) -> Table:
+    """Each scene's encounter as recorded (module docstring)."""
+    rows = []
+    for case, rec in scenes.items():
+        row, own = rec.at.row, rec.own
+        t0, t1 = rec.at.times
+        cls = row[f"class_{own}"] + (" (censored)" if row["censored"] else "")
+        n = contacts.get(case)
+        rows.append([Cell(case), Cell(str(row["rank"]), "num"), Cell(rec.vessel(own)),
+                     Cell(rec.vessel(rec.other_letter)), Cell(cls),
+                     number((t1 - t0) / NS, 0), Cell("-" if n is None else str(n), "num"),
+                     number(row["cpa_m"], 1), Cell(_course(rec.manoeuvre)),
+                     Cell(_speed(rec.manoeuvre))])  # fmt: skip
+    files = ", ".join(sorted({Path(r.encounters).name for r in scenes.values()}))
+    return Table("traffic-encounters", "Recorded encounters: what the real vessels did",
+                 f"The encounters of {files} (usvtool ais encounters, ranked by CPA) that the "
+                 "runs replay: the USV in the place of the own vessel, the other vessels "
+                 "replayed from their AIS tracks. Class: the other vessel seen from the own at "
+                 "first detection (docs/colregs.md; censored: the encounter may have begun "
+                 "before the recording or gone on after it). Window: the encounter's, from "
+                 "first detection to its end. Contacts: the vessels the scenario replays "
+                 "(within its radius of the own vessel's track). Recorded CPA: between the two "
+                 "vessels, refined between the 10 s samples. Her course over ground (deg) at "
+                 "the window's start and end, the net change and the largest turn from the "
+                 "first course (> 0 to starboard), and her speed over ground (kn) at the start "
+                 "and end (slowest-fastest), over her track's segments in the window.",
+                 ["scene", "rank", "own vessel (the USV's place)", "other vessel", "class",
+                  "window (s)", "contacts", "recorded CPA (m)", "her course (deg)",
+                  "her speed (kn)"], rows)  # fmt: skip
+
+
+def runs_table(scenes: dict[str, Recorded], runs: dict[str, dict[str, JobResults]],
+               done: dict[tuple[str, str], Sailed | None], controllers: list[str]) -> Table:
+    """Per scene, the recorded vessel's row and each controller's run (module docstring)."""
+    rows = []
+    for case, rec in scenes.items():
+        m = rec.manoeuvre
+        rows.append([Cell(case), Cell("recorded"), Cell("-"), Cell("-", "num"),
+                     number(rec.at.row["cpa_m"], 1), _turn(m), _speeds(m),
+                     *(Cell("") for _ in VERDICTS)])  # fmt: skip
+        for c in controllers:
+            job = runs[case].get(c)
+            if job is None:
+                continue
+            s = done[(case, c)]
+            rows.append([Cell(case), Cell(c), _outcome(job),
+                         number(job.number("closest_distance_m"), 1),
+                         number(None if s is None else s.closest_other, 1),
+                         _turn(None if s is None else s.manoeuvre),
+                         _speeds(None if s is None else s.manoeuvre), *_counts(job)])  # fmt: skip
+    return Table("traffic-runs", "Recorded encounters: every controller beside the real vessel",
+                 "Each scene's recorded vessel (her row: the recorded CPA with the other "
+                 "vessel and her manoeuvre) and each controller's run of it (its lowest seed). "
+                 "Outcome: a run that did not arrive or collided is a failure. Closest: the "
+                 "smallest centre distance to any ship over the run; to the other: to the "
+                 "encounter's other vessel (both m). Turn: net / largest change of course "
+                 "(the USV's heading) over the encounter's window (deg, > 0 to starboard); "
+                 "speed (kn) at the window's start and end (the USV's up to the end of its "
+                 "run; '-' when it arrived before the window). " + COUNTS,
+                 ["scene", "who", "outcome", "closest (m)", "to the other (m)",
+                  "turn (deg)", "speed (kn)", *VERDICT_HEADINGS], rows)  # fmt: skip
+
+
+def section(results: Results) -> Section | None:
+    runs = traffic_runs(results)
+    if not runs:
+        return None
+    order = results.methods("runs")
+    controllers = sorted({c for r in runs.values() for c in r}, key=order.index)
+    scenes: dict[str, Recorded] = {}
+    for case, mine in runs.items():
+        rec = next((r for r in map(recorded, mine.values()) if r is not None), None)
+        if rec is not None:
+            scenes[case] = rec
+    done = {(case, c): sailed(job, scenes[case]) for case in scenes
+            for c, job in runs[case].items()}  # fmt: skip
+    contacts = {case: next((s.contacts for (k, _), s in done.items() if k == case and s), None)
+                for case in scenes}  # fmt: skip
+    top = Section("traffic", "Real traffic: recorded encounters")
+    jobs = [j for r in runs.values() for j in r.values()]
+    failed = sum(1 for j in jobs if outcome(j) != "arrived")
+    top.paragraphs.append(
+        f"{len(runs)} close-quarters encounters recorded by AIS (the ais scene family, "
+        "docs/ais.md), each a scenario in which the USV under test takes the place of one of "
+        "the two vessels, from her position at the window's start toward her position at its "
+        "end, her recorded track as the route, every other vessel within the radius replayed "
+        f"from its track (they do not react to the USV). {len(controllers)} controllers, "
+        f"{len(jobs)} runs: {len(jobs) - failed} arrived, {failed} failed (did not arrive or "
+        "collided). Beside each, what the real vessel did: her recorded CPA with the other "
+        "vessel and her course and speed over the encounter.")
+    if len(scenes) < len(runs):
+        top.paragraphs.append(f"{len(runs) - len(scenes)} scene(s) without their runs' summary "
+                              "files are left out of the tables.")  # fmt: skip
+    if scenes:
+        top.blocks += [encounters_table(scenes, contacts),
+                       runs_table(scenes, runs, done, controllers)]  # fmt: skip
+    return top
+
