@@ -37,9 +37,9 @@ def modules(*parts: str) -> list[Path]:
 
 
 def test_every_section_builder_is_a_module_of_the_sections_package():
-    modules = [b.__module__.rsplit(".", 1)[1] for b in build.BUILDERS]
-    assert modules[0] == "summary" and modules[-1] == "methods"  # page 1; the methods last
-    assert len(set(modules)) == len(modules)
+    names = [b.__module__.rsplit(".", 1)[1] for b in build.BUILDERS]
+    assert names[0] == "summary" and names[-1] == "methods"  # page 1; the methods last
+    assert len(set(names)) == len(names)
     for builder in build.BUILDERS:
         assert builder.__module__.startswith("usvtool.report.sections."), builder.__module__
     assert not [p.name for p in modules() if "def section(" in p.read_text(encoding="utf-8")]
