@@ -8,11 +8,11 @@ read from the run's own files: its ``summary.json`` names the family's options (
 defaults filled in: the encounters file, the tracks file, which vessel the USV replaces, the
 pad), and from those files, through :mod:`usvtool.traffic` (the contract the family made the
 scenario with), the encounter's row (its vessels, class at first detection, window and
-recorded CPA), the scenario's window and the own vessel's recorded manoeuvre over the
-encounter's window (:func:`usvtool.traffic.manoeuvre`). Per run: its outcome (a run that did
-not arrive or collided is a failure), the closest distance to any ship (the results table's)
-and to the encounter's other vessel (its trace), the USV's heading and speed over the same
-window (its trace, :func:`usvtool.traffic.summarise`), and its encounters' COLREGs counts.
+recorded CPA), and the own vessel's recorded manoeuvre over the encounter's window
+(:func:`usvtool.traffic.manoeuvre`). Per run: its outcome (a run that did not arrive or
+collided is a failure), the closest distance to any ship (the results table's) and to the
+encounter's other vessel (its summary's ``per_target``), and its encounters' COLREGs counts.
+No trace is read (a run of real traffic writes some 12 MB of it).
 """
 
 from __future__ import annotations
@@ -22,20 +22,10 @@ from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 
-import numpy as np
-
 from usvtool.errors import UsvError
 from usvtool.report.data import JobResults, Results
 from usvtool.report.document import Cell, Section, Table, number
-from usvtool.report.sections.encounters import (
-    COUNTS,
-    MARKS,
-    VERDICT_HEADINGS,
-    VERDICTS,
-    outcome,
-    run_facts,
-    run_files,
-)
+from usvtool.report.sections.encounters import COUNTS, MARKS, VERDICT_HEADINGS, VERDICTS, outcome
 from usvtool.tracks import NS, Tracks, read_tracks
 from usvtool.traffic import (
     Manoeuvre,
@@ -44,7 +34,6 @@ from usvtool.traffic import (
     pick_encounter,
     read_encounters,
     scene_encounter,
-    summarise,
 )
 
 FAMILY = "ais"
@@ -99,15 +88,16 @@ def traffic_runs(results: Results) -> dict[str, dict[str, JobResults]]:
 def recorded(job: JobResults) -> Recorded | None:
     """The encounter of the run ``job`` as recorded, from its ``summary.json``'s scene and the
     files it names (None without the summary; refused when those files are gone)."""
-    path = job.dir / "summary.json"
-    if not path.is_file():
+    summary = _summary(job)
+    if summary is None:
         return None
+    path = job.dir / "summary.json"
     try:
-        scene = json.loads(path.read_text(encoding="utf-8"))["scene"]
+        scene = summary["scene"]
         options, kind, number = scene["options"], scene["kind"], int(scene["scene"])
         files = {k: str(options[k]) for k in ("encounters", "tracks")}
         own, pad, min_speed = options["own"], float(options["pad"]), float(options["min_speed"])
-    except (ValueError, KeyError, TypeError) as e:
+    except (KeyError, TypeError, ValueError) as e:
         raise UsvError(f"{path}: not the summary of an ais family run ({e})") from None
     for key, file in files.items():
         if not Path(file).is_file():
@@ -121,39 +111,28 @@ def recorded(job: JobResults) -> Recorded | None:
                     manoeuvre(tracks, at.own, *at.times))  # fmt: skip
 
 
-@dataclass(frozen=True)
-class Sailed:
-    """What the USV did in a run, from its trace: the closest distance to the encounter's
-    other vessel (any of her tracks) and its manoeuvre over the encounter's window (None when
-    the run ended before the window)."""
-
-    closest_other: float | None
-    manoeuvre: Manoeuvre | None
-    contacts: int
-
-
-def sailed(job: JobResults, rec: Recorded) -> Sailed | None:
-    """What the USV did in ``job`` (None without its trace and events)."""
-    files = run_files(job)
-    if files is None:
+def _summary(job: JobResults) -> dict | None:
+    path = job.dir / "summary.json"
+    if not path.is_file():
         return None
-    trace, events = files.trace, files.events
-    ships = run_facts(events, files.path)["ships"]
-    prefix = f"ais-{rec.at.other}"
-    other = [i for i, name in enumerate(trace.ships) if name == prefix
-             or name.startswith(prefix + "-")]  # fmt: skip
-    closest = None
-    if other:
-        gaps = np.hypot(trace.x[:, other] - trace.x[:, :1], trace.y[:, other] - trace.y[:, :1])
-        closest = float(gaps.min())
-    w0 = rec.at.window[0]
-    t0, t1 = ((t - w0) / NS for t in rec.at.times)
-    inside = (trace.t >= t0) & (trace.t <= t1)
-    done = None
-    if inside.any():
-        heading, speed = trace.heading[inside, 0], trace.speed[inside, 0]
-        done = summarise(heading, speed, (heading[0], speed[0]), (heading[-1], speed[-1]))
-    return Sailed(closest, done, len(ships) - 1)
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except ValueError as e:
+        raise UsvError(f"{path}: not JSON ({e})") from None
+
+
+def per_target(job: JobResults, other: int) -> tuple[int, float | None] | None:
+    """The run's targets (its contacts) and its closest distance to the encounter's other
+    vessel (any of her tracks: ``ais-MMSI`` or ``ais-MMSI-TRACK``), from its summary's
+    ``per_target`` (None without it)."""
+    summary = _summary(job)
+    if summary is None or not isinstance(summary.get("per_target"), list):
+        return None
+    name = f"ais-{other}"
+    distances = [t.get("closest_distance_m") for t in summary["per_target"]
+                 if t.get("target") == name or str(t.get("target")).startswith(name + "-")]
+    distances = [d for d in distances if isinstance(d, int | float)]
+    return len(summary["per_target"]), (min(distances) if distances else None)
 
 
 def _course(m: Manoeuvre) -> str:
@@ -163,17 +142,6 @@ def _course(m: Manoeuvre) -> str:
 
 def _speed(m: Manoeuvre) -> str:
     return f"{m.speed_start:.1f} → {m.speed_end:.1f} ({m.speed_min:.1f}-{m.speed_max:.1f})"
-
-
-def _turn(m: Manoeuvre | None) -> Cell:
-    if m is None:
-        return Cell("-", "num")
-    return Cell(f"{m.course_change:+.0f} / {m.largest_turn:+.0f}", "num")
-
-
-def _speeds(m: Manoeuvre | None) -> Cell:
-    return Cell("-", "num") if m is None else Cell(f"{m.speed_start:.1f} → {m.speed_end:.1f}",
-                                                   "num")  # fmt: skip
 
 
 def _outcome(job: JobResults) -> Cell:
@@ -229,35 +197,28 @@ def encounters_table(scenes: dict[str, Recorded], contacts: dict[str, int | None
 
 
 def runs_table(scenes: dict[str, Recorded], runs: dict[str, dict[str, JobResults]],
-               done: dict[tuple[str, str], Sailed | None], controllers: list[str]) -> Table:
+               controllers: list[str]) -> Table:
     """Per scene, the recorded vessel's row and each controller's run (module docstring)."""
     rows = []
     for case, rec in scenes.items():
-        m = rec.manoeuvre
         rows.append([Cell(case), Cell("recorded"), Cell("-"), Cell("-", "num"),
-                     number(rec.at.row["cpa_m"], 1), _turn(m), _speeds(m),
-                     *(Cell("") for _ in VERDICTS)])  # fmt: skip
+                     number(rec.at.row["cpa_m"], 1), *(Cell("") for _ in VERDICTS)])
         for c in controllers:
             job = runs[case].get(c)
             if job is None:
                 continue
-            s = done[(case, c)]
+            targets = per_target(job, rec.at.other)
             rows.append([Cell(case), Cell(c), _outcome(job),
                          number(job.number("closest_distance_m"), 1),
-                         number(None if s is None else s.closest_other, 1),
-                         _turn(None if s is None else s.manoeuvre),
-                         _speeds(None if s is None else s.manoeuvre), *_counts(job)])  # fmt: skip
+                         number(None if targets is None else targets[1], 1), *_counts(job)])
     return Table("traffic-runs", "Recorded encounters: every controller beside the real vessel",
-                 "Each scene's recorded vessel (her row: the recorded CPA with the other "
-                 "vessel and her manoeuvre) and each controller's run of it (its lowest seed). "
-                 "Outcome: a run that did not arrive or collided is a failure. Closest: the "
-                 "smallest centre distance to any ship over the run; to the other: to the "
-                 "encounter's other vessel (both m). Turn: net / largest change of course "
-                 "(the USV's heading) over the encounter's window (deg, > 0 to starboard); "
-                 "speed (kn) at the window's start and end (the USV's up to the end of its "
-                 "run; '-' when it arrived before the window). " + COUNTS,
+                 "Each scene's recorded vessel (her row: her recorded CPA with the other "
+                 "vessel; her manoeuvre in the table before) and each controller's run of it "
+                 "(its lowest seed). Outcome: a run that did not arrive or collided is a "
+                 "failure. Closest: the smallest centre distance to any ship over the run; to "
+                 "the other: to the encounter's other vessel (both m). " + COUNTS,
                  ["scene", "who", "outcome", "closest (m)", "to the other (m)",
-                  "turn (deg)", "speed (kn)", *VERDICT_HEADINGS], rows)  # fmt: skip
+                  *VERDICT_HEADINGS], rows)  # fmt: skip
 
 
 def section(results: Results) -> Section | None:
@@ -271,10 +232,10 @@ def section(results: Results) -> Section | None:
         rec = next((r for r in map(recorded, mine.values()) if r is not None), None)
         if rec is not None:
             scenes[case] = rec
-    done = {(case, c): sailed(job, scenes[case]) for case in scenes
-            for c, job in runs[case].items()}  # fmt: skip
-    contacts = {case: next((s.contacts for (k, _), s in done.items() if k == case and s), None)
-                for case in scenes}  # fmt: skip
+    contacts = {}
+    for case, rec in scenes.items():
+        found = (per_target(job, rec.at.other) for job in runs[case].values())
+        contacts[case] = next((t[0] for t in found if t is not None), None)
     top = Section("traffic", "Real traffic: recorded encounters")
     jobs = [j for r in runs.values() for j in r.values()]
     failed = sum(1 for j in jobs if outcome(j) != "arrived")
@@ -292,6 +253,6 @@ def section(results: Results) -> Section | None:
                               "files are left out of the tables.")  # fmt: skip
     if scenes:
         top.blocks += [encounters_table(scenes, contacts),
-                       runs_table(scenes, runs, done, controllers)]  # fmt: skip
+                       runs_table(scenes, runs, controllers)]  # fmt: skip
     return top
 
