@@ -33,7 +33,7 @@ def usvtool_imports(path: Path) -> set[str]:
 
 
 def test_the_stages_are_found():
-    assert set(STAGES) == {"batch", "chart", "metrics", "plan", "report", "sim"}
+    assert set(STAGES) == {"ais", "batch", "chart", "metrics", "plan", "report", "sim"}
 
 
 @pytest.mark.parametrize("stage", STAGES)

@@ -43,6 +43,21 @@ def test_each_stage_gives_a_function_and_its_options_and_result():
         ("batch", "run_batch", "BatchOptions", "BatchResult"),
         ("report", "make_report", "ReportOptions", "ReportResult"),
         ("report", "compare", "CompareOptions", "CompareResult"),
+        ("ais", "read_ais", "ReadOptions", "ReadResult"),
+        ("ais", "find_encounters", "EncounterOptions", "EncounterResult"),
+        ("ais", "make_scenario", "ScenarioOptions", "ScenarioResult"),
     ]:
         names = importlib.import_module(f"usvtool.{stage}").__all__
         assert {function, options, result} <= set(names), stage
+
+
+def test_docs_api_lists_every_stage_and_every_contract_module():
+    """docs/api.md's tables name each stage package and each contract module (``usvtool/*.py``),
+    and nothing else: a new one is documented there."""
+    import re
+
+    text = (PACKAGE.parent / "docs" / "api.md").read_text(encoding="utf-8")
+    rows = set(re.findall(r"^\| `usvtool\.(\w+)` \|", text, re.M))
+    contracts = {p.stem for p in PACKAGE.glob("*.py") if p.stem != "__init__"}
+    assert {"tracks", "csvtable", "traffic"} <= contracts
+    assert rows == set(STAGES) | contracts
