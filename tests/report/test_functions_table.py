@@ -31,10 +31,10 @@ def cells(table, method: str, case: str) -> dict[str, list[str]]:
 
 
 def test_the_number_rule_never_prints_a_non_zero_as_zero():
-    # two significant digits at the decimals asked, else scientific with three
-    assert [number(v, 2).text for v in (0.00273, 0.1, 0.0999, 0.0, 1.5)] == [
-        "2.73e-03", "0.10", "9.99e-02", "0.00", "1.50"]  # fmt: skip
-    assert [number(v, 3).text for v in (0.0273, 0.00999, 2.5e6)] == ["0.027", "9.99e-03",
+    # at least two significant digits from 1e-3 to 1, scientific with three below and from 1e6
+    assert [number(v, 2).text for v in (0.00273, 0.1, 0.0999, 0.0, 1.5, 9e-4)] == [
+        "0.0027", "0.10", "0.100", "0.00", "1.50", "9.00e-04"]  # fmt: skip
+    assert [number(v, 3).text for v in (0.0273, 0.00999, 2.5e6)] == ["0.027", "0.0100",
                                                                       "2.50e+06"]  # fmt: skip
     for digits in range(5):
         for v in (1e-9, 3e-4, 0.004, 0.04, 0.4, -0.004):
@@ -42,12 +42,12 @@ def test_the_number_rule_never_prints_a_non_zero_as_zero():
             assert float(shown) != 0 and abs(float(shown) - v) <= 0.01 * abs(v), (v, digits)
 
 
-def test_table_1_shows_our_mean_in_scientific_notation_and_our_runs_beside_the_papers(tmp_path):
+def test_table_1_shows_our_small_mean_with_its_digits_and_our_runs_beside_the_papers(tmp_path):
     table = published.table(results(tmp_path), TABLES["iwso-dwa-table-1"])
     row = cells(table, "gwo", "F3")
     assert row["runs"] == ["5"] and row["paper"][0] == "25"
-    assert row["Mean"] == ["2.73e-03"] and row["paper"][3] == "2.73e-3"  # ours, the paper's
-    assert row["Best"] == ["1.00e-03"] and row["Worst"] == ["4.15e-03"]
+    assert row["Mean"] == ["0.0027"] and row["paper"][3] == "2.73e-3"  # ours, the paper's
+    assert row["Best"] == ["0.0010"] and row["Worst"] == ["0.0042"]
     assert "the paper's: 25 each" in table.caption
 
 
@@ -55,4 +55,4 @@ def test_the_section_says_how_many_runs_we_have_and_the_paper_had(tmp_path):
     section = benchmark_functions.section(results(tmp_path))
     assert "5 run(s) each (the paper's Table 1 25" in section.paragraphs[0]
     ours = cells(section.blocks[-1], "F3", "gwo")  # function, algorithm, runs, best, ...
-    assert ours["runs"] == ["5"] and ours["mean"] == ["2.73e-03"]
+    assert ours["runs"] == ["5"] and ours["mean"] == ["0.0027"]

@@ -102,20 +102,23 @@ def layout(sections: list[Section]) -> tuple[list[Section], list[Section]]:
 
 
 def number(value: float | None, digits: int = 2) -> Cell:
-    """A right-aligned number with ``digits`` decimals (``-`` when unknown), in scientific
-    notation with three significant digits where those decimals would keep fewer than two of
-    a number below 1 (0 < |value| < min(1, 10^(1 - digits)): 0.0027 at 2 decimals is 2.70e-03,
-    never 0.00) and from 1e6 up, as the papers print such figures.
+    """A right-aligned number with ``digits`` decimals (``-`` when unknown), with more decimals
+    where those would keep fewer than two significant digits of a number from 1e-3 to 1 (0.0027
+    at 2 decimals is 0.0027, 0.4 at none 0.40: a non-zero never prints as 0), and in scientific
+    notation with three significant digits below 1e-3 and from 1e6 up, as the papers print
+    such figures.
 
     >>> [number(v, 2).text for v in (0.0027, 0.1, 0.099, 0.0, -3e-5, 2.5e6, 12.345)]
-    ['2.70e-03', '0.10', '9.90e-02', '0.00', '-3.00e-05', '2.50e+06', '12.35']
+    ['0.0027', '0.10', '0.099', '0.00', '-3.00e-05', '2.50e+06', '12.35']
     >>> [number(v, 0).text for v in (3, 0.4)], number(0.04, 1).text
-    (['3', '4.00e-01'], '4.00e-02')
+    (['3', '0.40'], '0.040')
     """
     if value is None or (isinstance(value, float) and not math.isfinite(value)):
         return Cell("-", "num")
-    if value != 0 and (abs(value) < min(1.0, 10.0 ** (1 - digits)) or abs(value) >= 1e6):
+    if value != 0 and (abs(value) < 1e-3 or abs(value) >= 1e6):
         return Cell(f"{value:.2e}", "num")
+    if value != 0 and abs(value) < 1:
+        digits = max(digits, 1 - math.floor(math.log10(abs(value))))
     return Cell(f"{value:.{digits}f}", "num")
 
 
