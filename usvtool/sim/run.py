@@ -25,8 +25,9 @@ change between two such legs (per 0.1 s step a smooth turn would count once per 
 The events JSON's ``run`` object makes the trace and events pair self-describing (``usvtool
 metrics`` reads it): ``scenario``, ``controller``, ``parameters``, ``seed``, ``arrived``,
 ``collision``, ``time_s``, ``dt``, ``goal`` [x, y] (map metres), ``goal_tolerance``, ``own_length``,
-``domain_intrusion_s``, and the scenario's resolved facts (:func:`scenario_facts`:
-``scenario_file``, ``ships`` with their lengths, ``map``, ``route``, ``tracks``, ``wind_field``).
+``vessel`` (the own ship's figures in user units, ``Vessel.user_units``), ``domain_intrusion_s``,
+and the scenario's resolved facts (:func:`scenario_facts`: ``scenario_file``, ``ships`` with
+their lengths, ``map``, ``route``, ``tracks``, ``wind_field``).
 """
 
 from __future__ import annotations
@@ -351,6 +352,7 @@ def _result(scenario, setup, opts, controller, times, own, ahead, motion, length
             "goal": [float(v) for v in setup.goal],
             "goal_tolerance": float(scenario.sim.goal_tolerance),
             "own_length": float(setup.vessel.length),
+            "vessel": setup.vessel.user_units(),
             "domain_intrusion_s": figures["domain_intrusion_s"],
             **scenario_facts(scenario, setup.vessel.length, opts.files_base),
         },
