@@ -29,6 +29,7 @@ from usvtool.report.sections import (
     planning,
     preprocessing,
     summary,
+    traffic,
     wind,
 )
 
@@ -78,7 +79,7 @@ class ReportResult:
 
 #: The section builders, in reading order.
 BUILDERS = (summary.section, claims.section, planning.section, benchmark_functions.section,
-            encounters.section, imazu.section, wind.section, preprocessing.section,
+            encounters.section, imazu.section, wind.section, traffic.section, preprocessing.section,
             methods.section)  # fmt: skip
 
 

@@ -199,9 +199,9 @@ VERDICT_WORDS = dict(zip(VERDICTS, ("compliant", "compliant only by an excused R
 VERDICT_HEADINGS = ("compliant", "excused only", "non-compliant", "not judged")
 #: A run's outcomes, each in its own column: a run that did not arrive is a failure.
 OUTCOMES = ("arrived", "collided", "did not arrive")
-#: Scene families with a section of their own (the Imazu problem), left out of the families
-#: table.
-OWN_SECTION = ("imazu",)
+#: Scene families with a section of their own (the Imazu problem, recorded traffic), left out of
+#: the families table; a run's family is its ``job.json``'s ``scene.family``.
+OWN_SECTION = ("imazu", "ais")
 COUNTS = ("A run that did not arrive or collided is a failure: its encounters are all 'not "
           "judged', never compliant (docs/colregs.md, 'Counting'). Excused only: compliant "
           "only through an excused Rule 2 departure, i.e. because the controller's Rule 2 "
@@ -211,6 +211,11 @@ COUNTS = ("A run that did not arrive or collided is a failure: its encounters ar
 def is_family(case: str) -> bool:
     """Whether a run's case is a scene of a scene family (``ENTRY/KIND/sNNN``)."""
     return "/" in case
+
+
+def own_section(job: JobResults) -> bool:
+    """Whether the run is a scene of a family with a section of its own (:data:`OWN_SECTION`)."""
+    return (job.config.get("scene") or {}).get("family") in OWN_SECTION
 
 
 def family_kind(case: str) -> str:
@@ -277,7 +282,7 @@ def families_table(results: Results) -> Table | None:
     """Per family kind (but :data:`OWN_SECTION`'s) and controller: the runs, their outcomes,
     their encounters' COLREGs counts and the median closest distance with its IQR."""
     jobs = [j for j in results.select("runs")
-            if is_family(j.case) and j.case.split("/")[0] not in OWN_SECTION]  # fmt: skip
+            if is_family(j.case) and not own_section(j)]
     if not jobs:
         return None
     rows = []
@@ -498,8 +503,7 @@ def section(results: Results) -> Section | None:
         "arrive or collided is a failure in its own column, and its encounters are never "
         "counted compliant.")
     top.blocks += published.tables(results, "runs", exclude=(UDWA_WIND.id,))
-    counted = [j for j in results.select("runs") if not is_family(j.case)
-               or j.case.split("/")[0] not in OWN_SECTION]  # fmt: skip
+    counted = [j for j in results.select("runs") if not own_section(j)]
     if any(j.number("not_judged") is None for j in counted):
         top.paragraphs.append(
             "The results table predates the split COLREGs counts (compliant, excused, "
