@@ -325,8 +325,9 @@ def compliance_table(results: Results) -> Table | None:
                  "The bundled scenarios with encounters (illustrated examples: one run per "
                  "seed; the claims rest on the scene families). " + COUNTS + " Rules failed and "
                  "(excused): in the judged encounters (docs/colregs.md). The thresholds: the "
-                 "table before.",
-                 ["scenario", "controller", *TALLY_COLUMNS, "rules failed (excused)"], rows)
+                 "main body's table.",
+                 ["scenario", "controller", *TALLY_COLUMNS, "rules failed (excused)"], rows,
+                 placement=APPENDIX)
 
 
 # --- the thresholds the verdicts used --------------------------------------------------------
