@@ -31,13 +31,14 @@ $(SYSTEM_STAMP):
 	else echo "note: install chromium, libpango-1.0-0 and libpangoft2-1.0-0 for the report's PDF and browser test"; fi
 	@mkdir -p $(VENV) && touch $@
 
+# the suite in one worker process per core (pytest-xdist): its tests are single-threaded
 test: $(STAMP) $(SYSTEM_STAMP)
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n auto
 
 # the suite without the tests marked slow (whole pipelines, full-size charts, every scenario):
 # under a minute, for the edit-test loop; `make test` (CI's) runs everything
 test-fast: $(STAMP) $(SYSTEM_STAMP)
-	$(BIN)/python -m pytest -q -m "not slow"
+	$(BIN)/python -m pytest -q -n auto -m "not slow"
 
 lint: $(STAMP)
 	$(BIN)/ruff check .

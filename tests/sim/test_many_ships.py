@@ -47,4 +47,6 @@ def test_a_trace_past_the_budget_is_refused_in_one_line(tmp_path, benchmark, usv
     assert result.exit_code == 1
     (line,) = result.stderr.strip().splitlines()
     assert "its trace: 36000 steps x 301 ships" in line and "--max-memory" in line
-    assert "shorten sim.duration" in line and len(line) < 260 and not out.exists()
+    # short beside the file's name (whose temporary directory's length varies)
+    assert "shorten sim.duration" in line and len(line.replace(str(path), "")) < 220
+    assert not out.exists()
