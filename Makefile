@@ -31,14 +31,16 @@ $(SYSTEM_STAMP):
 	else echo "note: install chromium, libpango-1.0-0 and libpangoft2-1.0-0 for the report's PDF and browser test"; fi
 	@mkdir -p $(VENV) && touch $@
 
-# the suite in one worker process per core (pytest-xdist): its tests are single-threaded
+# the suite in one worker process per core (pytest-xdist), a test module's tests in one worker
+# (its module fixtures, some a whole batch or report, built once): 3 min 54 s here against
+# 6 min 41 s in one process
 test: $(STAMP) $(SYSTEM_STAMP)
-	$(BIN)/python -m pytest -q -n auto
+	$(BIN)/python -m pytest -q -n auto --dist loadscope
 
 # the suite without the tests marked slow (whole pipelines, full-size charts, every scenario):
 # under a minute, for the edit-test loop; `make test` (CI's) runs everything
 test-fast: $(STAMP) $(SYSTEM_STAMP)
-	$(BIN)/python -m pytest -q -n auto -m "not slow"
+	$(BIN)/python -m pytest -q -n auto --dist loadscope -m "not slow"
 
 lint: $(STAMP)
 	$(BIN)/ruff check .
