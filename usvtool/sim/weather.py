@@ -23,6 +23,7 @@ import os
 from abc import ABC, abstractmethod
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import NamedTuple
 
 import numpy as np
@@ -45,6 +46,8 @@ _BEAUFORT_EDGES = np.array(
 # simulation's 7 m/s maximum). Forces 5-12: not in the paper, the WMO "probable height of
 # waves" that Table 2 itself follows (0.1, 0.2, 0.6, 1.0 m for forces 1-4).
 WAVE_HEIGHTS = (0.0, 0.1, 0.2, 0.6, 1.0, 2.0, 3.0, 4.0, 5.5, 7.0, 9.0, 11.5, 14.0)
+_WAVE_HEIGHTS = np.array(WAVE_HEIGHTS)
+
 
 def beaufort(wind_speed) -> np.ndarray:
     """WMO Beaufort force (0-12) of wind speeds in m/s (finite, >= 0).
@@ -62,7 +65,7 @@ def wave_height(wind_speed) -> np.ndarray:
     >>> wave_height([0.0, 1.0, 2.0, 4.0, 6.0]).tolist()
     [0.0, 0.1, 0.2, 0.6, 1.0]
     """
-    return np.asarray(WAVE_HEIGHTS)[beaufort(wind_speed)]
+    return _WAVE_HEIGHTS[beaufort(wind_speed)]
 
 
 _table_wave_height = wave_height  # for the functions whose wave_height argument hides it
@@ -214,6 +217,27 @@ class FieldWeather(Weather):
             h = wave_height(speed)
         wave_from = np.arctan2(values[k + 1], values[k]) if self.has_wave_from else wind_from
         return Conditions(speed, wind_from, h, wave_from)
+
+    @cached_property
+    def _compiled(self) -> tuple[np.ndarray, np.ndarray]:
+        """The layers and the inverse transform's coefficients as the kernel takes them."""
+        return np.ascontiguousarray(self.layers, float), np.array((~self.transform)[:6], float)
+
+    def attainable_speed(self, v, heading, x, y, displacement=None) -> np.ndarray:
+        """:func:`attainable_speed` with the conditions at ``(x, y)``, in one compiled pass over
+        the points (:mod:`usvtool.sim.weather_kernels`: the same bits as :meth:`at` and eq. 5
+        in NumPy)."""
+        from usvtool.sim import weather_kernels
+
+        v, heading, x, y = np.broadcast_arrays(*(np.asarray(a, float) for a in (v, heading, x, y)))
+        flat = [np.ravel(a) for a in (x, y, v, heading)]  # contiguous, copied only if need be
+        speeds = weather_kernels.field_attainable_speed(
+            *self._compiled, *flat,
+            self.outside == "calm", self.has_wave_height, self.has_wave_from,
+            _BEAUFORT_EDGES, _WAVE_HEIGHTS, 0.0 if displacement is None else float(displacement),
+            KNOT,
+        )  # fmt: skip
+        return speeds.reshape(v.shape)
 
 
 def _bilinear(layers: np.ndarray, inverse, x: np.ndarray, y: np.ndarray, calm: bool):
