@@ -11,7 +11,7 @@ import pytest
 from scipy.stats import beta
 
 from usvtool.report.data import load, statistic
-from usvtool.report.papers import CLAIMS, UDWA_TABLE_1, Claim, Precondition, Quote
+from usvtool.report.papers import CLAIMS, TABLES, UDWA_TABLE_1, Claim, Precondition, Quote
 from usvtool.report.sections import claims, published
 from usvtool.results import Row, write_results
 
@@ -261,3 +261,10 @@ def test_changes_print_short():
     # a rival's near-zero spread makes huge per cents: they stay one word of the cell
     assert claims._percent(-2.4e140) == "-2.4e+140" and claims._percent(-0.04) == "+0.0"
     assert claims._percent(15.04) == "+15.0" and claims._percent(None) == "-"
+
+
+def test_a_published_table_says_how_many_of_our_runs_each_row_rests_on(tmp_path):
+    # Table 2's first column is the length: iwso 3 seeds, wso 2 on env1, nothing elsewhere
+    rows = _routes("env1", "iwso", [700, 701, 702]) + _routes("env1", "wso", [800, 801])
+    caption = published.table(_results(tmp_path, rows), TABLES["iwso-dwa-table-2"]).caption
+    assert "over our seeds: 2-3 run(s) a row" in caption

@@ -61,8 +61,11 @@ def table(results: Results, paper_table: PaperTable) -> Table:
         unit = f" ({c.unit})" if c.unit else ""
         headings += [f"{c.heading}{unit}", "paper"]
     paper = PAPERS[t.paper]
+    counts = sorted({len(results.values(t.kind, r.case, r.method, columns[0].metric))
+                     for r in t.rows if r.comparable} - {0})  # fmt: skip
+    n = "-".join(map(str, dict.fromkeys(counts[:1] + counts[-1:]))) or "no"
     runs = (f" over the runs of the runs column (the paper's: {t.runs} each)"
-            if t.runs is not None else " over our seeds")  # fmt: skip
+            if t.runs is not None else f" over our seeds: {n} run(s) a row")  # fmt: skip
     caption = (f"{t.caption} Ours (statistics{runs}, in the paper's units) beside the "
                f"paper's printed figures (grey); n/c: our setup is not the paper's. Setup: "
                f"{t.setup}")  # fmt: skip
