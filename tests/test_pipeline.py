@@ -111,6 +111,19 @@ def test_a_seed_range_counts_from_first(tmp_path):
     assert (p.functions.pop, p.functions.iters, p.functions.dim) == (50, 300, 30)
 
 
+def test_a_labelled_matrix_names_its_routes_chart_label(tmp_path):
+    data = minimal()
+    data["routes"]["b"] = {"charts": ["m"], "algorithms": ["iwso"], "seeds": [1],
+                           "options": {"waypoints": 11}, "label": "w11"}  # fmt: skip
+    p = load(write(tmp_path, data), NAMES)
+    assert [(j.matrix, j.case, j.chart) for j in p.route_jobs(NAMES)] == [
+        ("a", "m", "m"), ("a", "m", "m"), ("b", "m-w11", "m")]
+    # a label whose case would be a chart's name is refused
+    data["charts"]["m-w11"] = dict(data["charts"]["m"])
+    with pytest.raises(UsvError, match=r"routes\.b\.label: its case 'm-w11' is a chart's name"):
+        load(write(tmp_path, data), NAMES)
+
+
 def edit(data: dict, dotted: str, value) -> dict:
     *parents, last = dotted.split(".")
     node = data
@@ -152,6 +165,8 @@ SIM = {"scenarios": ["map.geojson"], "controllers": ["dwa"], "seeds": [1]}
         ("routes.a.attempts", 0, "routes.a.attempts", "integer >= 1"),
         ("routes.a.options", {"seed": 2}, "routes.a.options.seed", "set by the matrix"),
         ("routes.a.colour", "red", "routes.a.colour", "unknown field"),
+        ("routes.a.label", "w/11", "routes.a.label", "not a valid label"),
+        ("routes.a.label", 11, "routes.a.label", "not a valid label"),
         ("charts.m.options", {"cell-size": [1]}, "charts.m.options.cell-size", "expected a number"),
         ("functions", dict(FUNCS, functions=["F11"]), "functions.functions[0]",
          "unknown function 'F11'"),

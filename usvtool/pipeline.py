@@ -121,6 +121,7 @@ class RouteMatrix:
     attempts: int
     options: OptionPairs  # further usvtool plan options
     ends: dict[str, Ends]  # the charts' start and goal
+    label: str | None = None  # the routes' case is CHART-LABEL (None: the chart)
 
     @property
     def seed(self) -> int:
@@ -141,6 +142,22 @@ class RouteJob:
     seed: int | None
     attempts: int
     options: OptionPairs  # the matrix's plan options
+    label: str | None = None  # the matrix's label
+
+    @property
+    def case(self) -> str:
+        """The results table's ``case`` of the route: its chart, or ``CHART-LABEL`` for a
+        matrix with a label (:func:`route_case`)."""
+        return route_case(self.chart, self.label)
+
+
+def route_case(chart: str, label: str | None) -> str:
+    """The ``case`` of a route on ``chart`` planned by a matrix of ``label``.
+
+    >>> route_case("env1", None), route_case("env1", "w11")
+    ('env1', 'env1-w11')
+    """
+    return chart if label is None else f"{chart}-{label}"
 
 
 @dataclass(frozen=True)
@@ -240,7 +257,7 @@ class Pipeline:
                     once = exact is not None and exact.is_exact(algo)
                     for seed in (None,) if once else m.seeds:
                         jobs.append(RouteJob(m.name, chart, algo, m.ends[chart], seed,
-                                             m.attempts, m.options))  # fmt: skip
+                                             m.attempts, m.options, m.label))  # fmt: skip
         return jobs
 
     def simulation_jobs(self) -> list[tuple[str, str, int]]:
@@ -493,7 +510,7 @@ def _route_matrix(r: _Reader, root: Path, name, entry, charts: dict[str, Chart],
     field = f"routes.{name}"
     if not isinstance(name, str) or not _NAME.match(name):
         r.fail(field, "not a valid matrix name (letters, digits, _ . + -)")
-    r.mapping(entry, field, {"charts", "algorithms", "seeds", "attempts", "options"},
+    r.mapping(entry, field, {"charts", "algorithms", "seeds", "attempts", "options", "label"},
               {"charts", "algorithms", "seeds"})  # fmt: skip
     matrix_charts = r.names(entry["charts"], f"{field}.charts", "chart name")
     ends = {}
@@ -512,8 +529,17 @@ def _route_matrix(r: _Reader, root: Path, name, entry, charts: dict[str, Chart],
     for key, _ in plan_options:
         if key in RESERVED_PLAN_OPTIONS:
             r.fail(f"{field}.options.{key}", "set by the matrix itself, not an option")
+    label = entry.get("label")
+    if label is not None:
+        if not isinstance(label, str) or not _NAME.match(label):
+            r.fail(f"{field}.label", f"not a valid label (letters, digits, _ . + -), got "
+                   f"{_show(label)}")  # fmt: skip
+        for chart in matrix_charts:
+            if route_case(chart, label) in charts:
+                r.fail(f"{field}.label", f"its case {route_case(chart, label)!r} is a chart's "
+                       "name")  # fmt: skip
     return RouteMatrix(name, matrix_charts, algorithms, matrix_seeds, attempts, plan_options,
-                       ends)  # fmt: skip
+                       ends, label)  # fmt: skip
 
 
 def _simulation(r: _Reader, root: Path, entry, names) -> SimulationMatrix:

@@ -223,3 +223,24 @@ def test_nothing_changed_nothing_runs_on_the_bundled_pipeline():
         warnings.simplefilter("error")
         first = keys(ROOT / "pipelines" / "report.yaml")
     assert keys(ROOT / "pipelines" / "report.yaml") == first
+
+
+def test_a_labelled_matrix_plans_the_same_chart_apart_and_shares_its_grid(tmp_path):
+    """Two matrices of one chart, algorithm and seed with other options are refused unless one
+    has a label: its routes are then the case CHART-LABEL, of their own keys, on the same
+    grid job."""
+    text = (ROOT / "tests" / "batch" / "tiny.yaml").read_text(encoding="utf-8")
+    text = text.replace("root: ../..", f"root: {ROOT}").replace("routes:\n", (
+        "routes:\n  many:\n    charts: [grid20]\n    algorithms: [pso]\n    seeds: [1]\n"
+        "    options: {pop: 10, iters: 10, waypoints: 6}\n    label: w6\n"))  # fmt: skip
+    path = tmp_path / "p.yaml"
+    path.write_text(text, encoding="utf-8")
+    jobs = expand(load(path, NAMES), NAMES)
+    routes = [j for j in jobs if j.kind == "routes"]
+    assert sorted((j.case, j.method, j.seed) for j in routes) == [
+        ("grid20", "astar", None), ("grid20", "pso", 1), ("grid20", "pso", 2),
+        ("grid20-w6", "pso", 1)]  # fmt: skip
+    assert len({j.needs for j in routes}) == 1 and len({j.key for j in routes}) == 4
+    assert sum(j.kind == "grids" for j in jobs) == 1
+    labelled = next(j for j in routes if j.case == "grid20-w6")
+    assert labelled.args[labelled.args.index("--waypoints") + 1] == "6"

@@ -91,6 +91,9 @@ def test_the_fragment_needs_one_matrix_of_one_seed(tmp_path):
     (tmp_path / "m.geojson").write_text("{}")
     with pytest.raises(UsvError, match=r"p\.yaml: routes\.a: 2 seeds, not one \(the Make "):
         fragment(load(path))
+    path.write_text(path.read_text().replace("seeds: [1, 2]", "seeds: [1], label: w2"))
+    with pytest.raises(UsvError, match=r"p\.yaml: routes\.a\.label: the Make fragment writes "):
+        fragment(load(path))
 
 
 def test_usvtool_batch_writes_the_fragment_and_runs_nothing(tmp_path, bundled):

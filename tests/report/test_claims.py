@@ -176,6 +176,31 @@ def test_a_turn_claim_whose_routes_cannot_turn_enough_is_not_testable(tmp_path):
     assert claims.judge(results, claim).verdict == claims.INCONCLUSIVE  # all tied at 3
 
 
+def test_the_turn_claim_is_judged_on_the_routes_of_its_labelled_matrix(tmp_path):
+    # iwso-fewer-turns: cases env1-w11 and env2-w11 (11 free waypoints, 13 points), read
+    # against Table 2's env1 and env2 rows (IWSO and WSO turn up to 7 and 11 times there)
+    claim = next(c for c in CLAIMS if c.id == "iwso-fewer-turns")
+    assert claim.table_cases("env2-w11") == ("env2",)
+    rows = [r for env in ("env1-w11", "env2-w11")
+            for r in _routes(env, "iwso", [11, 11, 10, 11, 11, 11], "turns")
+            + _routes(env, "wso", [5, 3, 7, 4, 4, 5], "turns")]  # fmt: skip
+    rows += _routes("env1", "iwso", [1] * 6, "turns") + _routes("env1", "wso", [9] * 6, "turns")
+    results = _results(tmp_path, rows)
+    for j in results.jobs:
+        j.dir.mkdir(parents=True)
+        (j.dir / "summary.json").write_text(json.dumps({"points": 13 if "w11" in j.case else 5}))
+    v = claims.judge(results, claim)
+    # the 3-waypoint routes of env1 (5 points) neither block the claim nor make it hold
+    assert [t.case for t in v.tests] == ["env1-w11", "env2-w11"]
+    assert v.verdict == claims.FAILS  # iwso turns more, in both
+    for j in results.jobs:
+        if j.case == "env2-w11":
+            (j.dir / "summary.json").write_text(json.dumps({"points": 12}))
+    v = claims.judge(results, claim)  # 12 points: 10 turns at most, Table 2's WSO 11 on env2
+    assert v.verdict == claims.UNTESTABLE
+    assert v.reason == "our routes turn at most 10 times (12 points), the paper's up to 11"
+
+
 def _gdwa(i, judged, compliant, *extra):
     key, case = f"g{i}", f"iwso/head-on/s{i:03d}"
     rows = [(key, "runs", case, "gdwa", 1, "judged", str(judged)),

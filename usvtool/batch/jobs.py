@@ -55,7 +55,7 @@ class Job:
 
     kind: str  # grids, routes, runs, functions
     key: str
-    case: str  # the chart, the scenario file's stem, family/kind/sNNN, the benchmark function
+    case: str  # the chart (or CHART-LABEL), the scenario stem, family/kind/sNNN, the function
     method: str  # the algorithm, the controller; "preprocess" for a grid
     seed: int | None  # None: deterministic (a grid, an exact planner)
     args: tuple[str, ...]  # the usvtool command line, relative to the job's directory
@@ -153,9 +153,9 @@ def expand(pipeline: Pipeline, names: Names,
         key = _key({"kind": "routes", "grid": grid, "args": route_args(r, content)})
         info = {"matrix": r.matrix, "grid": grid, "frame": r.ends.frame,
                 "start": list(r.ends.start), "goal": list(r.ends.goal)}  # fmt: skip
-        _claim(pipeline, owners, ("routes", r.chart, r.algorithm, r.seed), key,
+        _claim(pipeline, owners, ("routes", r.case, r.algorithm, r.seed), key,
                f"routes.{r.matrix}")  # fmt: skip
-        jobs.setdefault(key, Job("routes", key, r.chart, r.algorithm, r.seed,
+        jobs.setdefault(key, Job("routes", key, r.case, r.algorithm, r.seed,
                                  plan_command(grid, r), grid, info))  # fmt: skip
     scenarios: dict[str, dict] = {}
     for scenario, controller, seed in pipeline.simulation_jobs():

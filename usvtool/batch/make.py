@@ -34,6 +34,9 @@ def fragment(p: Pipeline) -> str:
         raise UsvError(f"{p.path}: routes: the Make fragment needs exactly one route matrix, "
                        f"not {len(p.routes)}")  # fmt: skip
     (r,) = p.routes.values()
+    if r.label is not None:
+        raise UsvError(f"{p.path}: routes.{r.name}.label: the Make fragment writes "
+                       f"{PATHS_DIR}/CHART/ALGO.geojson, one route per chart: no label")
     try:
         seed = r.seed
     except UsvError as exc:
