@@ -16,7 +16,14 @@ from usvtool.report.sections import claims, published
 from usvtool.results import Row, write_results
 
 
-def _results(tmp_path, rows):
+def _results(tmp_path, rows, settle=True):
+    """The results table of ``rows``; with ``settle``, each route and run that does not say
+    how it ended (claims.ENDING) ended well: collision-free, arrived."""
+    said = {(r[0], r[5]) for r in rows}
+    ends = {r[:5]: claims.ENDING[r[1]] for r in rows if r[1] in claims.ENDING}
+    rows = [*rows, *((*job, metric, "True") for job, metric in ends.items()
+                     if settle and (job[0], metric) not in said)]  # fmt: skip
+    tmp_path.mkdir(parents=True, exist_ok=True)
     write_results(tmp_path / "metrics.csv", [Row(*r) for r in rows])
     return load([tmp_path / "metrics.csv"])
 
@@ -153,6 +160,28 @@ def test_runs_pair_by_scene(tmp_path):
     (t,) = claims.judge(_results(tmp_path, rows + stopped), claim).tests
     # differences +1 x 5 and -inf: ranks 3 (the five tied +1) and 6: r = (15 - 6) / 21
     assert t.comparison.effect == pytest.approx(9 / 21) and t.sides[0].failed == 1
+
+
+def test_a_job_that_does_not_say_how_it_ended_is_no_evidence(tmp_path):
+    # the separated routes, two of iwso's without their collision_free row: n 4 against 6,
+    # still all below wso (U = 0 of 4 x 6: p = 2 / C(10, 4) = 2 / 210)
+    unsaid = {"env1-iwso-0", "env1-iwso-1"}
+    rows = [r for r in SEPARATED if r[0] not in unsaid]
+    rows += [(*r[:5], "collision_free", "True") for r in SEPARATED if r[0] not in unsaid]
+    rows += [r for r in SEPARATED if r[0] in unsaid]
+    (t,) = claims.judge(_results(tmp_path / "a", rows, settle=False), _claim()).tests
+    assert t.sides[0].n == 4 and t.sides[1].n == 6
+    assert t.comparison.p == pytest.approx(2 / 210)
+    # runs: a run without its arrived row is neither paired nor counted as meeting a target
+    runs = [("u0", "runs", "iwso/head-on/s000", "gdwa", 1, "judged", "1"),
+            ("u0", "runs", "iwso/head-on/s000", "gdwa", 1, "compliant", "1")]
+    absolute = next(c for c in CLAIMS if c.id == "gdwa-colregs")
+    results = _results(tmp_path / "b", runs, settle=False)
+    (tally, *_) = claims.judge(results, absolute).tallies
+    assert (tally.n, tally.met) == (1, 0)
+    results = _results(tmp_path / "c", runs)
+    (tally, *_) = claims.judge(results, absolute).tallies
+    assert (tally.n, tally.met) == (1, 1)
 
 
 def test_a_turn_claim_whose_routes_cannot_turn_enough_is_not_testable(tmp_path):

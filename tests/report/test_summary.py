@@ -10,16 +10,17 @@ from usvtool.results import Row, write_results
 
 def _rows():
     rows = []
-    for i in range(6):  # iwso shorter than wso in env1: holds
-        rows.append((f"a{i}", "routes", "env1", "iwso", i, "length_m", str(700 + i)))
-        rows.append((f"b{i}", "routes", "env1", "wso", i, "length_m", str(800 + i)))
-        rows.append((f"c{i}", "routes", "env2", "iwso", i, "length_m", str(700 + i)))
-        rows.append((f"d{i}", "routes", "env2", "wso", i, "length_m", str(800 + i)))
-    for i in range(3):  # two kinds of one scene family, and a bundled scenario
+    for i in range(6):  # iwso shorter than wso in env1: holds (every route collision-free)
+        for key, env, m, length in (("a", "env1", "iwso", 700), ("b", "env1", "wso", 800),
+                                    ("c", "env2", "iwso", 700), ("d", "env2", "wso", 800)):
+            rows.append((f"{key}{i}", "routes", env, m, i, "length_m", str(length + i)))
+            rows.append((f"{key}{i}", "routes", env, m, i, "collision_free", "True"))
+    for i in range(3):  # two kinds of one scene family, and a bundled scenario (all arrived)
         for kind in ("head-on", "crossing", "overtaking"):
             for m in ("udwa", "ccdwa"):
-                rows.append((f"{m}-{kind}-{i}", "runs", f"emergency/{kind}/s{i:03d}", m, 1,
-                             "closest_distance_m", "30"))
+                for metric, value in (("closest_distance_m", "30"), ("arrived", "True")):
+                    rows.append((f"{m}-{kind}-{i}", "runs", f"emergency/{kind}/s{i:03d}", m, 1,
+                                 metric, value))  # fmt: skip
     rows.append(("single", "runs", "emergency-head-on", "udwa", 1, "closest_distance_m", "30"))
     for f in ("F1", "F2"):
         for s in range(5):

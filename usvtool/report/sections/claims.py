@@ -122,6 +122,17 @@ class Verdict:
 # --- runs ------------------------------------------------------------------------------------
 
 
+#: The row that says how a job ended: a route's collision check, a run's arrival.
+ENDING = {"routes": "collision_free", "runs": "arrived"}
+
+
+def settled(job: JobResults) -> bool:
+    """Whether the table says how the job ended (:data:`ENDING`): a route or run without that
+    row is no evidence either way, neither a success nor a failure."""
+    metric = ENDING.get(job.kind)
+    return metric is None or job.text(metric) is not None
+
+
 def failed(job: JobResults) -> bool:
     """A route that collides; a run that collided or did not arrive."""
     if job.kind == "routes":
@@ -143,7 +154,9 @@ def _worst(claim: Claim) -> float:
 
 def outcome(job: JobResults, claim: Claim) -> float | None:
     """The run's value as the claim is judged: the worst for a failed run; None when it has no
-    value."""
+    value, or the table does not say how it ended (:func:`settled`)."""
+    if not settled(job):
+        return None
     return _worst(claim) if failed(job) else _value(job, claim.metric)
 
 
@@ -241,6 +254,8 @@ def _relative(claim: Claim, tests: Sequence[Test], variant: bool) -> Verdict:
 
 
 def _meets(job: JobResults, claim: Claim) -> bool:
+    if not settled(job):  # no evidence of meeting it
+        return False
     value = _value(job, claim.metric)
     if isinstance(claim.target, str):
         target = _value(job, claim.target)

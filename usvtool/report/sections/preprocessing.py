@@ -16,13 +16,22 @@ from usvtool.report.document import APPENDIX, Cell, Figure, Section, Table, numb
 from usvtool.report.sections.methods import shown_path
 
 
+def _chart(where: Path, case: str) -> str:
+    """The chart of a grid job's directory (its ``job.json``'s case); ``case``, a route's on
+    it, when that does not read."""
+    try:
+        return str(json.loads((where / "job.json").read_text(encoding="utf-8"))["case"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return case
+
+
 def section(results: Results) -> Section | None:
-    grids = {}
-    for chart in results.cases("routes"):
-        where = next((d for d in (j.grid_dir() for j in results.select("routes", chart)) if d),
+    grids = {}  # chart -> its grid job's directory, once for the routes of several matrices
+    for case in results.cases("routes"):
+        where = next((d for d in (j.grid_dir() for j in results.select("routes", case)) if d),
                      None)  # fmt: skip
-        if where is not None and (where / "grid.tif").is_file():
-            grids[chart] = where
+        if where is not None and (where / "grid.tif").is_file() and where not in grids.values():
+            grids[_chart(where, case)] = where
     if not grids:
         return None
     s = Section("preprocessing", "Charts and their navigation grids")
