@@ -148,12 +148,12 @@ def plots(drawn) -> dict[str, F.Plot]:
 # --- every figure -----------------------------------------------------------------------------
 
 #: Pixels (width, height) at 150 dpi. The text width 182 mm = 7.165 in (1074 px: Matplotlib
-#: truncates); routes: a 100 m square view with the legend beside it, a map 7.165 - 0.85 - 0.15 -
-#: 2.3 = 3.865 in square and 0.35 + 0.55 in of margins, 4.765 in; convergence 7.2 x 4.4; boxplots
-#: two panels in one row, 2.9 + 0.4 in; snapshots three panels of (7.165 - 0.6) / 3 in and 0.25
-#: in each, 0.9 in more, 3.338 in; states 7.2 x 5.6; nearest 7.2 x 3.9;
-#: preprocessing two panels of (7.165 - 0.5) / 2 in, a square grid, and 1.1 in, 4.433 in.
-SIZES = {"routes": (1074, 714), "routes_chart": (1074, 714), "convergence": (1080, 660),
+#: truncates); routes: a 100 m square view with the legend beside it, a map 3.5 in square (of
+#: 7.165 - 0.85 - 0.15 - 2.3 = 3.865) and 0.35 + 0.55 in of margins, 4.4 in; convergence
+#: 7.2 x 4.4; boxplots two panels in one row, 2.9 + 0.4 in; snapshots three panels of
+#: (7.165 - 0.6) / 3 in and 0.25 in each, 0.9 in more, 3.338 in; states 7.2 x 5.6; nearest
+#: 7.2 x 3.9; preprocessing two panels of (7.165 - 0.5) / 2 in, a square grid, and 1.1 in, 4.433 in.
+SIZES = {"routes": (1074, 660), "routes_chart": (1074, 660), "convergence": (1080, 660),
          "boxplots": (1080, 495), "snapshots": (1074, 500), "states": (1080, 840),
          "nearest": (1080, 585), "preprocessing": (1074, 664)}  # fmt: skip
 

@@ -38,6 +38,9 @@ ASPECT = (0.6, 4.0)
 WIDE = 1.6
 #: The tallest map (inches): a taller view is drawn narrower.
 MAX_MAP_HEIGHT = 6.0
+#: The widest map beside its legend (inches): two square maps with their captions fit an A4
+#: page (2 x (3.5 + the margins' 0.9 + about 0.7 of caption) = 10.2 of its 10.4 in).
+SIDE_MAP_WIDTH = 3.5
 #: A map's margins (inches: left for the northings, right, top for the title, bottom for the
 #: eastings), the legend's column beside a tall map, the height of a legend entry, and the
 #: columns of the legend under a wide map.
@@ -119,12 +122,13 @@ def map_layout(aspect: float, entries: int):
     """((width, height) inches, axes box in figure fractions, legend below) of a map of
     width / height ``aspect`` with a legend of ``entries``: the page's text width; a view at
     least :data:`WIDE` wide has the legend under it in :data:`LEGEND_COLUMNS` columns, any other
-    beside it, and its height is at most :data:`MAX_MAP_HEIGHT`. The axes is placed by hand, at
+    beside it, at most :data:`SIDE_MAP_WIDTH` wide and :data:`MAX_MAP_HEIGHT` high. The axes is
+    placed by hand, at
     exactly the map's aspect (Matplotlib's constrained layout can leave the labels of an
     equal-aspect axes outside the figure).
 
-    >>> map_layout(1.0, 10)  # 7.165 - 0.85 - 0.15 - 2.3 = 3.865 in square; 0.35 + 0.55 more
-    ((7.165, 4.765), (0.119, 0.115, 0.539, 0.811), False)
+    >>> map_layout(1.0, 10)  # 3.5 in square (of 7.165 - 0.85 - 0.15 - 2.3); 0.35 + 0.55 more
+    ((7.165, 4.4), (0.119, 0.125, 0.488, 0.795), False)
     """
     left, right, top, bottom = MARGINS
     wide = aspect >= WIDE
@@ -135,7 +139,7 @@ def map_layout(aspect: float, entries: int):
         height = top + map_h + bottom + legend
         y0 = bottom + legend
     else:
-        map_w = PRINT_WIDTH_IN - left - right - LEGEND_WIDTH
+        map_w = min(PRINT_WIDTH_IN - left - right - LEGEND_WIDTH, SIDE_MAP_WIDTH)
         map_h = min(map_w / aspect, MAX_MAP_HEIGHT)
         map_w = map_h * aspect
         height = top + max(map_h, ENTRY_HEIGHT * entries + 0.1) + bottom

@@ -204,6 +204,7 @@ def section(results: Results) -> Section | None:
         f"point if neither gives way. At the scale run here (read from the runs): {scale}. "
         f"Classes at the start: HO head-on, GW crossing give-way, SO crossing stand-on, OT "
         "overtaking.")
+    top.blocks.append(totals_table(runs, controllers))  # short: it fills a page before the grid
     plot = imazu_grid(cases, labels, controllers, cells, headers)
     top.blocks.append(Figure(
         "imazu-grid", "The Imazu cases with every controller",
@@ -211,7 +212,6 @@ def section(results: Results) -> Section | None:
         "distance to a target and its compliant encounters of all (no rule failed, none "
         "excused). A run that did not arrive is a failure, its encounters never compliant; an "
         "arrived run's colour is its worst encounter.", plot.png, plot.data))
-    top.blocks.append(totals_table(runs, controllers))
     rows = [[Cell(_label(case)), Cell(classes[case])]
             + [_run_text(runs[case][c]) if c in runs[case] else Cell("no run")
                for c in controllers] for case in cases]  # fmt: skip
