@@ -10,7 +10,7 @@ from dataclasses import replace
 import pytest
 from scipy.stats import beta
 
-from usvtool.report.data import load, statistic
+from usvtool.report.data import ENDING, load, statistic
 from usvtool.report.papers import CLAIMS, TABLES, UDWA_TABLE_1, Claim, Precondition, Quote
 from usvtool.report.sections import claims, published
 from usvtool.results import Row, write_results
@@ -18,9 +18,9 @@ from usvtool.results import Row, write_results
 
 def _results(tmp_path, rows, settle=True):
     """The results table of ``rows``; with ``settle``, each route and run that does not say
-    how it ended (claims.ENDING) ended well: collision-free, arrived."""
+    how it ended (ENDING) ended well: collision-free, arrived."""
     said = {(r[0], r[5]) for r in rows}
-    ends = {r[:5]: claims.ENDING[r[1]] for r in rows if r[1] in claims.ENDING}
+    ends = {r[:5]: ENDING[r[1]] for r in rows if r[1] in ENDING}
     rows = [*rows, *((*job, metric, "True") for job, metric in ends.items()
                      if settle and (job[0], metric) not in said)]  # fmt: skip
     tmp_path.mkdir(parents=True, exist_ok=True)
@@ -284,7 +284,30 @@ def test_the_optimisation_rate_is_computed_from_our_medians_when_runs_lack_it(tm
     assert published.ours(results, UDWA_TABLE_1, "ccdwa", "emergency-head-on", column) is None
     table = published.table(results, UDWA_TABLE_1)
     row = next(r for r in table.rows if [c.text for c in r[:2]] == ["udwa", "emergency-head-on"])
-    assert [c.text for c in row[2:]] == ["-", "59.48", "78.50", "78.50", "43.25", "43.25"]
+    assert [c.text for c in row[2:]] == ["0", "-", "59.48", "78.50", "78.50", "43.25",
+                                         "43.25"]  # fmt: skip
+
+
+def test_a_published_table_counts_failures_apart_and_brackets_the_penalised_figure(tmp_path):
+    # ISSA Table 3 (grid20): ssa's routes of fitness 30, 32 collision-free and 90 colliding
+    # (the penalty): mean fitness 31 over the collision-free, 50.67 over all; its turns of the
+    # best and mean time over the two
+    rows = []
+    for seed, (fitness, free, turns) in enumerate([(30, True, 4), (32, True, 6), (90, False, 1)]):
+        for metric, value in (("fitness", fitness), ("collision_free", free), ("turns", turns),
+                              ("planning_time_s", 0.1 * (seed + 1))):
+            rows.append((f"s{seed}", "routes", "grid20", "ssa", seed, metric, str(value)))
+    results = _results(tmp_path, rows, settle=False)
+    table = published.table(results, TABLES["issa-table-3"])
+    row = next(r for r in table.rows if [c.text for c in r[:2]] == ["ssa", "grid20"])
+    # runs 3 (paper 50), failed 1 of 3, optimum 30.00 (30.00), turns 4.0, mean 31.00 (50.67),
+    # time 0.15, variance 2.00 (the three's: (20.67² + 18.67² + 39.33²) / 2 = 1161.33)
+    assert [c.text for c in row[2:5]] == ["3", "50", "1 of 3"]
+    assert "fails" in row[4].css
+    assert row[5].text == "30.00 (30.00)" and row[7].text == "4.0"
+    assert row[9].text == "31.00 (50.67)" and row[11].text == "0.15"
+    assert row[13].text == "2.00 (1161.33)"
+    assert "over the collision-free routes (in brackets: over every run" in table.caption
 
 
 def test_the_section_counts_five_verdicts_and_judges_variants_apart(tmp_path):

@@ -215,6 +215,11 @@ def test_a_method_has_its_style_in_every_figure_whatever_its_place():
     assert labels == ["wso", "astar", "mine"]  # family by family, the unregistered last
     assert [mcolors.to_hex(b.get_facecolor()[:3]) for b in boxes] == [
         style(m).color.lower() for m in labels]
+    # a label (how many of its routes are collision-free) changes the tick, not the style
+    (fig,) = capture_figures(lambda: F.boxplots(
+        {"m": {"astar": [2, 3], "wso": [0, 1]}}, "", {"wso": "wso (2 of 3)"}))  # fmt: skip
+    assert [t.get_text() for t in fig.axes[0].get_xticklabels()] == ["wso (2 of 3)", "astar"]
+    assert mcolors.to_hex(fig.axes[0].patches[0].get_facecolor()[:3]) == style("wso").color.lower()
 
 
 def test_the_same_inputs_give_the_same_bytes_here_and_in_a_fresh_process(plots, tmp_path):

@@ -40,6 +40,10 @@ def method_order(name: str, order: Sequence[str] = ()) -> tuple:
     return (place, base, plus + variant)
 
 
+#: The row that says how a job ended: a route's collision check, a run's arrival.
+ENDING = {"routes": "collision_free", "runs": "arrived"}
+
+
 @dataclass
 class JobResults:
     """One job of a results table: its metrics, files and configuration (its ``job.json``, which
@@ -72,6 +76,28 @@ class JobResults:
     def text(self, metric: str) -> str | None:
         row = self.metrics.get(metric)
         return None if row is None else row.value
+
+    @property
+    def settled(self) -> bool:
+        """Whether the table says how the job ended (:data:`ENDING`): a route or run without
+        that row is no evidence either way, neither a success nor a failure."""
+        metric = ENDING.get(self.kind)
+        return metric is None or self.text(metric) is not None
+
+    @property
+    def failed(self) -> bool:
+        """A route that collides; a run that collided or did not arrive."""
+        if self.kind == "routes":
+            return self.text("collision_free") == "False"
+        if self.kind == "runs":
+            return bool(self.text("collision")) or self.text("arrived") == "False"
+        return False
+
+    @property
+    def succeeded(self) -> bool:
+        """Settled and not failed: a collision-free route, a run that arrived without
+        collision, any benchmark-function run."""
+        return self.settled and not self.failed
 
 
 @dataclass
@@ -116,10 +142,13 @@ class Results:
         return [(j, theirs[pairing_key(j)]) for j in self.group(kind, group, method)
                 if pairing_key(j) in theirs]  # fmt: skip
 
-    def values(self, kind: str, case: str, method: str, metric: str) -> list[float]:
-        """The metric's numbers over the seeds of (kind, case, method), in seed order."""
+    def values(self, kind: str, case: str, method: str, metric: str,
+               succeeded: bool = False) -> list[float]:  # fmt: skip
+        """The metric's numbers over the seeds of (kind, case, method), in seed order; with
+        ``succeeded``, of the jobs that succeeded only (:attr:`JobResults.succeeded`)."""
         jobs = sorted(self.select(kind, case, method), key=lambda j: (j.seed is None, j.seed))
-        return [v for v in (j.number(metric) for j in jobs) if v is not None]
+        return [v for v in (j.number(metric) for j in jobs if j.succeeded or not succeeded)
+                if v is not None]  # fmt: skip
 
 
 def in_group(case: str, group: str) -> bool:
@@ -204,12 +233,14 @@ def seed_text(seeds: list[int]) -> str:
 
 
 def statistic(results: Results, kind: str, case: str, method: str, metric: str,
-              name: str) -> float | None:  # fmt: skip
+              name: str, succeeded: bool = False) -> float | None:  # fmt: skip
     """A figure of our runs as a paper states one (:data:`usvtool.report.papers.STATISTICS`):
     ``value`` and ``median`` the median over seeds, ``min``, ``max``, ``mean``, ``variance``,
     ``std`` (ddof 1), ``of-best`` the metric of the run with the lowest ``fitness``; None when
-    there is no data (or one run for a spread)."""
-    jobs = [j for j in results.select(kind, case, method) if j.number(metric) is not None]
+    there is no data (or one run for a spread). With ``succeeded``, over the jobs that
+    succeeded only (:attr:`JobResults.succeeded`)."""
+    jobs = [j for j in results.select(kind, case, method) if j.number(metric) is not None
+            and (j.succeeded or not succeeded)]  # fmt: skip
     return summarise([j.number(metric) for j in jobs], name,
                      [j.number("fitness") for j in jobs])  # fmt: skip
 

@@ -80,12 +80,14 @@ def _marks(n: int, k: int, of: int) -> tuple[int, int]:
     return k * step // of, step
 
 
-def boxplots(values: dict[str, dict[str, list[float]]], title: str) -> Plot:
+def boxplots(values: dict[str, dict[str, list[float]]], title: str,
+             labels: dict[str, str] | None = None) -> Plot:  # fmt: skip
     """One panel per metric (the outer keys, in order; two panels a row), one box per algorithm
     (family by family, :func:`~usvtool.report.figures.styles.ordered`) over its seeds: the median,
     the quartile box, whiskers to the furthest value within 1.5 IQR, the values beyond as points. An
     algorithm without values in a metric keeps its place, empty. Each algorithm's box in its
-    registered colour, its edge in its family's line style.
+    registered colour, its edge in its family's line style, under its name or its ``labels``
+    entry.
 
     Data: ``metric,algorithm,seed_index,value``, one row per value (6 decimals).
     """
@@ -97,7 +99,8 @@ def boxplots(values: dict[str, dict[str, list[float]]], title: str) -> Plot:
     with figure(7.2, 2.9 * rows + 0.4) as fig:
         axes = fig.subplots(rows, cols, squeeze=False).ravel()
         for ax, (metric, per) in zip(axes, data.items(), strict=False):
-            box = ax.boxplot(list(per.values()), tick_labels=list(per), patch_artist=True,
+            ticks = [(labels or {}).get(name, name) for name in per]
+            box = ax.boxplot(list(per.values()), tick_labels=ticks, patch_artist=True,
                              widths=0.6, medianprops={"color": "black"},
                              flierprops={"markersize": 3})  # fmt: skip
             for patch, name in zip(box["boxes"], per, strict=True):

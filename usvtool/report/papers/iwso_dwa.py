@@ -202,7 +202,10 @@ IWSO_DWA_TABLE_2 = PaperTable(
     "50 agents x 300 iterations; one figure per algorithm and environment (whether one run or "
     "an average, the paper does not say). Our env1 and env2 (charts/make_synthetic.py) are "
     "rebuilt in the spirit of its Figure 6, which the text lacks, with the same size and ends: "
-    "compare orders and trends, not the values.",
+    "compare orders and trends, not the values. Our routes have usvtool plan's 3 free "
+    "waypoints, so they turn at most 3 times: the Steering Cost column cannot follow the "
+    "paper's 5-19; WSO and IWSO at 11 waypoints, which can, are in the claims table "
+    "(iwso-fewer-turns).",
     notes=(
         "The caption is garbled ('MRFC)\\t)'): read as MRFO.",
         "The environment labels sit on the second line of each block of seven (beside GWO); "

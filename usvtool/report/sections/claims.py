@@ -122,26 +122,6 @@ class Verdict:
 # --- runs ------------------------------------------------------------------------------------
 
 
-#: The row that says how a job ended: a route's collision check, a run's arrival.
-ENDING = {"routes": "collision_free", "runs": "arrived"}
-
-
-def settled(job: JobResults) -> bool:
-    """Whether the table says how the job ended (:data:`ENDING`): a route or run without that
-    row is no evidence either way, neither a success nor a failure."""
-    metric = ENDING.get(job.kind)
-    return metric is None or job.text(metric) is not None
-
-
-def failed(job: JobResults) -> bool:
-    """A route that collides; a run that collided or did not arrive."""
-    if job.kind == "routes":
-        return job.text("collision_free") == "False"
-    if job.kind == "runs":
-        return bool(job.text("collision")) or job.text("arrived") == "False"
-    return False
-
-
 def _value(job: JobResults, metric: str) -> float | None:
     if metric in EVENTS:
         return 1.0 if job.text(metric) else 0.0
@@ -154,20 +134,20 @@ def _worst(claim: Claim) -> float:
 
 def outcome(job: JobResults, claim: Claim) -> float | None:
     """The run's value as the claim is judged: the worst for a failed run; None when it has no
-    value, or the table does not say how it ended (:func:`settled`)."""
-    if not settled(job):
+    value, or the table does not say how it ended (:attr:`JobResults.settled`)."""
+    if not job.settled:
         return None
-    return _worst(claim) if failed(job) else _value(job, claim.metric)
+    return _worst(claim) if job.failed else _value(job, claim.metric)
 
 
 def _side(jobs: Sequence[JobResults], claim: Claim, judged: Sequence[float]) -> Side:
     measured = [_value(j, claim.metric) for j in jobs]
     fitness = [j.number("fitness") for j in jobs]
-    ok = [i for i, j in enumerate(jobs) if not failed(j) and measured[i] is not None]
+    ok = [i for i, j in enumerate(jobs) if not j.failed and measured[i] is not None]
     whole = None if any(v is None for v in measured) else summarise(measured, claim.statistic,
                                                                     fitness)  # fmt: skip
     clean = summarise([measured[i] for i in ok], claim.statistic, [fitness[i] for i in ok])
-    return Side(jobs[0].method if jobs else "", len(judged), sum(map(failed, jobs)),
+    return Side(jobs[0].method if jobs else "", len(judged), sum(j.failed for j in jobs),
                 inference.median(judged) if judged else None,
                 inference.iqr(judged) if judged else None, whole, clean)  # fmt: skip
 
@@ -254,16 +234,16 @@ def _relative(claim: Claim, tests: Sequence[Test], variant: bool) -> Verdict:
 
 
 def _meets(job: JobResults, claim: Claim) -> bool:
-    if not settled(job):  # no evidence of meeting it
+    if not job.settled:  # no evidence of meeting it
         return False
     value = _value(job, claim.metric)
     if isinstance(claim.target, str):
         target = _value(job, claim.target)
         # a failed run, or one with nothing to judge, is no evidence of meeting it
-        return (not failed(job) and value is not None and target is not None and target >= 1
+        return (not job.failed and value is not None and target is not None and target >= 1
                 and value == target)  # fmt: skip
     return value is not None and value == claim.target and (claim.metric in EVENTS
-                                                            or not failed(job))  # fmt: skip
+                                                            or not job.failed)  # fmt: skip
 
 
 def _note(jobs: Sequence[JobResults], claim: Claim) -> str:
@@ -276,7 +256,7 @@ def _note(jobs: Sequence[JobResults], claim: Claim) -> str:
     if stopped:
         parts.append(f"{stopped} did not arrive")
     if isinstance(claim.target, str):
-        done = [j for j in jobs if not failed(j)]
+        done = [j for j in jobs if not j.failed]
         if none := sum((_value(j, claim.target) or 0) < 1 for j in done):
             parts.append(f"{none} judged no encounter")
         if broke := sum((_value(j, "noncompliant") or 0) > 0 for j in done):

@@ -86,32 +86,45 @@ def chart_section(results: Results, chart: str) -> Section:
                                      "seeds and the interquartile band.",
                                      plot.png, plot.data, HTML))  # fmt: skip
     if len(seeds) > 1:
-        values = {label: {m: results.values("routes", chart, m, metric) for m in methods}
-                  for metric, label in BOXES}  # fmt: skip
-        plot = figures.boxplots(values, f"{chart}: over {len(seeds)} seeds")
+        values = {label: {m: results.values("routes", chart, m, metric, succeeded=True)
+                          for m in methods} for metric, label in BOXES}  # fmt: skip
+        plot = figures.boxplots(values, f"{chart}: over {len(seeds)} seeds",
+                                {m: _free_label(m, jobs[m]) for m in methods})
         section.blocks.append(Figure(f"routes-{chart}-boxes", f"Route metrics on {chart}",
                                      "Length, turns, smoothness mot and planning time over "
-                                     "the seeds of each algorithm.", plot.png, plot.data))
+                                     "the collision-free routes of each algorithm's seeds (a "
+                                     "label says how many when some collide: a route through "
+                                     "land is a failure, not a short route).",
+                                     plot.png, plot.data))  # fmt: skip
     section.blocks.append(metrics_table(results, chart, methods))
     return section
 
 
+def _free_label(method: str, jobs: list[JobResults]) -> str:
+    """The method's name, with ``(k of n)`` when only k of its n routes are collision-free."""
+    free = sum(j.succeeded for j in jobs)
+    return method if free == len(jobs) else f"{method} ({free} of {len(jobs)})"
+
+
 def metrics_table(results: Results, chart: str, methods: list[str]) -> Table:
-    """Medians over seeds of the route metrics, the collision-free rate and the run count."""
+    """Medians over the collision-free routes of the route metrics, the collision-free rate and
+    the run count."""
     rows = []
     for m in methods:
         cells = [Cell(m)]
         for metric, _, digits in COLUMNS:
-            cells.append(number(stats(results.values("routes", chart, m, metric))["median"],
-                                digits))  # fmt: skip
+            mine = results.values("routes", chart, m, metric, succeeded=True)
+            cells.append(number(stats(mine)["median"], digits))
         free = results.values("routes", chart, m, "collision_free")
         cells.append(number(100 * float(np.mean(free)) if free else None, 0))
         cells.append(Cell(str(len(results.select("routes", chart, m))), "num"))
         rows.append(cells)
     columns = ["algorithm", *(c for _, c, _ in COLUMNS), "collision-free (%)", "runs"]
     return Table(f"routes-{chart}-table", f"Route metrics on {chart}",
-                 "Medians over seeds (docs/metrics.md gives each definition); time is the "
-                 "planning time of the machine of the methods section.", columns, rows)
+                 "Medians over the seeds' collision-free routes (a colliding route is a "
+                 "failure, counted in the collision-free column, never a short route; - : "
+                 "none); docs/metrics.md gives each definition; time is the planning time of "
+                 "the machine of the methods section.", columns, rows)  # fmt: skip
 
 
 def overview_table(results: Results, charts: list[str]) -> Table:
@@ -121,15 +134,16 @@ def overview_table(results: Results, charts: list[str]) -> Table:
     for m in results.methods("routes"):
         cells = [Cell(m)]
         for chart in charts:
-            ratio = results.values("routes", chart, m, "length_ratio")
+            ratio = results.values("routes", chart, m, "length_ratio", succeeded=True)
             cells.append(number(stats(ratio)["median"], 3))
         free = [v for c in charts for v in results.values("routes", c, m, "collision_free")]
         cells.append(number(100 * float(np.mean(free)) if free else None, 0))
         rows.append(cells)
     return Table("routes-overview", "Route length over the optimum, every chart",
-                 "Median over seeds of each route's length divided by the any-angle optimum's "
-                 "(length_ratio, docs/metrics.md; - : not run there), and the share of "
-                 "collision-free routes over all the algorithm's runs. Per chart: the appendix.",
+                 "Median over the seeds' collision-free routes of each route's length divided "
+                 "by the any-angle optimum's (length_ratio, docs/metrics.md; - : not run there, "
+                 "or no route collision-free), and the share of collision-free routes over all "
+                 "the algorithm's runs. Per chart: the appendix.",
                  ["algorithm", *charts, "collision-free (%)"], rows)  # fmt: skip
 
 
