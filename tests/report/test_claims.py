@@ -300,9 +300,9 @@ def test_a_published_table_counts_failures_apart_and_brackets_the_penalised_figu
     results = _results(tmp_path, rows, settle=False)
     table = published.table(results, TABLES["issa-table-3"])
     row = next(r for r in table.rows if [c.text for c in r[:2]] == ["ssa", "grid20"])
-    # runs 3 (paper 50), failed 1 of 3, optimum 30.00 (30.00), turns 4.0, mean 31.00 (50.67),
+    # runs 3 (paper 50), failed 1/3, optimum 30.00 (30.00), turns 4.0, mean 31.00 (50.67),
     # time 0.15, variance 2.00 (the three's: (20.67² + 18.67² + 39.33²) / 2 = 1161.33)
-    assert [c.text for c in row[2:5]] == ["3", "50", "1 of 3"]
+    assert [c.text for c in row[2:5]] == ["3", "50", "1/3"]
     assert "fails" in row[4].css
     assert row[5].text == "30.00 (30.00)" and row[7].text == "4.0"
     assert row[9].text == "31.00 (50.67)" and row[11].text == "0.15"

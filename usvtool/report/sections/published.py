@@ -47,7 +47,7 @@ def ours(results: Results, table: PaperTable, method: str, case: str, column,
 def _failed(results: Results, kind: str, case: str, method: str) -> Cell:
     jobs = results.select(kind, case, method)
     failed = sum(not j.succeeded for j in jobs)
-    return Cell(f"{failed} of {len(jobs)}" if failed else "0", "num" + " fails" * bool(failed))
+    return Cell(f"{failed}/{len(jobs)}" if failed else "0", "num" + " fails" * bool(failed))
 
 
 def _cell(results: Results, t: PaperTable, method: str, case: str, column, digits: int) -> Cell:
