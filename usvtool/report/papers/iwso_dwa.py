@@ -314,7 +314,10 @@ CLAIMS: tuple[Claim, ...] = (
     _iwso_vs_wso("iwso-fewer-turns", "turns", (_ENV1_VS_WSO, _ENV2_VS_WSO), ("28.57", "9"),
                  "Judged on routes of 11 free waypoints (pipelines/full.yaml's matrix turns: "
                  "cases env1-w11 and env2-w11), which can turn as often as Table 2's IWSO and "
-                 "WSO routes; the other claims of Table 2 on the routes of 3. " + _TABLE_2_NOTE,
+                 "WSO routes; the other claims of Table 2 on the routes of 3. Turns alone do "
+                 "not rank routes: a route clipped onto the map's edge turns little and runs "
+                 "long (the planning section's overview gives these routes' length over the "
+                 "optimum, cases env1-w11 and env2-w11). " + _TABLE_2_NOTE,
                  (Precondition("turns-reachable", "Table 2's routes of IWSO and WSO turn "
                                "5-11 times (of the seven optimizers 5-19); a route of K free "
                                "waypoints turns at most K times: runs with --waypoints 11 or "

@@ -85,9 +85,9 @@ def chart_section(results: Results, chart: str) -> Section:
                                      "Best cost (m) after each iteration: the median over "
                                      "seeds and the interquartile band.",
                                      plot.png, plot.data, HTML))  # fmt: skip
-    if len(seeds) > 1:
-        values = {label: {m: results.values("routes", chart, m, metric, succeeded=True)
-                          for m in methods} for metric, label in BOXES}  # fmt: skip
+    values = {label: {m: results.values("routes", chart, m, metric, succeeded=True)
+                      for m in methods} for metric, label in BOXES}  # fmt: skip
+    if len(seeds) > 1 and any(v for per in values.values() for v in per.values()):
         plot = figures.boxplots(values, f"{chart}: over {len(seeds)} seeds",
                                 {m: _free_label(m, jobs[m]) for m in methods})
         section.blocks.append(Figure(f"routes-{chart}-boxes", f"Route metrics on {chart}",
