@@ -3,6 +3,8 @@ what was compared, the headline verdicts from the claims section's own, and the 
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from usvtool.report.data import load
 from usvtool.report.sections import claims, summary
 from usvtool.results import Row, write_results
@@ -53,3 +55,11 @@ def test_the_summary_states_what_was_compared_and_the_claims_own_verdicts(tmp_pa
     caveats = s.paragraphs[-1]
     assert caveats.startswith("Caveats.")
     assert "5 runs per function and algorithm against the paper's 25" in caveats
+    # 2 tested comparisons (iwso-shorter's): 5 runs against 5 can reach p = 2 / C(10, 5) =
+    # 0.0079, times 2 = 0.016 < 0.05 after Holm: not "too few"; with 8 more, 10 x 0.0079 can not
+    assert sum(t.p is not None for v in verdicts for t in v.tests) == 2
+    assert "too few" not in caveats
+    shorter = next(v for v in verdicts if v.claim.id == "iwso-shorter")
+    more = [replace(shorter, tests=shorter.tests * 5) if v is shorter else v for v in verdicts]
+    assert "25, too few to hold after Holm's correction." in " ".join(
+        summary.caveats(results, more))
