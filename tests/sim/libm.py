@@ -1,7 +1,8 @@
 """Whether NumPy's float64 math is the C library's on this machine, and the comparison of a
 compiled kernel with its NumPy reference that follows from it.
 
-numba's kernels call the C library's ``atan2``, ``pow``, ``exp``; NumPy calls the same functions
+numba's kernels (and Python's ``math``) call the C library's ``atan2``, ``pow``, ``exp``, ``sin``,
+``cos``; NumPy calls the same functions
 unless it dispatches to its own SIMD implementations, as it does on AVX-512 machines
 (``numpy.show_runtime()``: ``X86_V4``), whose results differ from the C library's by up to an
 ulp. Where NumPy's results are the C library's, a kernel must give its reference's bits; where
@@ -19,13 +20,14 @@ import numpy as np
 
 
 def numpy_is_libm() -> bool:
-    """NumPy's float64 arctan2, power and exp give the C library's bits (Python's ``math``) on
-    10 000 seeded arguments."""
+    """NumPy's float64 arctan2, power, exp, sin and cos give the C library's bits (Python's
+    ``math``) on 10 000 seeded arguments."""
     rng = np.random.default_rng(0)
     a, b = rng.uniform(-5, 5, 10_000), rng.uniform(-5, 5, 10_000)
     checks = ((np.arctan2(a, b), map(math.atan2, a, b)),
               (np.abs(a) ** b, (abs(x) ** y for x, y in zip(a, b, strict=True))),
-              (np.exp(a), map(math.exp, a)))  # fmt: skip
+              (np.exp(a), map(math.exp, a)), (np.sin(a), map(math.sin, a)),
+              (np.cos(a), map(math.cos, a)))  # fmt: skip
     return all(np.array_equal(got, np.fromiter(want, float)) for got, want in checks)
 
 

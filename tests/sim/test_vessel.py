@@ -16,10 +16,13 @@ from usvtool.sim.vessel import (
     ramps,
     samples,
     step,
+    step_one,
     travelled,
     vessel_from,
     window,
 )
+
+from . import libm
 
 UDWA = preset("udwa-usv")
 IWSO = preset("iwso-dwa-usv")
@@ -125,6 +128,24 @@ def test_step_heading_wraps():
 def test_step_broadcasts():
     x, y, psi = step(0.0, 0.0, np.zeros((3, 1)), np.ones(4), 0.1, 1.0)
     assert x.shape == y.shape == psi.shape == (3, 4)
+
+
+def test_step_one_gives_the_bits_of_step():
+    """The run's scalar step against the array one on seeded poses: straight on (omega 0 and
+    -0.0, np.sinc's epsilon), tiny and ordinary turns, a heading past pi (the wrap), at rest."""
+    rng = np.random.default_rng(16)
+    n = 20_000
+    x, y = rng.uniform(-1e4, 1e4, (2, n))
+    psi = rng.uniform(-4, 4, n)
+    v = np.where(rng.random(n) < 0.1, 0.0, rng.uniform(0, 12, n))
+    omega = rng.choice([0.0, -0.0, 1e-12, -3e-10, 0.05, -0.3, 0.5], n) * rng.uniform(0.5, 1, n)
+    omega[:50] = [0.0, -0.0] * 25
+    dt = rng.choice([0.05, 0.1, 0.2], n)
+    want = np.stack(step(x, y, psi, v, omega, dt), axis=1)
+    got = np.array([step_one(*map(float, a)) for a in zip(x, y, psi, v, omega, dt, strict=True)])
+    for column in range(3):  # bit for bit where NumPy's sin and cos are the C library's
+        libm.assert_close_bits(got[:, column], want[:, column], "xyz"[column])
+    assert all(isinstance(c, float) for c in step_one(1.0, 2.0, 3.0, 4.0, 0.0, 0.1))
 
 
 def _euler(x0, y0, psi0, v, omega, dt, steps, sub=100_000):

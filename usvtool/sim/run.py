@@ -132,7 +132,7 @@ def simulate(scenario: Scenario, options: SimOptions | None = None) -> SimResult
         made_good = v if setup.weather is None else float(
             setup.weather.attainable_speed(v, psi, x, y, vessel.deadweight)
         )  # fmt: skip
-        x, y, psi = (float(a) for a in vessel_model.step(x, y, psi, made_good, omega, sim.dt))
+        x, y, psi = vessel_model.step_one(x, y, psi, made_good, omega, sim.dt)
         heading = angles.math_to_compass(psi)
         own_states.append((x, y, heading, made_good, omega))
         steps = i + 1

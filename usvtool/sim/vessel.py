@@ -194,6 +194,30 @@ def step(x, y, psi, v, omega, dt):
     return x, y, wrap_pi(psi)
 
 
+#: ``np.sinc``'s stand-in for a zero argument (the machine epsilon of float64).
+_SINC_ZERO = float(np.finfo(float).eps)
+
+
+def step_one(x: float, y: float, psi: float, v: float, omega: float,
+             dt: float) -> tuple[float, float, float]:  # fmt: skip
+    """:func:`step` of one pose in Python floats (the own ship's step of a run): the same
+    operations in the same order, ``np.sinc``'s ``sin(y) / y`` of ``y = pi t`` (its epsilon
+    for ``y = 0``) and :func:`~usvtool.angles.wrap_pi`'s wrap, so the same bits, without the
+    arrays' cost (2 us a step against 13-22).
+
+    >>> step_one(0.0, 0.0, 0.0, 2.0, math.pi / 2, 1.0) == tuple(
+    ...     float(a) for a in step(0.0, 0.0, 0.0, 2.0, math.pi / 2, 1.0))
+    True
+    """
+    turn = omega * dt
+    arg = math.pi * (turn / (2 * math.pi))
+    arg = arg if arg != 0.0 else _SINC_ZERO
+    chord = v * dt * (math.sin(arg) / arg)
+    mid = psi + turn / 2
+    heading = (psi + turn + math.pi) % (2 * math.pi) - math.pi
+    return x + chord * math.cos(mid), y + chord * math.sin(mid), heading
+
+
 class Fan(NamedTuple):
     """The rollouts of a grid of velocity samples: every speed of ``speeds`` ``(V,)`` with every
     yaw rate of ``rates`` ``(R,)``, pair ``i·R + k`` the speed ``i`` and the rate ``k`` (the order
