@@ -68,3 +68,18 @@ def test_wrap_pi_is_half_open_at_pi():
                                atol=1e-15)  # fmt: skip
     # the same direction: the unit vectors agree
     np.testing.assert_allclose(np.exp(1j * out), np.exp(1j * rad), atol=1e-14)
+
+
+def test_one_heading_in_floats_gives_the_bits_of_a_0d_array():
+    """math_to_compass of a float takes the float path: the bits its NumPy path gives one heading
+    (a 0-d array), on seeded angles and the edges (both zeros; a hair north of north, whose
+    difference from 90 is -5.7e-14: its mod 360 is 359.99999999999994, where a 1-d array's
+    loop rounds to 360, then 0)."""
+    rng = np.random.default_rng(3)
+    rad = np.concatenate([rng.uniform(-7, 7, 20_000), [0.0, -0.0, 1e-300, np.pi / 2 + 1e-15,
+                                                       np.pi, -np.pi, 2 * np.pi, -2 * np.pi]])
+    want = np.array([math_to_compass(np.asarray(r)) for r in rad])
+    got = np.array([math_to_compass(float(r)) for r in rad])
+    assert np.array_equal(got.view(np.int64), want.view(np.int64))
+    assert type(math_to_compass(0.5)) is float
+    assert math_to_compass(np.pi / 2 + 1e-15) == 359.99999999999994

@@ -15,6 +15,8 @@ float for a scalar, the others a NumPy array (0-d for a scalar).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 
@@ -77,6 +79,9 @@ def math_to_compass(rad):
     >>> math_to_compass(np.array([3 * math.pi / 2, 2 * math.pi + 1e-12, math.pi / 4])).round(9)
     array([180.,  90.,  45.])
     """
+    if isinstance(rad, float):  # one heading, as a run's every step converts: the same
+        deg = (90.0 - math.degrees(rad)) % 360.0  # operations in floats (5 us as arrays)
+        return (0.0 if deg >= 360.0 else deg) + 0.0
     deg = np.mod(90.0 - np.degrees(np.asarray(rad, float)), 360.0)
     deg = np.where(deg >= 360.0, 0.0, deg)  # mod of a tiny negative rounds to 360
     return _out(deg + 0.0)
