@@ -2,8 +2,9 @@
 
 One control step rolls some 460 velocity samples out over 30-50 horizon points and checks every
 point against the grid's clearance field and every target: those loops over (horizon point,
-sample) run here, with no (horizon, samples) temporaries, while the work per yaw rate or per
-speed (complex exponentials, the ramps) stays in NumPy (:mod:`usvtool.sim.vessel`). Each kernel
+sample) run here, with no (horizon, samples) temporaries, and so does the whole of a period
+window's fan (:func:`arc_fan`: its directions, running sums and chords), while the ramps' work
+per yaw rate or per speed stays in NumPy (:mod:`usvtool.sim.vessel`). Each kernel
 repeats the NumPy expressions it stands for operation by operation (the same products, sums and
 comparisons in the same order, and no fused multiply-add: numba contracts none without
 ``fastmath``), so positions, contacts and clearances are the same bits as NumPy's
@@ -120,6 +121,49 @@ def arc_points(x0, y0, chord, summed, x, y) -> np.ndarray:
             far = max(far, longest[k] ** 2 * (summed[t, k].real ** 2 + summed[t, k].imag ** 2))
         radius[t] = math.sqrt(far)
     return radius
+
+
+#: ``np.sinc``'s stand-in for a zero argument (the machine epsilon of float64).
+_SINC_ZERO = float(np.finfo(np.float64).eps)
+
+
+@njit(_F[::1](_F, _F, _F, _F[::1], _F[::1], _F, _TURNS, _ROWS, _ROWS), **_OPTIONS)
+def arc_fan(x0, y0, psi0, speeds, rates, dt, u, x, y) -> np.ndarray:
+    """The whole of :func:`usvtool.sim.vessel.arcs`: each yaw rate's unit chord directions
+    ``u[t, k]`` (written: ``exp(i (psi0 + turn / 2))``, then each period's times ``exp(i
+    turn)``, ``turn = rates[k] dt``), their running sums, the chords ``speeds[i] dt
+    sinc(turn / 2 pi)`` (``np.sinc``: ``sin(y) / y`` of ``y = pi t``, its epsilon for 0) and,
+    by :func:`arc_points`, the positions ``x``, ``y`` (written) and their distance bound.
+
+    The running product is the textbook complex product in real arithmetic, ``(a c - b s, a s
+    + b c)``, with no fused multiply-add: the same bits on every CPU (NumPy's complex multiply
+    fuses on some, as AVX-512's, so its running product differs there in the last bit); the
+    exponentials are ``cos`` and ``sin``, as NumPy's ``exp`` of an imaginary number gives them.
+    """
+    steps, rates_n = u.shape
+    speeds_n = speeds.size
+    chord = np.empty((speeds_n, rates_n))
+    summed = np.empty((steps, rates_n), np.complex128)
+    for k in range(rates_n):
+        turn = rates[k] * dt
+        start = psi0 + turn / 2
+        re, im = math.cos(start), math.sin(start)
+        c, s = math.cos(turn), math.sin(turn)
+        u[0, k] = complex(re, im)
+        sum_re, sum_im = re, im
+        summed[0, k] = complex(sum_re, sum_im)
+        for t in range(1, steps):
+            re, im = re * c - im * s, re * s + im * c
+            u[t, k] = complex(re, im)
+            sum_re, sum_im = sum_re + re, sum_im + im
+            summed[t, k] = complex(sum_re, sum_im)
+        arg = math.pi * (turn / (2 * math.pi))
+        if arg == 0.0:
+            arg = _SINC_ZERO
+        sinc = math.sin(arg) / arg
+        for i in range(speeds_n):
+            chord[i, k] = speeds[i] * dt * sinc
+    return arc_points(x0, y0, chord, summed, x, y)
 
 
 @njit(_F[::1](_F, _F, _ROWS, _TURNS, _ROWS, _ROWS), **_OPTIONS)

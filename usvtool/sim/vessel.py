@@ -240,23 +240,20 @@ def arcs(x0, y0, psi0, speeds, rates, dt: float, steps: int) -> Fan:
     transcendental functions at every step (each costs as much as a dozen multiplications). The
     chord's length is constant along a rollout, so the positions are it times the summed unit
     chords. ``np.sinc`` is exact at ``omega = 0`` (a straight line) and loses no precision near it.
+    All of it in one compiled pass (:func:`usvtool.sim.rollout_kernels.arc_fan`, whose products
+    are the same bits on every CPU).
 
     >>> fan = arcs(0, 0, 0, [1.0], [0.0, math.pi], 0.5, 2)  # straight on; half a circle
     >>> fan.x.round(6).tolist(), fan.y.round(6).tolist()
     ([[0.5, 0.31831], [1.0, 0.0]], [[0.0, 0.31831], [0.0, 0.63662]])
     """
-    from usvtool.sim.rollout_kernels import arc_points
+    from usvtool.sim.rollout_kernels import arc_fan
 
     speeds, rates = _grid_axes(speeds, rates)
-    turn = rates * dt
     u = np.empty((steps, rates.size), complex)
-    u[0] = np.exp(1j * (float(psi0) + turn / 2))
-    u[1:] = np.exp(1j * turn)
-    np.cumprod(u, axis=0, out=u)
-    summed = np.cumsum(u, axis=0)
-    chord = speeds[:, None] * dt * np.sinc(turn / (2 * np.pi))  # (V, R)
     x, y = np.empty((2, steps, speeds.size * rates.size))
-    radius = arc_points(float(x0), float(y0), chord, summed, x, y)
+    radius = arc_fan(float(x0), float(y0), float(psi0), np.ascontiguousarray(speeds),
+                     np.ascontiguousarray(rates), float(dt), u, x, y)  # fmt: skip
     return Fan(x, y, u, radius)
 
 
