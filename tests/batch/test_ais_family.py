@@ -77,12 +77,39 @@ def test_the_files_contents_key_the_runs(tmp_path):
     assert not set(_keys(pipeline).values()) & set(before.values())
 
 
+def test_a_map_is_read_from_the_root_and_its_content_keys_the_runs(tmp_path):
+    """The optional map: given relative to the root, handed to the jobs by absolute path, its
+    bytes in the runs' keys (another grid, other keys); without it the keys are the plain
+    entry's."""
+    from affine import Affine
+    from rasterio.crs import CRS
+
+    from usvtool.grid import Grid, write_grid
+
+    pipeline = _copy(tmp_path / "a")
+    plain = _keys(pipeline)
+    cells = np.zeros((40, 40), np.uint8)
+    write_grid(tmp_path / "a" / "water.tif",
+               Grid(cells, Affine(1000, 0, 560000, 0, -1000, 4520000), CRS.from_epsg(32618)))
+    pipeline.write_text(pipeline.read_text() + "      map: water.tif\n")  # options come last
+    jobs = expand(load(pipeline, NAMES), NAMES)
+    assert f"map={tmp_path / 'a' / 'water.tif'}" in jobs[0].args
+    with_map = {j.label: j.key for j in jobs}
+    assert with_map.keys() == plain.keys() and not set(with_map.values()) & set(plain.values())
+    cells[0, 0] = 1
+    write_grid(tmp_path / "a" / "water.tif",
+               Grid(cells, Affine(1000, 0, 560000, 0, -1000, 4520000), CRS.from_epsg(32618)))
+    assert not set(_keys(pipeline).values()) & set(with_map.values())
+
+
 @pytest.mark.parametrize("options, words", [
     ("{tracks: nyharbor-tracks.parquet}", "families[0].options.encounters: missing"),
     ("{encounters: none.csv, tracks: nyharbor-tracks.parquet}",
      "families[0].options.encounters: none.csv: no such file"),
     ("{encounters: nyharbor-encounters.csv, tracks: nyharbor-tracks.parquet, own: c}",
      "families[0].options.own: must be one of a, b"),
+    ("{encounters: nyharbor-encounters.csv, tracks: nyharbor-tracks.parquet, map: no.tif}",
+     "families[0].options.map: no.tif: no such file"),
 ])  # fmt: skip
 def test_bad_entries_are_refused_naming_the_field(tmp_path, options, words):
     pipeline = _copy(tmp_path / "a")

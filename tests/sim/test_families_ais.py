@@ -78,3 +78,49 @@ def test_bad_scenes_and_options_are_refused_in_one_line(kind, scene, options, wo
     with pytest.raises(UsvError) as e:
         make_scene("ais", kind, scene, given)
     assert words in str(e.value) and "\n" not in str(e.value)
+
+
+def _grid(tmp_path, value: int):
+    """A 40 km square grid of one class (100 m cells) in UTM 18N around the sample."""
+    import numpy as np
+    from affine import Affine
+    from rasterio.crs import CRS
+
+    from usvtool.geodesy import lonlat_to_map
+    from usvtool.grid import Grid, write_grid
+
+    t = read_tracks(FILES["tracks"])
+    e, n = lonlat_to_map("EPSG:32618", float(t.lon.mean()), float(t.lat.mean()))
+    grid = Grid(np.full((400, 400), value, np.uint8),
+                Affine(100, 0, e - 20000, 0, -100, n + 20000), CRS.from_epsg(32618))  # fmt: skip
+    path = tmp_path / f"grid{value}.tif"
+    write_grid(path, grid)
+    return path, grid
+
+
+def test_with_a_map_the_scene_runs_on_a_copy_of_it_in_lon_lat(tmp_path):
+    """The map option: points in lon/lat, the grid written beside the scene as <stem>.map.tif
+    (the same cells, transform and CRS), read back by the scenario reader; a file option, so
+    not in the name; a map whose cells under the own ship are land is refused in one line."""
+    import numpy as np
+
+    from usvtool.grid import read_grid
+
+    water, grid = _grid(tmp_path, 0)
+    plain = make_scene("ais", "under-way", 1, FILES)
+    scene = make_scene("ais", "under-way", 1, {**FILES, "map": str(water)})
+    assert scene.name == plain.name  # a file option: not in the name
+    assert set(scene.draw.scenario["own"]["start"]) == {"lon", "lat"}
+    (tmp_path / "out").mkdir()
+    written = write_scene(scene, tmp_path / "out" / "s.yaml")
+    assert written[0].name == "s.yaml" and tmp_path / "out" / "s.map.tif" in written
+    copy = read_grid(tmp_path / "out" / "s.map.tif")
+    assert np.array_equal(copy.cells, grid.cells) and copy.transform == grid.transform
+    assert copy.crs == grid.crs
+    assert yaml.safe_load((tmp_path / "out" / "s.yaml").read_text())["map"] == "s.map.tif"
+    read_scenario(tmp_path / "out" / "s.yaml")  # reads, its points on the map's frame
+    land, _ = _grid(tmp_path, 1)
+    with pytest.raises(UsvError, match="on an obstacle"):
+        make_scene("ais", "under-way", 1, {**FILES, "map": str(land)})
+    with pytest.raises(UsvError, match="no such file"):
+        make_scene("ais", "under-way", 1, {**FILES, "map": str(tmp_path / "none.tif")})

@@ -10,9 +10,12 @@ writes: the own ship is vessel ``own`` (``a``, the encounter's first, or ``b``) 
 ``vessel`` preset, from her position at the window's start (the encounter's, ``pad`` seconds
 wider on each side) toward her position at its end, her recorded track the ``route``; every
 other vessel within ``radius`` m of her recorded track is replayed from its track; the local
-UTM metre frame (its origin in the file's comments). The run lasts ``duration`` s (0: twice
-the window). The scene's name is that scenario's (``ais-MMSI-TIME``: the own vessel and the
-window's start) with the options given that differ from the defaults appended.
+UTM metre frame (its origin in the file's comments), or with ``map`` (a navigation grid with a
+CRS) on that grid: every point in lon/lat, the own ship's start and goal navigable cells
+(refused in one line otherwise), the grid copied beside the scene as ``<stem>.map.tif``. The
+run lasts ``duration`` s (0: twice the window). The scene's name is that scenario's
+(``ais-MMSI-TIME``: the own vessel and the window's start) with the options given that differ
+from the defaults appended.
 
 Nothing is drawn: the scene number is the encounter's. Promise, checked as the scene is made
 (refused in one line otherwise): the encounter's other vessel is one of the targets (a
@@ -27,7 +30,8 @@ from pathlib import Path
 import numpy as np
 
 from usvtool.errors import UsvError
-from usvtool.sim.families.base import Draw, Family, Option, vessel_option
+from usvtool.grid import read_grid
+from usvtool.sim.families.base import Draw, Family, MapFile, Option, vessel_option
 from usvtool.tracks import read_tracks
 from usvtool.traffic import (
     KINDS,
@@ -64,6 +68,8 @@ class Ais(Family):
                             False),  # fmt: skip
         "vessel": vessel_option("udwa-usv"),
         "duration": Option(0.0, "sim.duration, s (0: twice the window)", False),
+        "map": Option("", "a navigation grid with a CRS (usvtool preprocess) the scene runs on",
+                      file=True, required=False),  # fmt: skip
     }
     about = {"any": "scene n: the encounter of rank n (ranked by CPA)",
              "under-way": "scene n: the n-th closest encounter of two vessels under way"}
@@ -74,9 +80,10 @@ class Ais(Family):
                              f"family ais, kind {kind}, scene")  # fmt: skip
         tracks = read_tracks(opts["tracks"])
         at = scene_encounter(tracks, row, opts["own"], opts["pad"], path)
+        chart = opts["map"] or None
         made = traffic_scenario(tracks, at.own, at.window, radius=opts["radius"],
                                 vessel=opts["vessel"], controller=self.controller,
-                                duration=opts["duration"] or None,
+                                duration=opts["duration"] or None, map_path=chart,
                                 what=f"encounter {row['rank']} of {Path(path).name}")
         if at.other not in made.figures["target_mmsis"]:
             raise UsvError(f"family ais, kind {kind}, scene {scene}: the other vessel, MMSI "
@@ -84,6 +91,8 @@ class Ais(Family):
                            f"of the own ship's track (the encounter's CPA: {row['cpa_m']:g} m)")
         route = made.scenario["route"]
         files = {"route": (route, TextFile(made.files[route]))}
+        if chart is not None:  # a copy beside the scene, as every family's map
+            files["map"] = ("map.tif", MapFile(read_grid(chart)))
         for i, target in enumerate(made.scenario["targets"]):
             files[f"targets.{i}.track"] = (target["track"], TextFile(made.files[target["track"]]))
         return Draw(made.scenario, files, (*made.comments, f"Other vessel: MMSI {at.other}."))

@@ -39,14 +39,16 @@ Where = Callable[[str], str]
 class Option:
     """A family option: its default (a number or a word), what it sets; a number must be > 0
     (``positive``) or >= 0; a word one of ``choices`` when given. A ``file`` option names a
-    file the family reads (its default ``""``: it must be given, and the file must exist; a
-    pipeline gives it relative to its root, and its content keys the jobs)."""
+    file the family reads (its default ``""``: it must be given unless it is not ``required``,
+    and the file must exist; a pipeline gives it relative to its root, and its content keys the
+    jobs)."""
 
     default: Value
     help: str
     positive: bool = True
     choices: tuple[str, ...] = ()
     file: bool = False
+    required: bool = True  # a file option: must be given
 
 
 def vessel_option(default: str) -> Option:
@@ -56,6 +58,18 @@ def vessel_option(default: str) -> Option:
 
 def duration_option(default: float) -> Option:
     return Option(default, "sim.duration, s (the run stops there if the own ship has not arrived)")
+
+
+class MapFile:
+    """A scene's map, written as a navigation grid GeoTIFF (:func:`usvtool.grid.write_grid`)."""
+
+    def __init__(self, grid):
+        self.grid = grid
+
+    def write(self, path) -> None:
+        from usvtool.grid import write_grid
+
+        write_grid(path, self.grid)
 
 
 @dataclass(frozen=True)
@@ -142,7 +156,7 @@ class Family:
                                f"{', '.join(sorted(self.options))})")  # fmt: skip
             out[key] = _checked(self.options[key], value, where(key))
         for key, o in self.options.items():
-            if o.file and key not in out:
+            if o.file and o.required and key not in out:
                 raise UsvError(f"{where(key)}: missing: {o.help} (family {self.name} reads it)")
         return {key: out.get(key, o.default) for key, o in self.options.items()}
 

@@ -31,10 +31,11 @@ from __future__ import annotations
 import numpy as np
 from affine import Affine
 
-from usvtool.grid import NAVIGABLE, OBSTACLE, Grid, write_grid
+from usvtool.grid import NAVIGABLE, OBSTACLE, Grid
 from usvtool.sim.families.base import (
     Draw,
     Family,
+    MapFile,
     Option,
     class_names,
     crowding,
@@ -56,16 +57,6 @@ CLASS = {"head-on": "head-on", "crossing-port": "crossing-stand-on",
 CPA_LENGTHS = 4.0
 #: The static kind: start and goal this many own lengths from any island.
 CLEAR_LENGTHS = 10.0
-
-
-class MapFile:
-    """A scene's map, written as a navigation grid GeoTIFF (:func:`usvtool.grid.write_grid`)."""
-
-    def __init__(self, grid: Grid):
-        self.grid = grid
-
-    def write(self, path) -> None:
-        write_grid(path, self.grid)
 
 
 class Iwso(Family):
