@@ -15,6 +15,7 @@ import pytest
 
 from usvtool.batch.jobs import expand
 from usvtool.cli.batch import stage_names
+from usvtool.digest import sha256
 from usvtool.errors import UsvError
 from usvtool.pipeline import load
 from usvtool.tracks import Tracks, read_tracks, write_tracks
@@ -37,6 +38,10 @@ def test_the_entry_reads_its_files_from_the_root_and_the_jobs_get_absolute_paths
     args = jobs[0].args
     assert f"tracks={AIS / 'nyharbor-tracks.parquet'}" in args
     assert jobs[0].info["scene"]["options"]["encounters"] == str(AIS / "nyharbor-encounters.csv")
+    # and their SHA-256, for a reader to check it reads what the run read (the report does)
+    assert jobs[0].info["scene"]["sha256"] == {
+        k: sha256(AIS / f"nyharbor-{k}.{ext}") for k, ext in (("encounters", "csv"),
+                                                           ("tracks", "parquet"))}  # fmt: skip
     json.dumps(jobs[0].record())  # job.json holds the paths as text
 
 

@@ -25,7 +25,7 @@ H203, SHARK, OTHER = 367782880, 368139870, 367791540
 
 
 def run(root: Path, method: str, metrics: dict, closest: dict[str, float],
-        tracks: Path = TRACKS) -> JobResults:  # fmt: skip
+        tracks: Path = TRACKS, sha256: dict | None = None) -> JobResults:  # fmt: skip
     """A run: its metrics, and its summary.json with the scene's options (every one, as
     ``usvtool simulate --family`` writes them) and the closest distance to each target."""
     d = root / "runs" / method
@@ -37,7 +37,8 @@ def run(root: Path, method: str, metrics: dict, closest: dict[str, float],
     (d / "summary.json").write_text(json.dumps({"scene": scene, "controller": method,
                                                 "per_target": per_target}))  # fmt: skip
     rows = {m: Row("k", "runs", CASE, method, 1, m, str(v)) for m, v in metrics.items()}
-    config = {"scene": {"family": "ais", "kind": "under-way", "scene": 1}}
+    config = {"scene": {"family": "ais", "kind": "under-way", "scene": 1,
+                        **({"sha256": sha256} if sha256 else {})}}  # fmt: skip
     return JobResults(f"k-{method}", "runs", CASE, method, 1, d, rows, config=config)
 
 
@@ -107,3 +108,24 @@ def test_no_ais_runs_no_section_and_moved_files_are_refused(tmp_path):
     assert str(e.value) == (f"{job.dir / 'summary.json'}: scene.options.tracks "
                             f"{tmp_path / 'gone.parquet'}: no such file (moved or removed since "
                             "the run?)")  # fmt: skip
+
+
+def test_a_file_changed_since_the_run_is_refused(tmp_path):
+    """job.json records the SHA-256 of the files the run read (usvtool batch writes it): a
+    tracks file of other bytes at the same path is refused in one line; the same bytes read."""
+    import shutil
+
+    from usvtool.digest import sha256
+
+    copy = tmp_path / "tracks.parquet"
+    shutil.copy(TRACKS, copy)
+    digests = {"encounters": sha256(ENCOUNTERS), "tracks": sha256(copy)}
+    job = run(tmp_path / "a", "dwa", {"arrived": True}, {}, tracks=copy, sha256=digests)
+    assert traffic.recorded(job).at.other == SHARK  # the same bytes: read
+    copy.write_bytes(copy.read_bytes() + b"\0")
+    traffic._sha256.cache_clear()
+    with pytest.raises(UsvError) as e:
+        traffic.recorded(job)
+    assert str(e.value) == (f"{job.dir / 'summary.json'}: scene.options.tracks {copy}: changed "
+                            "since the run (not the bytes its job.json records): run the batch "
+                            "again")  # fmt: skip

@@ -38,6 +38,7 @@ from usvtool.batch.commands import (
     simulate_command,
     with_companions,
 )
+from usvtool.digest import sha256
 from usvtool.errors import UsvError
 from usvtool.pipeline import Names, Pipeline
 
@@ -77,15 +78,6 @@ class Job:
 #: tracks and wind field) as the simulation resolves them; a :class:`UsvError` for a scenario
 #: that does not read (``usvtool batch`` gives :func:`usvtool.cli.batch.scenario_files`).
 ScenarioFiles = Callable[[Path], list[Path]]
-
-
-def sha256(path: Path) -> str:
-    """The SHA-256 of a file's bytes (hex)."""
-    digest = hashlib.sha256()
-    with open(path, "rb") as f:
-        while chunk := f.read(1 << 20):
-            digest.update(chunk)
-    return digest.hexdigest()
 
 
 class _Contents:
@@ -175,8 +167,11 @@ def expand(pipeline: Pipeline, names: Names,
                     "controller": j.controller, "seed": j.seed})  # fmt: skip
         _claim(pipeline, owners, ("runs", j.case, j.controller, j.seed), key,
                f"families.{j.entry}")  # fmt: skip
+        # the files' own SHA-256 in job.json, for a reader to check it reads what the run did
+        digests = {k: sha256(v) for k, v in j.options if isinstance(v, Path)}
+        info = {"scene": {**scene, "sha256": digests} if digests else scene}
         jobs.setdefault(key, Job("runs", key, j.case, j.controller, j.seed, family_command(j),
-                                 info={"scene": scene}))  # fmt: skip
+                                 info=info))  # fmt: skip
     f = pipeline.functions
     for function, algorithm, seed in pipeline.function_jobs():
         sizes = {"pop": f.pop, "iters": f.iters, "dim": f.dim}

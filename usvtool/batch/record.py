@@ -27,7 +27,7 @@ import json
 import os
 from pathlib import Path
 
-from usvtool.batch.jobs import sha256
+from usvtool.digest import sha256
 from usvtool.errors import UsvError
 
 RECORD = "job.json"

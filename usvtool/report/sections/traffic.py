@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 
+from usvtool.digest import sha256
 from usvtool.errors import UsvError
 from usvtool.report.data import JobResults, Results
 from usvtool.report.document import Cell, Section, Table, number
@@ -99,16 +100,26 @@ def recorded(job: JobResults) -> Recorded | None:
         own, pad, min_speed = options["own"], float(options["pad"]), float(options["min_speed"])
     except (KeyError, TypeError, ValueError) as e:
         raise UsvError(f"{path}: not the summary of an ais family run ({e})") from None
+    digests = (job.config.get("scene") or {}).get("sha256") or {}  # job.json's, when there
     for key, file in files.items():
         if not Path(file).is_file():
             raise UsvError(f"{path}: scene.options.{key} {file}: no such file (moved or removed "
                            "since the run?)")  # fmt: skip
+        if key in digests and _sha256(file) != digests[key]:
+            raise UsvError(f"{path}: scene.options.{key} {file}: changed since the run (not "
+                           "the bytes its job.json records): run the batch again")  # fmt: skip
     tracks = _tracks(files["tracks"])
     row = pick_encounter(_encounters(files["encounters"]), kind, number, min_speed,
                          files["encounters"], f"{path}: scene")  # fmt: skip
     at = scene_encounter(tracks, row, own, pad, files["encounters"])
     return Recorded(kind, number, files["encounters"], at, own,
                     manoeuvre(tracks, at.own, *at.times))  # fmt: skip
+
+
+@cache
+def _sha256(path: str) -> str:
+    """A file's SHA-256, read once per report (a tracks file may be large)."""
+    return sha256(path)
 
 
 def _summary(job: JobResults) -> dict | None:
