@@ -140,6 +140,7 @@ def expand(pipeline: Pipeline, names: Names,
                                  preprocess_command(root, c),
                                  info={"source": str(root / c.source)}))  # fmt: skip
     owners: dict[tuple, tuple[str, str]] = {}  # (kind, case, method, seed) -> (key, where)
+    file_sha256 = cache(sha256)  # a family's files, hashed once for all its jobs
     for r in pipeline.route_jobs(names):
         grid = grid_keys[r.chart]
         key = _key({"kind": "routes", "grid": grid, "args": route_args(r, content)})
@@ -168,7 +169,7 @@ def expand(pipeline: Pipeline, names: Names,
         _claim(pipeline, owners, ("runs", j.case, j.controller, j.seed), key,
                f"families.{j.entry}")  # fmt: skip
         # the files' own SHA-256 in job.json, for a reader to check it reads what the run did
-        digests = {k: sha256(v) for k, v in j.options if isinstance(v, Path)}
+        digests = {k: file_sha256(v) for k, v in j.options if isinstance(v, Path)}
         info = {"scene": {**scene, "sha256": digests} if digests else scene}
         jobs.setdefault(key, Job("runs", key, j.case, j.controller, j.seed, family_command(j),
                                  info=info))  # fmt: skip

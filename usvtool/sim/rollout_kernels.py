@@ -28,6 +28,8 @@ import numpy as np
 from numba import njit, vectorize
 from numba import types as nt
 
+from usvtool.sim.vessel import SINC_ZERO
+
 _B, _F, _I, _C = nt.boolean, nt.float64, nt.int64, nt.complex128
 _ROWS = _F[:, ::1]  # a C-ordered 2-D array: (T, N), (V, R), (T, V), (k, 2)
 _TURNS = _C[:, ::1]  # (T, R) complex: a direction or a sum of them per time and yaw rate
@@ -123,10 +125,6 @@ def arc_points(x0, y0, chord, summed, x, y) -> np.ndarray:
     return radius
 
 
-#: ``np.sinc``'s stand-in for a zero argument (the machine epsilon of float64).
-_SINC_ZERO = float(np.finfo(np.float64).eps)
-
-
 @njit(_F[::1](_F, _F, _F, _F[::1], _F[::1], _F, _TURNS, _ROWS, _ROWS), **_OPTIONS)
 def arc_fan(x0, y0, psi0, speeds, rates, dt, u, x, y) -> np.ndarray:
     """The whole of :func:`usvtool.sim.vessel.arcs`: each yaw rate's unit chord directions
@@ -159,7 +157,7 @@ def arc_fan(x0, y0, psi0, speeds, rates, dt, u, x, y) -> np.ndarray:
             summed[t, k] = complex(sum_re, sum_im)
         arg = math.pi * (turn / (2 * math.pi))
         if arg == 0.0:
-            arg = _SINC_ZERO
+            arg = SINC_ZERO
         sinc = math.sin(arg) / arg
         for i in range(speeds_n):
             chord[i, k] = speeds[i] * dt * sinc

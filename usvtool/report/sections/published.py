@@ -101,7 +101,8 @@ def table(results: Results, paper_table: PaperTable) -> Table:
                  if any(c.metric in PENALISED for c in columns) else "")  # fmt: skip
     caption = (f"{t.caption} Ours (statistics{runs}, in the paper's units) beside the "
                f"paper's printed figures (grey): over the {kinds}{penalised}; failed: the "
-               f"others, never counted in a figure; n/c: our setup is not the paper's. Setup: "
+               f"others (failures, and any whose table does not say how they ended), never "
+               f"counted in a figure; n/c: our setup is not the paper's. Setup: "
                f"{t.setup}")  # fmt: skip
     return Table(f"paper-{t.id}", f"{t.label} of the {paper.id.upper()} paper", caption,
                  headings, rows)
