@@ -53,3 +53,35 @@ def test_bad_tables_give_one_line_naming_the_file_and_line(tmp_path, text, messa
         read_results(path)
     assert str(path) in str(e.value) and "\n" not in str(e.value)
     assert format_results([]) == "key,kind,case,method,seed,metric,value\n"
+
+
+HEADER = "key,kind,case,method,seed,metric,value\n"
+
+
+@pytest.mark.parametrize(
+    "last, message",
+    [
+        ("0a,routes,env1,iwso,1,length_m,805.76\n",
+         "job 0a, metric length_m: line 4 repeats line 2 (a job has one row a metric)"),
+        ("0a,routes,env1,iwso,1,length_m,99999\n",
+         "job 0a, metric length_m: line 2 says '805.76', line 4 says '99999' (a job has one "
+         "row a metric)"),
+        ("0a,routes,env2,iwso,1,fitness,3\n",
+         "job 0a: line 2 says routes/env1/iwso seed 1, line 4 says routes/env2/iwso seed 1"),
+    ],
+)  # fmt: skip
+def test_a_metric_given_twice_or_a_job_said_two_ways_is_refused_naming_the_lines(
+        tmp_path, last, message):  # fmt: skip
+    path = tmp_path / "t.csv"
+    path.write_text(HEADER + "0a,routes,env1,iwso,1,length_m,805.76\n"
+                    "0a,routes,env1,iwso,1,turns,2\n" + last)  # fmt: skip
+    with pytest.raises(UsvError) as e:
+        read_results(path)
+    assert str(e.value) == f"{path}: {message}"
+
+
+def test_the_same_metric_of_two_jobs_is_no_duplicate(tmp_path):
+    path = tmp_path / "t.csv"
+    path.write_text(HEADER + "0a,routes,env1,iwso,1,length_m,805.76\n"
+                    "0b,routes,env1,iwso,2,length_m,805.76\n")  # fmt: skip
+    assert [r.key for r in read_results(path)] == ["0a", "0b"]

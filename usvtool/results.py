@@ -121,7 +121,34 @@ def read_results(path: str | Path) -> list[Row]:
         except ValueError:
             raise UsvError(f"{path}: line {line}: seed {seed!r} is not an integer") from None
         rows.append(Row(key, kind, case, method, number, metric, value))
+    _check_one_value(path, rows)
     return rows
+
+
+def _check_one_value(path: str | Path, rows: list[Row]) -> None:
+    """Refuse a job whose rows disagree on what it is (kind, case, method, seed) and a metric
+    of a job given twice (the same row repeated, or two values): which is meant cannot be told.
+    The rows are the file's, in order (line 2 first)."""
+    jobs: dict[str, int] = {}
+    metrics: dict[tuple[str, str], int] = {}
+    for line, r in enumerate(rows, start=2):
+        first = jobs.setdefault(r.key, line)
+        was = rows[first - 2]
+        if (was.kind, was.case, was.method, was.seed) != (r.kind, r.case, r.method, r.seed):
+            raise UsvError(f"{path}: job {r.key}: line {first} says {_job(was)}, line {line} "
+                           f"says {_job(r)}")  # fmt: skip
+        first = metrics.setdefault((r.key, r.metric), line)
+        if first != line:
+            was = rows[first - 2]
+            said = (f"line {line} repeats line {first}" if was == r else
+                    f"line {first} says {was.value!r}, line {line} says {r.value!r}")  # fmt: skip
+            raise UsvError(f"{path}: job {r.key}, metric {r.metric}: {said} (a job has one row "
+                           "a metric)")  # fmt: skip
+
+
+def _job(row: Row) -> str:
+    """What a row says its job is: ``routes/env1/iwso seed 3``."""
+    return f"{row.kind}/{row.case}/{row.method} seed {'-' if row.seed is None else row.seed}"
 
 
 def timings_path(table: str | Path) -> Path:

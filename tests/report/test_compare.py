@@ -265,6 +265,30 @@ def test_bad_inputs_give_one_line_naming_the_file_and_write_nothing(
     assert not out.exists()
 
 
+#: A job's length given twice: the same row repeated, and two values (805.76 and 99999).
+TWICE = {"duplicate": ("805.76", "line 4 repeats line 2"),
+         "conflict": ("99999", "line 2 says '805.76', line 4 says '99999'")}  # fmt: skip
+
+
+@pytest.mark.parametrize("which", ["baseline", "current"])
+@pytest.mark.parametrize("how", sorted(TWICE))
+def test_a_metric_of_a_job_given_twice_is_refused_naming_the_lines(usv, tables, tmp_path, which,
+                                                                    how):  # fmt: skip
+    base, head = tables(baseline_rows())
+    bad = base if which == "baseline" else head
+    second, said = TWICE[how]
+    bad.write_text("key,kind,case,method,seed,metric,value\n"
+                   "0a,routes,env1,iwso,1,length_m,805.76\n"
+                   "0a,routes,env1,iwso,1,turns,2\n"
+                   f"0a,routes,env1,iwso,1,length_m,{second}\n")  # fmt: skip
+    out = tmp_path / "out"
+    r = usv("compare", base, head, "-o", out)
+    assert (r.exit_code, r.stdout) == (1, "")
+    assert r.stderr.splitlines() == [
+        f"Error: {bad}: job 0a, metric length_m: {said} (a job has one row a metric)"]
+    assert not out.exists()
+
+
 def test_a_failure_leaves_earlier_outputs_as_they_were(usv, tables, tmp_path):
     base, head = tables(baseline_rows())
     out = tmp_path / "out"
