@@ -23,7 +23,9 @@ In memory a :class:`Tracks` holds one NumPy array per column (``name`` an object
 ``str``). NaN is written as an empty field in CSV and as null in parquet, and read back as NaN.
 
 Files: ``.parquet`` (pyarrow) or ``.csv`` (UTF-8, the header :data:`COLUMNS` in this order; no
-quotes when no name needs any, else every text quoted). :func:`read_tracks` refuses a bad file
+quotes when no name needs any, else every text quoted; a name a spreadsheet would take for a
+formula written behind a ``'`` and read back without it: :func:`spreadsheet_safe`; a byte order
+mark accepted). :func:`read_tracks` refuses a bad file
 with one :class:`~usvtool.errors.UsvError` line naming the file, the line (CSV; the header is
 line 1) or row (parquet, from 1) and the column at fault; :func:`write_tracks` checks the table
 first (a :class:`Tracks` is checked when made), then writes atomically (:mod:`usvtool.atomic`; a
@@ -59,8 +61,13 @@ MAX_MMSI = 999_999_999
 #: Nanoseconds in a second.
 NS = 1_000_000_000
 SUFFIXES = (".parquet", ".csv")
-#: A name the CSV writer must quote (without any, no field is quoted).
-_NEEDS_QUOTES = re.compile(r'[,"]|^\s|\s$')
+#: A name the CSV writer must quote (without any, no field is quoted): a separator (``;`` too,
+#: a spreadsheet's in some locales), a quote, white space or ``'`` first, white space last.
+_NEEDS_QUOTES = re.compile(r'[,;"]|^[\s\']|\s$')
+#: A text a spreadsheet takes for a formula: one starting with ``= + - @``, a tab or a carriage
+#: return (OWASP, "CSV Injection"), after any ``'`` (so that the ``'`` put before it is told
+#: from one of the text's own).
+_FORMULA = "^'*[=+\\-@\t\r]"
 #: Key of the parquet schema's metadata naming the contract (and its version).
 PARQUET_KEY = b"usvtool.tracks"
 
@@ -213,6 +220,41 @@ def format_time(ns) -> list[str]:
 # --- files ----------------------------------------------------------------------------------
 
 
+def spreadsheet_safe(texts):
+    """The texts (a pyarrow string array, or a sequence of ``str``) a spreadsheet shows as
+    text: each that starts with a formula character (``= + - @``, tab, carriage return; after
+    any ``'``) behind one more ``'`` (OWASP's "CSV Injection"); the others as they are. The one
+    neutralisation of every CSV writer of tracks and encounters (their writers quote a field as
+    RFC 4180 says); :func:`spreadsheet_text` undoes it.
+
+    >>> spreadsheet_safe(["=SUM(A1)", "@A1", "+1-2", "'-cmd", "O'HARA", "TUG -7"])
+    ["'=SUM(A1)", "'@A1", "'+1-2", "''-cmd", "O'HARA", 'TUG -7']
+    """
+    import pyarrow as pa
+    import pyarrow.compute as pc
+
+    array = texts if isinstance(texts, pa.Array | pa.ChunkedArray) else pa.array(
+        list(texts), pa.string())  # fmt: skip
+    safe = pc.if_else(pc.match_substring_regex(array, _FORMULA),
+                      pc.binary_join_element_wise("'", array, ""), array)  # fmt: skip
+    return safe if array is texts else safe.to_pylist()
+
+
+def spreadsheet_text(array):
+    """The texts of a pyarrow string array as :func:`spreadsheet_safe` had them: the ``'``
+    it put before a formula character removed.
+
+    >>> import pyarrow as pa
+    >>> spreadsheet_text(pa.array(["'=1", "''-cmd", "'quote", "=2"])).to_pylist()
+    ['=1', "'-cmd", "'quote", '=2']
+    """
+    import pyarrow.compute as pc
+
+    added = pc.match_substring_regex(array, "'" + _FORMULA[1:])
+    return pc.if_else(added, pc.utf8_slice_codeunits(array, 1), array)
+
+
+
 def check_suffix(path, option: str = "") -> str:
     """The suffix of a tracks file (.parquet or .csv); one line naming ``option`` and the path
     for another."""
@@ -250,6 +292,7 @@ def write_tracks(path: str | os.PathLike, tracks: Tracks) -> None:
 
     suffix = check_suffix(path)
     table = to_arrow(tracks)
+    names = spreadsheet_safe(table.column("name"))
     with atomic_path(path) as tmp:
         if suffix == ".parquet":
             import pyarrow.parquet as pq
@@ -259,7 +302,8 @@ def write_tracks(path: str | os.PathLike, tracks: Tracks) -> None:
             import pyarrow.csv as pcsv
 
             table = table.set_column(1, "time", pa.array(format_time(tracks.time), pa.string()))
-            plain = not any(_NEEDS_QUOTES.search(s) for s in tracks.name)
+            table = table.set_column(COLUMNS.index("name"), "name", names)
+            plain = not any(_NEEDS_QUOTES.search(s) for s in names.to_pylist())
             with open(tmp, "wb") as f:
                 f.write((",".join(COLUMNS) + "\n").encode())
                 pcsv.write_csv(table, f, pcsv.WriteOptions(
@@ -356,13 +400,16 @@ def _read_csv(path):
 
     from usvtool.csvtable import first_lines, read_table, time_ns
 
-    header = next(csv.reader(io.StringIO(next(iter(first_lines(path, 1)), ""))), [])
+    line = next(iter(first_lines(path, 1)), "").removeprefix("\ufeff")  # a byte order mark
+    header = next(csv.reader(io.StringIO(line)), [])
     if header != list(COLUMNS):
         raise UsvError(f"{path}: line 1: the header must be {','.join(COLUMNS)!r}, not "
                        f"{','.join(header)[:200]!r}")  # fmt: skip
     types = {c: pa.float64() for c in REALS} | {c: pa.int64() for c in INTEGERS if c != "time"}
     table = read_table(path, types | {"name": pa.string(), "time": pa.string()})
     ns = time_ns(path, table.column("time"), "time", 1)
+    table = table.set_column(table.column_names.index("name"), "name",
+                             spreadsheet_text(table.column("name")))  # fmt: skip
     return table.set_column(table.column_names.index("time"), "time", pa.array(ns, pa.int64()))
 
 

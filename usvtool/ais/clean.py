@@ -73,7 +73,7 @@ def clean(fx: Fixes, options: CleanOptions = CleanOptions()) -> tuple[Tracks, di
     index = order[(keep & valid)[order]]  # the valid fixes by vessel and time
     mmsi, time = fx.mmsi[index], fx.time[index]
     counts["out_of_order"] = _out_of_order(index, mmsi)
-    dup = np.r_[False, (mmsi[1:] == mmsi[:-1]) & (time[1:] == time[:-1])]
+    dup = ~_run_starts(mmsi) & ~_run_starts(time)
     counts["duplicates"] = int(dup.sum())
     index, mmsi, time = index[~dup], mmsi[~dup], time[~dup]
     lon, lat = fx.lon[index], fx.lat[index]
@@ -81,8 +81,8 @@ def clean(fx: Fixes, options: CleanOptions = CleanOptions()) -> tuple[Tracks, di
     fast = _too_fast(mmsi, time, lon, lat, max_gap_ns, options.max_speed * KNOT)
     counts["too_fast"] = int(fast.sum())
     index, mmsi, time = index[~fast], mmsi[~fast], time[~fast]
-    new_vessel = np.r_[True, mmsi[1:] != mmsi[:-1]]
-    gap = np.r_[False, ~new_vessel[1:] & (np.diff(time) > max_gap_ns)]
+    new_vessel = _run_starts(mmsi)
+    gap = ~new_vessel & (np.diff(time, prepend=time[:1]) > max_gap_ns)
     counts["gaps"] = int(gap.sum())
     track = np.cumsum(new_vessel | gap) - 1
     static = _static(fx, mmsi, order)
@@ -92,6 +92,18 @@ def clean(fx: Fixes, options: CleanOptions = CleanOptions()) -> tuple[Tracks, di
     counts |= {"fixes": tracks.n_rows, "vessels": int(new_vessel.sum()),
                "tracks": int(track[-1] + 1) if track.size else 0}  # fmt: skip
     return tracks, counts
+
+
+def _run_starts(values: np.ndarray) -> np.ndarray:
+    """Whether each value differs from the one before it (the first always does; none of
+    none).
+
+    >>> _run_starts(np.array([4, 4, 5])).tolist(), _run_starts(np.zeros(0)).tolist()
+    ([True, False, True], [])
+    """
+    starts = np.ones(values.size, bool)
+    starts[1:] = values[1:] != values[:-1]
+    return starts
 
 
 def by_vessel_and_time(mmsi: np.ndarray, time: np.ndarray) -> np.ndarray:

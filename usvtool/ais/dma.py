@@ -34,8 +34,10 @@ def detect(names: list[str]) -> bool:
     return bool(names) and names[0] == COLUMNS["time"] and MOBILE in names
 
 
-def read(path, names: list[str], bbox=None) -> Fixes:
-    """The fixes of a DMA file whose header is ``names`` (inside ``bbox``)."""
+def read(path, names: list[str], bbox=None, guard=None) -> Fixes:
+    """The fixes of a DMA file whose header is ``names`` (inside ``bbox``, ``guard`` refusing
+    more than the budget holds)."""
     columns = {role: c for role, c in COLUMNS.items() if c in names}
     return read_columns(path, columns, time_formats=(TIME_FORMAT,), ship_types=SHIP_TYPES,
-                        keep=(MOBILE, VESSELS, "not_vessels"), bbox=bbox)  # fmt: skip
+                        keep=(MOBILE, VESSELS, "not_vessels"), bbox=bbox,
+                        guard=guard)  # fmt: skip

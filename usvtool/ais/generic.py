@@ -61,7 +61,7 @@ def parse_columns(text: str | None) -> dict[str, str]:
 
 def sniff(path) -> str:
     """The delimiter of the file's first lines (module docstring)."""
-    from usvtool.csvtable import first_lines
+    from usvtool.ais.source import first_lines
 
     sample = "\n".join(first_lines(path, 20))
     try:
@@ -83,11 +83,11 @@ def roles(names: list[str], mapping: dict[str, str]) -> dict[str, str]:
     return out
 
 
-def read(path, mapping: dict[str, str], bbox=None) -> Fixes:
+def read(path, mapping: dict[str, str], bbox=None, guard=None) -> Fixes:
     """The fixes of a CSV file by ``mapping`` (role: column) and the usual names (inside
-    ``bbox``)."""
+    ``bbox``, ``guard`` refusing more than the budget holds)."""
     delimiter = sniff(path)
     names = header(path, delimiter)
     return read_columns(path, roles(names, mapping), delimiter=delimiter,
                         time_formats=TIME_FORMATS, epoch_seconds=True,
-                        ship_types=dma.SHIP_TYPES, bbox=bbox)  # fmt: skip
+                        ship_types=dma.SHIP_TYPES, bbox=bbox, guard=guard)  # fmt: skip

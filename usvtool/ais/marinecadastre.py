@@ -35,7 +35,8 @@ def layout(names: list[str]) -> str | None:
     return next((k for k, cols in SIGNATURE.items() if all(c in names for c in cols)), None)
 
 
-def read(path, names: list[str], bbox=None) -> Fixes:
-    """The fixes of a MarineCadastre file whose header is ``names`` (inside ``bbox``)."""
+def read(path, names: list[str], bbox=None, guard=None) -> Fixes:
+    """The fixes of a MarineCadastre file whose header is ``names`` (inside ``bbox``, ``guard``
+    refusing more than the budget holds)."""
     columns = {role: c for role, c in LAYOUTS[layout(names)].items() if c in names}
-    return read_columns(path, columns, bbox=bbox)
+    return read_columns(path, columns, bbox=bbox, guard=guard)

@@ -36,6 +36,8 @@ STATIC_TYPES = frozenset({5, 19, 24})
 MILLISECONDS_ABOVE = 1e11
 _SENTENCE = re.compile(r"[!$][A-Z]{2}VD[MO],")
 _SEPARATOR = " ,;\t"
+#: A UTF-8 byte order mark read as latin-1.
+BOM = "\xef\xbb\xbf"
 
 
 def detect(first: str) -> bool:
@@ -119,7 +121,7 @@ def read(path) -> Fixes:
     pending: dict[tuple, tuple[list, int]] = {}  # (talker, channel, seq id): fragments, time
     with io.TextIOWrapper(open_binary(path), encoding="latin-1", newline="") as stream:
         for number, raw in enumerate(stream, start=1):
-            line = raw.strip()
+            line = raw.removeprefix(BOM).strip() if number == 1 else raw.strip()
             if not line.isascii():
                 counts["not_ais"] += 1
                 continue

@@ -17,7 +17,9 @@ import numpy as np
 from usvtool.ais import dma, generic, marinecadastre, nmea
 from usvtool.ais.clean import CleanOptions, clean
 from usvtool.ais.fixes import Fixes, check_bbox
-from usvtool.errors import UsvError, check_input_file
+from usvtool.ais.source import first_lines, keep_guard, scan
+from usvtool.budget import default_budget
+from usvtool.errors import UsvError
 from usvtool.tracks import Tracks, format_time
 
 FORMATS = ("nmea", "marinecadastre", "dma", "generic")
@@ -27,11 +29,18 @@ FORMATS = ("nmea", "marinecadastre", "dma", "generic")
 class ReadOptions:
     """``columns``: the ``--columns`` mapping (role: column name; read every CSV as generic);
     ``clean``: the cleaning's limits; ``bbox``: only the positions inside (lon min, lat min, lon
-    max, lat max; a CSV file is read block by block, holding only those)."""
+    max, lat max; a CSV file is read block by block, holding only those); ``max_memory``: the
+    budget (bytes; :mod:`usvtool.ais.source`)."""
 
     columns: dict = field(default_factory=dict)
     clean: CleanOptions = field(default_factory=CleanOptions)
     bbox: tuple[float, float, float, float] | None = None
+    max_memory: int | None = None
+
+    @property
+    def budget(self) -> int:
+        """``max_memory``, else :func:`usvtool.budget.default_budget`."""
+        return default_budget() if self.max_memory is None else self.max_memory
 
     def __post_init__(self):
         object.__setattr__(self, "bbox", check_bbox(self.bbox))
@@ -57,9 +66,6 @@ class ReadResult:
 
 def detect(path, columns: dict | None = None) -> str:
     """The format of ``path`` (module docstring)."""
-    from usvtool.csvtable import first_lines
-
-    check_input_file(path)
     first = next((line for line in first_lines(path, 5) if line.strip()), "")
     if nmea.detect(first):
         return "nmea"
@@ -73,17 +79,25 @@ def detect(path, columns: dict | None = None) -> str:
     return "generic"
 
 
-def read_file(path, options: ReadOptions = ReadOptions()) -> tuple[str, Fixes]:
-    """The format and the raw fixes of one file."""
+def read_file(path, options: ReadOptions = ReadOptions(), before: int = 0
+              ) -> tuple[str, Fixes, int]:  # fmt: skip
+    """The format, the raw fixes and the decompressed size of one file, refused when it does
+    not fit the budget with the ``before`` bytes of the files read before it
+    (:func:`usvtool.ais.source.scan`)."""
     kind = detect(path, options.columns)
-    box = options.bbox
+    box, budget = options.bbox, options.budget
+    whole = box is None or kind == "nmea"  # a CSV with --bbox is read block by block
+    size = scan(path, budget, "read it by parts with --bbox, or split it", whole,
+                before if whole else 0)  # fmt: skip
     if kind == "nmea":
         fx = nmea.read(path)
-        return kind, fx.within(box) if box is not None else fx
+        return kind, fx.within(box) if box is not None else fx, size
+    guard = keep_guard(path, budget)
     if kind == "generic":
-        return kind, generic.read(path, options.columns, box)
+        return kind, generic.read(path, options.columns, box, guard), size
     names = generic.header(path)
-    return kind, (marinecadastre if kind == "marinecadastre" else dma).read(path, names, box)
+    reader = marinecadastre if kind == "marinecadastre" else dma
+    return kind, reader.read(path, names, box, guard), size
 
 
 def read_ais(paths, options: ReadOptions = ReadOptions()) -> ReadResult:
@@ -91,14 +105,35 @@ def read_ais(paths, options: ReadOptions = ReadOptions()) -> ReadResult:
     paths = list(paths)
     if not paths:
         raise UsvError("ais read: give one or more AIS files")
-    parts, files = [], []
+    parts, files, size = [], [], 0
     for path in paths:
-        kind, fx = read_file(path, options)
+        kind, fx, n = read_file(path, options, size)
+        size += n
         parts.append(fx)
         files.append({"file": str(path), "format": kind, "positions": fx.n_positions,
                       "static": int(fx.static_mmsi.size), **fx.counts})  # fmt: skip
     tracks, counts = clean(Fixes.concatenate(parts), options.clean)
     if tracks.n_rows == 0:
-        raise UsvError(f"{', '.join(map(str, paths))[:200]}: no fix left after cleaning "
-                       f"({', '.join(f'{k} {v}' for k, v in counts.items())})")  # fmt: skip
+        raise UsvError(no_fix_left(paths, files, counts))
     return ReadResult(tracks, counts, files)
+
+
+def no_fix_left(paths, files: list[dict], counts: dict) -> str:
+    """The line refusing files of which no fix survives: what each file's format skipped and
+    what each cleaning rule dropped, the counts that are not zero.
+
+    >>> no_fix_left(["a.csv"], [{"file": "a.csv", "format": "generic", "positions": 2,
+    ...             "static": 2}], {"fixes_read": 2, "invalid_mmsi": 0, "invalid_position": 2,
+    ...             "fixes": 0})
+    'a.csv: no fix left after cleaning: 2 positions read; dropped: invalid_position 2'
+    """
+    names = ", ".join(map(str, paths))
+    skipped = [f"{f['file']}: {k} {v}" if len(files) > 1 else f"{k} {v}" for f in files
+               for k, v in f.items() if k not in ("file", "format", "positions", "static") and v]
+    rules = [f"{k} {v}" for k, v in counts.items()
+             if k not in ("fixes_read", "fixes", "vessels", "tracks") and v]  # fmt: skip
+    n = counts["fixes_read"]
+    text = f"{names}: no fix left after cleaning: {n} position{'' if n == 1 else 's'} read"
+    if skipped:
+        text += f" (skipped: {', '.join(skipped)})"
+    return text + (f"; dropped: {', '.join(rules)}" if rules else "")

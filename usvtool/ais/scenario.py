@@ -12,12 +12,21 @@ widened by ``--pad`` seconds on each side; either way cut to the own ship's trac
 track that comes within ``--radius`` metres of her recorded track during the window is a target
 replaying its track; lon/lat on a ``--map`` with a CRS, else the local UTM metre frame
 (:mod:`usvtool.traffic`).
+
+Text from the inputs (a path, a vessel's name) goes into the YAML's header comments with its
+line breaks and other control characters escaped (:func:`comment_text`), so it cannot end a
+comment. Beside the scenario, :data:`MANIFEST` lists the files written; the next ``ais
+scenario`` into that directory removes those of them it does not write again (a previous
+window's targets), and nothing else.
 """
 
 from __future__ import annotations
 
+import json
 import math
 import os
+import re
+import unicodedata
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -34,6 +43,10 @@ from usvtool.traffic import (
 )
 
 SCENARIO = "scenario.yaml"
+#: The list of the files ``ais scenario`` wrote into its directory.
+MANIFEST = "scenario.manifest.json"
+#: The names ``ais scenario`` writes (the manifest's other entries are never removed).
+_WRITES = re.compile(r"scenario\.yaml|route\.geojson|ais-\d+(-\d+)?\.csv")
 
 
 @dataclass(frozen=True)
@@ -88,8 +101,20 @@ def make_scenario(tracks: Tracks, options: ScenarioOptions,
     made = traffic_scenario(tracks, own, window, radius=options.radius, vessel=options.vessel,
                             controller=options.controller, duration=options.duration,
                             map_path=options.map, directory=directory, what=what)  # fmt: skip
-    return ScenarioResult({**made.files, SCENARIO: scenario_yaml(made.scenario, made.comments)},
+    comments = [comment_text(c) for c in made.comments]
+    return ScenarioResult({**made.files, SCENARIO: scenario_yaml(made.scenario, comments)},
                           {**made.figures, "encounter": encounter})  # fmt: skip
+
+
+def comment_text(text: str) -> str:
+    """``text`` on one line for a YAML comment: each control character and line or paragraph
+    separator (a comment ends at any YAML line break) as its Python escape.
+
+    >>> comment_text("a.csv\\nweather: {}\\u2028x")
+    'a.csv\\\\nweather: {}\\\\u2028x'
+    """
+    return "".join(repr(c)[1:-1] if unicodedata.category(c) in ("Cc", "Zl", "Zp") else c
+                   for c in text)  # fmt: skip
 
 
 def scenario_paths(directory: str | os.PathLike, result: ScenarioResult) -> list[Path]:
@@ -100,9 +125,10 @@ def scenario_paths(directory: str | os.PathLike, result: ScenarioResult) -> list
 
 def write_scenario(directory: str | os.PathLike, result: ScenarioResult,
                    extra: dict | None = None) -> list[Path]:  # fmt: skip
-    """Write the files into ``directory`` (made if missing; its parent must exist), and the
-    texts ``extra`` (path: text, e.g. the summary), all renamed at the end or none
-    (:class:`usvtool.atomic.staged`); the paths of :func:`scenario_paths`."""
+    """Write the files and their :data:`MANIFEST` into ``directory`` (made if missing; its
+    parent must exist), and the texts ``extra`` (path: text, e.g. the summary), all renamed at
+    the end or none (:class:`usvtool.atomic.staged`); then remove the files the previous
+    manifest there lists and these do not replace. The paths of :func:`scenario_paths`."""
     from usvtool.atomic import staged
 
     out = Path(directory)
@@ -111,12 +137,30 @@ def write_scenario(directory: str | os.PathLike, result: ScenarioResult,
     if not out.parent.is_dir():
         raise UsvError(f"-o {out}: directory {out.parent} does not exist")
     out.mkdir(exist_ok=True)
+    previous = written_before(out)
     paths = scenario_paths(out, result)
-    texts = [result.files[p.name] for p in paths] + list((extra or {}).values())
-    with staged(*paths, *(extra or {})) as temporaries:
+    names = [p.name for p in paths]
+    manifest = json.dumps({"written_by": "usvtool ais scenario", "files": names}, indent=1)
+    texts = [result.files[n] for n in names] + [manifest + "\n", *(extra or {}).values()]
+    with staged(*paths, out / MANIFEST, *(extra or {})) as temporaries:
         for text, tmp in zip(texts, temporaries, strict=True):
             tmp.write_text(text, encoding="utf-8")
+    for name in sorted(previous - set(names)):
+        (out / name).unlink(missing_ok=True)
     return paths
+
+
+def written_before(directory: Path) -> set[str]:
+    """The files of ``directory`` that its :data:`MANIFEST` says ``ais scenario`` wrote, and
+    still there (none without a readable manifest; only names it writes: never a path)."""
+    try:
+        listed = json.loads((directory / MANIFEST).read_text(encoding="utf-8"))["files"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return set()
+    if not isinstance(listed, list):
+        return set()
+    return {n for n in listed if isinstance(n, str) and _WRITES.fullmatch(n)
+            and (directory / n).is_file()}  # fmt: skip
 
 
 def _window(tracks: Tracks, options: ScenarioOptions) -> tuple[int, tuple[int, int], int | None]:

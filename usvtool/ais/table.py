@@ -15,6 +15,7 @@ import numpy as np
 
 from usvtool.ais.fixes import Fixes, from_columns
 from usvtool.errors import UsvError
+from usvtool.tracks import MAX_MMSI
 
 #: The roles a column may play, and the ones a file must have.
 ROLES = ("mmsi", "time", "lon", "lat", "sog", "cog", "heading", "length", "beam", "name",
@@ -25,7 +26,7 @@ NUMBERS = ("lon", "lat", "sog", "cog", "heading", "length", "beam")
 
 def header(path, delimiter: str = ",", skip_rows: int = 0) -> list[str]:
     """The column names on line ``skip_rows + 1`` of ``path``."""
-    from usvtool.csvtable import first_lines
+    from usvtool.ais.source import first_lines
 
     lines = first_lines(path, skip_rows + 1)
     if len(lines) <= skip_rows:
@@ -37,7 +38,8 @@ def read_columns(path, columns: dict[str, str], *, delimiter: str = ",",
                  time_formats: tuple[str, ...] = (), epoch_seconds: bool = False,
                  ship_types: dict[str, int] | None = None,
                  keep: tuple[str, frozenset[str], str] | None = None,
-                 bbox: tuple[float, float, float, float] | None = None) -> Fixes:  # fmt: skip
+                 bbox: tuple[float, float, float, float] | None = None,
+                 guard=None) -> Fixes:  # fmt: skip
     """The fixes of the CSV file ``path`` whose roles (:data:`ROLES`) are the columns
     ``columns`` (role: column name).
 
@@ -47,7 +49,12 @@ def read_columns(path, columns: dict[str, str], *, delimiter: str = ",",
     ``(column, values, count)``: only rows whose column holds one of the values are fixes, the
     others counted under ``count``. ``bbox`` (lon min, lat min, lon max, lat max): only the rows
     inside are read, block by block (counted as ``outside_bbox``), so that a day of a whole
-    coast is read for one region in the memory of that region's rows.
+    coast is read for one region in the memory of that region's rows; ``guard(kept)``, called
+    after each block, refuses more rows than the budget holds
+    (:func:`usvtool.ais.source.keep_guard`).
+
+    An MMSI is an integer; one written as a decimal with no fraction (``219021240.0``, a
+    pandas round trip) is read as that integer, any other fraction refused.
     """
     import pyarrow as pa
     import pyarrow.compute as pc
@@ -63,7 +70,7 @@ def read_columns(path, columns: dict[str, str], *, delimiter: str = ",",
     if absent:
         raise UsvError(f"{path}: line 1: no column {', '.join(absent)} (the header is "
                        f"{','.join(names)[:200]})")  # fmt: skip
-    types = {columns["mmsi"]: pa.int64(), columns["time"]: pa.string()}
+    types = {columns["mmsi"]: pa.float64(), columns["time"]: pa.string()}
     for role in NUMBERS:
         if role in columns:
             types[columns[role]] = pa.float64()
@@ -79,12 +86,18 @@ def read_columns(path, columns: dict[str, str], *, delimiter: str = ",",
         table = read_table(path, types, delimiter=delimiter)
     else:
         lon_name, lat_name = columns["lon"], columns["lat"]
+        n_inside = 0
 
         def inside(batch):
+            nonlocal n_inside
             lon = batch.column(lon_name).to_numpy(zero_copy_only=False)
             lat = batch.column(lat_name).to_numpy(zero_copy_only=False)
             with np.errstate(invalid="ignore"):
-                return (lon >= bbox[0]) & (lon <= bbox[2]) & (lat >= bbox[1]) & (lat <= bbox[3])
+                mask = (lon >= bbox[0]) & (lon <= bbox[2]) & (lat >= bbox[1]) & (lat <= bbox[3])
+            n_inside += int(mask.sum())
+            if guard is not None:
+                guard(n_inside)
+            return mask
 
         table, rows, n = read_filtered(path, types, inside, delimiter=delimiter)
         counts["outside_bbox"] = n - int(rows.size)
@@ -96,13 +109,13 @@ def read_columns(path, columns: dict[str, str], *, delimiter: str = ",",
         row = int(rows[row]) if rows is not None else row
         raise UsvError(f"{path}: line {line_of(path, row, 1, delimiter)}, column "
                        f"{columns['mmsi']}: empty: an MMSI is required")  # fmt: skip
+    mmsi = _mmsi(path, mmsi, columns["mmsi"], delimiter, rows)
     if keep is not None:
         column, values, label = keep
         kept = pc.is_in(table.column(column), value_set=pa.array(sorted(values)))
         kept = kept.to_numpy(zero_copy_only=False)
         counts[label] = int(kept.size - kept.sum())
-        table, times = table.filter(pa.array(kept)), times[kept]
-        mmsi = table.column(columns["mmsi"])
+        table, times, mmsi = table.filter(pa.array(kept)), times[kept], mmsi[kept]
 
     def number(role):
         return table.column(columns[role]).to_numpy(zero_copy_only=False).astype(float) \
@@ -113,10 +126,26 @@ def read_columns(path, columns: dict[str, str], *, delimiter: str = ",",
     if "ship_type" in columns:
         ship_type = _ship_types(table.column(columns["ship_type"]), ship_types)
     return from_columns(
-        mmsi.to_numpy(zero_copy_only=False), times, lon, lat, number("sog"), number("cog"),
+        mmsi, times, lon, lat, number("sog"), number("cog"),
         number("heading"), number("length"), number("beam"),
         table.column(columns["name"]) if "name" in columns else None, ship_type, counts,
     )  # fmt: skip
+
+
+def _mmsi(path, column, name: str, delimiter: str, rows) -> np.ndarray:
+    """The MMSIs of a column of numbers as integers; one line naming the first with a fraction
+    (a value beyond any MMSI stays beyond, dropped as ``invalid_mmsi``)."""
+    from usvtool.csvtable import line_of
+
+    values = column.to_numpy(zero_copy_only=False)
+    with np.errstate(invalid="ignore"):
+        fraction = values != np.round(values)
+    if fraction.any():
+        row = int(np.argmax(fraction))
+        line = line_of(path, int(rows[row]) if rows is not None else row, 1, delimiter)
+        raise UsvError(f"{path}: line {line}, column {name}: {float(values[row])!r} is not an "
+                       "MMSI (an integer)")  # fmt: skip
+    return np.where(np.abs(values) <= MAX_MMSI + 1, values, -1).astype(np.int64)
 
 
 def _ship_types(column, table: dict[str, int] | None) -> np.ndarray:

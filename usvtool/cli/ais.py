@@ -5,7 +5,14 @@ from __future__ import annotations
 
 import click
 
-from usvtool.cli.options import NON_NEGATIVE, POSITIVE, OutputPath, emit, summary_option
+from usvtool.cli.options import (
+    NON_NEGATIVE,
+    POSITIVE,
+    OutputPath,
+    emit,
+    max_memory_option,
+    summary_option,
+)
 
 
 @click.group()
@@ -38,6 +45,23 @@ def _bbox(ctx, param, value):
     return box
 
 
+def _known(kind: str):
+    """A callback refusing (usage error) a ``kind`` name usvtool simulate does not know: a
+    vessel preset or a registered controller, listed."""
+
+    def check(ctx, param, value):
+        if kind == "vessel":
+            from usvtool.sim.vessel import PRESETS as names
+        else:
+            from usvtool.sim.controllers import CONTROLLERS as names
+        if value not in names:
+            raise click.BadParameter(f"{value!r} is not a {kind} usvtool simulate knows "
+                                     f"({', '.join(sorted(names))})")  # fmt: skip
+        return value
+
+    return check
+
+
 @ais.command("read")
 @click.argument("inputs", metavar="FILE...", nargs=-1, required=True,
                 type=click.Path(dir_okay=False))  # fmt: skip
@@ -54,8 +78,9 @@ def _bbox(ctx, param, value):
 @click.option("--bbox", callback=_bbox, metavar="LON_MIN,LAT_MIN,LON_MAX,LAT_MAX",
               help="Keep only the positions inside this box (degrees); a CSV is read block by "
               "block, holding only those.")  # fmt: skip
+@max_memory_option
 @summary_option
-def read(inputs, output, columns, max_gap, max_speed, bbox, summary_path) -> None:
+def read(inputs, output, columns, max_gap, max_speed, bbox, max_memory, summary_path) -> None:
     """Read AIS files (MarineCadastre, DMA, NMEA, any CSV; gzip, zstd or zip) into one tidy
     tracks table, cleaned (each rule counted in the summary on stdout)."""
     from usvtool.ais import CleanOptions, ReadOptions, read_ais
@@ -65,7 +90,8 @@ def read(inputs, output, columns, max_gap, max_speed, bbox, summary_path) -> Non
 
     check_suffix(output, "-o")
     check_outputs([("-o", output), ("--summary", summary_path)])
-    options = ReadOptions(parse_columns(columns), CleanOptions(max_gap, max_speed), bbox)
+    options = ReadOptions(parse_columns(columns), CleanOptions(max_gap, max_speed), bbox,
+                          max_memory)  # fmt: skip
     result = read_ais(inputs, options)
     summary = {"output": output, **result.summary()}
     _write_with_summary(output, summary_path, summary, lambda tmp: write_tracks(tmp,
@@ -87,17 +113,22 @@ def read(inputs, output, columns, max_gap, max_speed, bbox, summary_path) -> Non
               help="The common time grid the tracks are interpolated on (seconds).")  # fmt: skip
 @click.option("--min-speed", type=NON_NEGATIVE, default=1.0, show_default=True, metavar="KN",
               help="At the CPA one of the two makes at least this speed (knots).")  # fmt: skip
+@max_memory_option
 @summary_option
-def encounters(tracks, output, cpa, tcpa, bbox, step, min_speed, summary_path) -> None:
+def encounters(tracks, output, cpa, tcpa, bbox, step, min_speed, max_memory,
+               summary_path) -> None:  # fmt: skip
     """Every pair of vessels in TRACKS whose interpolated tracks come within --cpa: window,
     CPA, TCPA at first detection and the COLREGs class of each then."""
     from usvtool.ais.encounters import EncounterOptions, find_encounters
+    from usvtool.ais.source import read_tracks_within
     from usvtool.atomic import check_outputs
-    from usvtool.tracks import read_tracks
+    from usvtool.budget import default_budget
 
     check_outputs([("-o", output), ("--summary", summary_path)])
-    options = EncounterOptions(cpa, tcpa, bbox, step, min_speed)
-    result = find_encounters(read_tracks(tracks), options)
+    options = EncounterOptions(cpa, tcpa, bbox, step, min_speed, max_memory)
+    budget = default_budget() if max_memory is None else max_memory
+    result = find_encounters(read_tracks_within(tracks, budget, "split it (usvtool ais read "
+                                                "--bbox)"), options, tracks)  # fmt: skip
     summary = {"output": output, **result.summary()}
     _write_with_summary(output, summary_path, summary,
                         lambda tmp: tmp.write_text(result.to_csv(), encoding="utf-8"))  # fmt: skip
@@ -122,9 +153,9 @@ def encounters(tracks, output, cpa, tcpa, bbox, step, min_speed, summary_path) -
               help="Vessels that come within this of the own ship are targets.")  # fmt: skip
 @click.option("--map", "map_path", type=click.Path(dir_okay=False), metavar="GRID.tif",
               help="A navigation grid with a CRS: the scenario in lon/lat on it.")  # fmt: skip
-@click.option("--vessel", default="udwa-usv", show_default=True,
-              help="The USV's vessel preset.")  # fmt: skip
-@click.option("--controller", default="udwa", show_default=True,
+@click.option("--vessel", default="udwa-usv", show_default=True, callback=_known("vessel"),
+              help="The USV's vessel preset (usvtool simulate's).")  # fmt: skip
+@click.option("--controller", default="udwa", show_default=True, callback=_known("controller"),
               help="The scenario's controller (usvtool simulate --controller runs another).")
 @click.option("--duration", type=POSITIVE, metavar="S",
               help="The run's duration [default: twice the window].")  # fmt: skip
@@ -141,14 +172,16 @@ def scenario(tracks, output, own, start, end, encounter, encounters_path, pad, r
         scenario_paths,
         write_scenario,
     )
+    from usvtool.ais.source import read_tracks_within
     from usvtool.atomic import check_outputs
+    from usvtool.budget import default_budget
     from usvtool.cli.options import summary_text
-    from usvtool.tracks import read_tracks
 
     check_outputs([("--summary", summary_path)])
     options = ScenarioOptions(own, start, end, encounter, encounters_path, radius, map_path,
                               vessel, controller, pad, duration)  # fmt: skip
-    result = make_scenario(read_tracks(tracks), options, output)
+    found = read_tracks_within(tracks, default_budget(), "cut it (usvtool ais read --bbox)")
+    result = make_scenario(found, options, output)
     paths = scenario_paths(output, result)
     summary = {"output": str(Path(output) / "scenario.yaml"),
                "files": [str(p) for p in paths[1:]], **result.summary()}  # fmt: skip
