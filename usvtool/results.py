@@ -33,6 +33,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+import string
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -44,6 +45,8 @@ KINDS = ("routes", "runs", "functions")
 FILES = {"routes": "route.geojson", "runs": "trace.csv"}
 #: The metrics of ``timings.csv``: a job's wall time, and the stage's own figure.
 TIMING_METRICS = ("wall_time_s", "planning_time_s")
+#: The characters a name keeps in a file name (:func:`file_name`).
+FILE_NAME_CHARACTERS = frozenset(string.ascii_letters + string.digits + "._+-")
 
 
 @dataclass(frozen=True)
@@ -157,5 +160,21 @@ def timings_path(table: str | Path) -> Path:
 
 
 def job_dir(table: str | Path, row: Row) -> Path:
-    """The directory of a row's job: ``<the table's directory>/<kind>/<key>``."""
-    return Path(table).parent / row.kind / row.key
+    """The directory of a row's job: ``<the table's directory>/<kind>/<key>`` (the key as a
+    :func:`file_name`: the batch's hex keys are their own)."""
+    return Path(table).parent / row.kind / file_name(row.key)
+
+
+def file_name(name: str) -> str:
+    """``name`` (a key, case, method, a figure's id made of them...) as one file name, reversibly:
+    letters, digits and ``._+-`` kept, every other character as the ``%XX`` of its UTF-8 bytes,
+    ``.`` and ``..`` alone (a folder's names) as ``%2E``, so that no name read from a table or
+    a job's files makes a subfolder or reaches outside the folder it is put in.
+
+    >>> file_name("routes-env1-map"), file_name("x/../a b"), file_name(".."), file_name("5%")
+    ('routes-env1-map', 'x%2F..%2Fa%20b', '%2E%2E', '5%25')
+    """
+    if name in (".", ".."):
+        return "%2E" * len(name)
+    return "".join(c if c in FILE_NAME_CHARACTERS else "".join(f"%{b:02X}" for b in c.encode())
+                   for c in name)  # fmt: skip

@@ -29,15 +29,35 @@ def figure(name: str, shade: int) -> Figure:
 
 
 @pytest.fixture
-def make(tmp_path, monkeypatch):
-    """``make(out, shade)``: the report of a one-row table into ``out``, its two figures drawn
-    in ``shade``."""
-    table = tmp_path / "metrics.csv"
-    write_results(table, [Row("0a", "routes", "env1", "iwso", 1, "length_m", "701.5")])
+def table(tmp_path) -> Path:
+    """A one-row table in ``batch/`` whose job's folder holds its record (and no other file)."""
+    job = tmp_path / "batch" / "routes" / "0a"
+    job.mkdir(parents=True)
+    (job / "job.json").write_text(json.dumps({"kind": "routes", "key": "0a", "files": {}}))
+    write_results(tmp_path / "batch" / "metrics.csv",
+                  [Row("0a", "routes", "env1", "iwso", 1, "length_m", "701.5")])  # fmt: skip
+    return tmp_path / "batch" / "metrics.csv"
 
-    def run(out: Path, shade: int = 0):
+
+@pytest.fixture
+def draw(monkeypatch):
+    """``draw(shade, names)``: the report's one section holds the figures ``names`` drawn in
+    ``shade``."""
+
+    def patch(shade: int = 0, names=("f1", "f2")) -> None:
         monkeypatch.setattr(build, "sections", lambda results, workers=1: [
-            Section("s", "S", blocks=[figure("f1", shade), figure("f2", shade)])])  # fmt: skip
+            Section("s", "S", blocks=[figure(n, shade) for n in names])])  # fmt: skip
+
+    return patch
+
+
+@pytest.fixture
+def make(table, draw):
+    """``make(out, shade, names)``: the report of the table into ``out``, its figures
+    ``names`` drawn in ``shade``."""
+
+    def run(out: Path, shade: int = 0, names=("f1", "f2")):
+        draw(shade, names)
         return build.make_report(build.ReportOptions((str(table),), str(out), pdf=False))
 
     return run
@@ -68,15 +88,15 @@ def test_a_full_disk_leaves_no_folder_and_names_the_file(make, tmp_path, monkeyp
     with pytest.raises(UsvError, match=f"^{re.escape(str(out / where))}: cannot write it: No "
                                        "space left on device$"):  # fmt: skip
         make(out)
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["metrics.csv"]  # no report/, data/
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["batch"]  # no report/, data/
 
 
 def test_a_failure_leaves_an_earlier_report_as_it_was(make, tmp_path, monkeypatch):
     out = tmp_path / "report"
     make(out, shade=10)
     before = tree(out)
-    assert sorted(before) == ["data", "data/f1.csv", "data/f2.csv", "figures", "figures/f1.png",
-                              "figures/f2.png", "index.html"]  # fmt: skip
+    assert sorted(before) == [".usvtool-report.json", "data", "data/f1.csv", "data/f2.csv",
+                              "figures", "figures/f1.png", "figures/f2.png", "index.html"]
     full_disk_at(monkeypatch, "f2.csv")
     with pytest.raises(UsvError, match="f2.csv: cannot write it"):
         make(out, shade=200)
@@ -130,3 +150,92 @@ def test_make_report_ends_with_the_summary_line(make, tmp_path):
 
     assert r.stdout.splitlines()[-1] == summary_line(summary)
     assert summary_line(summary).startswith(f"report: {tmp_path}/build/report/index.html, no PDF")
+
+
+#: A user's own files in the report's folder, its figures/ and its data/.
+USERS = {"notes.txt": b"mine", "readme.md": b"# mine", "data/mydata.csv": b"a,b\n1,2\n",
+         "figures/holiday.png": b"\x89PNG holiday", "data/f3.csv.bak": b"kept"}  # fmt: skip
+
+
+def test_user_files_survive_and_only_the_reports_own_files_it_no_longer_writes_go(make, tmp_path):
+    out = tmp_path / "report"
+    for name, content in USERS.items():
+        (out / name).parent.mkdir(parents=True, exist_ok=True)
+        (out / name).write_bytes(content)
+    make(out, names=("f1", "f2", "f3"))
+    assert {n: tree(out)[n] for n in USERS} == USERS
+    make(out, names=("f1", "f2"))  # f3 no longer drawn
+    make(out, names=("f2",))  # nor f1
+    after = tree(out)
+    assert {n: after[n] for n in USERS} == USERS  # every file of the user's, as it was
+    assert sorted(set(after) - set(USERS)) == [".usvtool-report.json", "data", "data/f2.csv",
+                                               "figures", "figures/f2.png", "index.html"]
+    assert json.loads(after[".usvtool-report.json"]) == {
+        "files": ["data/f2.csv", "figures/f2.png", "index.html"]}
+
+
+def test_a_report_without_a_list_of_its_files_before_it_removes_nothing(make, tmp_path):
+    """An older usvtool's report left no list: its figures stay (not provably the report's)."""
+    out = tmp_path / "report"
+    make(out, names=("f1", "f2"))
+    (out / ".usvtool-report.json").unlink()
+    make(out, names=("f2",))
+    assert sorted(p.name for p in (out / "figures").iterdir()) == ["f1.png", "f2.png"]
+    make(out, names=())  # this one's list names f2 only: f2 goes, f1 stays
+    assert sorted(p.name for p in (out / "figures").iterdir()) == ["f1.png"]
+
+
+@pytest.mark.parametrize("listed", [["../outside.txt"], ["figures/../../outside.txt"],
+                                    ["data/x/../../../outside.txt"], ["notes.txt"], "x"])
+def test_a_list_naming_a_file_the_report_never_writes_is_refused(make, tmp_path, listed):
+    out = tmp_path / "report"
+    make(out, names=("f1",))
+    (tmp_path / "outside.txt").write_text("precious")
+    (out / "notes.txt").write_text("mine")
+    (out / ".usvtool-report.json").write_text(json.dumps({"files": listed}))
+    before = tree(tmp_path)
+    with pytest.raises(UsvError, match=rf"^{re.escape(str(out / '.usvtool-report.json'))}: not "
+                                       r"the list of a report's files \("):  # fmt: skip
+        make(out, names=("f2",))
+    assert tree(tmp_path) == before
+
+
+@pytest.mark.parametrize("link", ["data", "figures"])
+def test_a_link_below_the_output_folder_is_refused_in_one_line(usv, table, draw, tmp_path, link):
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    (elsewhere / "precious.csv").write_text("precious")
+    out = tmp_path / "report"
+    draw(names=("f1",))
+    assert usv("report", table, "-o", out, "--no-pdf").exit_code == 0
+    draw(names=("f2",))  # the report of f1 is stale: f1.png and f1.csv would go
+    shutil.rmtree(out / link)
+    (out / link).symlink_to(elsewhere, target_is_directory=True)
+    before = tree(tmp_path)
+    r = usv("report", table, "-o", out, "--no-pdf")
+    assert (r.exit_code, r.stdout) == (1, "")
+    assert r.stderr.splitlines() == [
+        f"Error: {out / link}: a symbolic link (to {elsewhere}) in the output directory {out}: "
+        "nothing is written or removed through a link below it; remove the link or choose "
+        "another directory"]
+    assert tree(tmp_path) == before  # precious.csv and the report as they were
+
+
+def test_a_file_of_the_report_replaced_by_a_link_is_refused(make, tmp_path):
+    out = tmp_path / "report"
+    make(out, names=("f1",))
+    (tmp_path / "precious.html").write_text("precious")
+    (out / "index.html").unlink()
+    (out / "index.html").symlink_to(tmp_path / "precious.html")
+    with pytest.raises(UsvError, match="index.html: a symbolic link"):
+        make(out, names=("f1",))
+    assert (tmp_path / "precious.html").read_text() == "precious"
+
+
+def test_an_output_folder_that_is_a_link_is_written_through(make, tmp_path):
+    """-o names the link: the user chose where it points."""
+    (tmp_path / "real").mkdir()
+    (tmp_path / "link").symlink_to(tmp_path / "real", target_is_directory=True)
+    make(tmp_path / "link", names=("f1",))
+    assert sorted(tree(tmp_path / "real")) == [".usvtool-report.json", "data", "data/f1.csv",
+                                               "figures", "figures/f1.png", "index.html"]

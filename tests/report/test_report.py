@@ -211,3 +211,44 @@ def test_an_output_that_is_a_file_is_refused(batch, tmp_path):
     r = usvtool("report", batch, "-o", tmp_path / "out")
     assert r.returncode in (1, 2) and "out" in r.stderr
     assert (tmp_path / "out").read_text() == "keep"
+
+
+def copy_of(batch: Path, tmp_path: Path) -> Path:
+    """A copy of the fixture's batch (its table and job folders) to spoil: its table."""
+    return shutil.copytree(batch.parent, tmp_path / "batch") / "metrics.csv"
+
+
+def files_under(root: Path, leave_out: Path) -> dict[str, bytes | None]:
+    """Every file and folder below ``root`` but those below ``leave_out``, with its bytes."""
+    return {str(p): p.read_bytes() if p.is_file() else None for p in sorted(root.rglob("*"))
+            if not p.is_relative_to(leave_out)}  # fmt: skip
+
+
+def error_line(r) -> str:
+    """The one line of a refusal: exit 1, no traceback, nothing on stdout."""
+    assert (r.returncode, r.stdout) == (1, ""), r.stderr
+    assert len(r.stderr.splitlines()) == 1 and "Traceback" not in r.stderr, r.stderr
+    return r.stderr.strip()
+
+
+def test_a_case_naming_a_path_writes_in_the_report_folder_only_under_an_encoded_name(
+        batch, tmp_path):  # fmt: skip
+    table = copy_of(batch, tmp_path)
+    case = "x/../../../outside/<PWNED>"
+    table.write_text(table.read_text().replace(",env1,", f",{case},"))
+    out = tmp_path / "r" / "out"
+    out.parent.mkdir()
+    before = files_under(tmp_path, out)
+    r = usvtool("report", table, "-o", out, "--no-pdf")
+    assert r.returncode == 0, r.stderr
+    assert files_under(tmp_path, out) == before  # nothing written beside the report's folder
+    encoded = "routes-x%2F..%2F..%2F..%2Foutside%2F%3CPWNED%3E"
+    for name in ("map", "convergence", "boxes"):
+        assert (out / "figures" / f"{encoded}-{name}.png").is_file()
+        assert (out / "data" / f"{encoded}-{name}.csv").is_file()
+    assert sorted(p.name for p in out.iterdir()) == [".usvtool-report.json", "data", "figures",
+                                                     "index.html"]  # fmt: skip
+    page = (out / "index.html").read_text(encoding="utf-8")
+    assert "<h3>Chart x/../../../outside/&lt;PWNED&gt;</h3>" in page  # its name, escaped
+    assert "<PWNED>" not in page
+    assert f'download="{encoded}-map.csv"' in page

@@ -2,11 +2,13 @@
 
 Writes into the output directory ``index.html`` (self-contained), ``report.pdf`` (the same page
 laid out by WeasyPrint; skipped with a one-line hint when WeasyPrint cannot run),
-``figures/<id>.png`` and ``data/<id>.csv`` (each figure's picture and data). Every file is
-staged and renamed together (:func:`usvtool.report.output.write_together`), ``index.html``
-last; the directories made for them are removed again when that fails (a full disk), so a
-failed report leaves the output directory as it was. Files of an earlier report that this one
-no longer has are then removed from ``figures/`` and ``data/``.
+``figures/<file>.png`` and ``data/<file>.csv`` (each figure's picture and data; ``<file>`` its
+id as a :func:`usvtool.results.file_name`) and the list of them all (:mod:`.manifest`). Every
+file is staged and renamed together (:func:`usvtool.report.output.write_together`, which writes
+through no link below the directory), ``index.html`` last; the directories made for them are
+removed again when that fails (a full disk), so a failed report leaves the output directory as
+it was. The files the list of the report before lists and this one no longer writes are then
+removed, and no other.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from usvtool.errors import UsvError
+from usvtool.report import manifest
 from usvtool.report.data import load
 from usvtool.report.document import Section
 from usvtool.report.output import write_together
@@ -100,6 +103,20 @@ def sections(results, workers: int = 1) -> list[Section]:
     return [s for s in built if s is not None]
 
 
+def outputs(out: Path, page: str, document: bytes | None,
+            parts: list[Section]) -> dict[Path, bytes]:  # fmt: skip
+    """Every file of the report by its path in ``out``, ``index.html`` first (renamed last),
+    the :mod:`.manifest` listing them last."""
+    files = {out / "index.html": page.encode("utf-8")}
+    if document is not None:
+        files[out / "report.pdf"] = document
+    for f in (f for s in parts for f in s.figures()):
+        files[out / "figures" / f"{f.file}.png"] = f.png
+        files[out / "data" / f"{f.file}.csv"] = f.data.encode("utf-8")
+    files[out / manifest.NAME] = manifest.text(out, list(files))
+    return files
+
+
 def make_report(options: ReportOptions) -> ReportResult:
     out = Path(options.out)
     if out.exists() and not out.is_dir():
@@ -118,20 +135,8 @@ def make_report(options: ReportOptions) -> ReportResult:
             document, pages, main_pages = pdf(html(TITLE, subtitle, parts, "print"))
         except PdfUnavailable as e:
             hint = str(e)
-    figures = [f for s in parts for f in s.figures()]
-    files = {out / "index.html": page.encode("utf-8")}
-    if document is not None:
-        files[out / "report.pdf"] = document
-    for f in figures:
-        files[out / "figures" / f"{f.id}.png"] = f.png
-        files[out / "data" / f"{f.id}.csv"] = f.data.encode("utf-8")
-    write_together(files)
-    for d in ("figures", "data"):
-        if not (out / d).is_dir():
-            continue
-        for stale in set((out / d).iterdir()) - set(files):
-            if stale.is_file() and not stale.name.startswith("."):
-                stale.unlink()
+    files = outputs(out, page, document, parts)
+    write_together(files, out, remove=sorted(manifest.previous(out) - set(files)))
     verdicts = claims.counts(parts)
     return ReportResult(out, parts, len(files[out / "index.html"]),
                         None if document is None else len(document), pages, hint,

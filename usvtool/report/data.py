@@ -24,7 +24,7 @@ import numpy as np
 
 from usvtool.errors import UsvError
 from usvtool.report import values
-from usvtool.results import Row, job_dir, read_results, timings_path
+from usvtool.results import Row, file_name, job_dir, read_results, timings_path
 
 
 def method_order(name: str, order: Sequence[str] = ()) -> tuple:
@@ -70,7 +70,7 @@ class JobResults:
         """A route's grid job directory (``<batch>/grids/<key>``, the key in ``job.json``'s
         ``grid``), when it is there."""
         key = self.config.get("grid")
-        path = self.dir.parent.parent / "grids" / str(key)
+        path = self.dir.parent.parent / "grids" / file_name(str(key))
         return path if key and path.is_dir() else None
 
     def text(self, metric: str) -> str | None:

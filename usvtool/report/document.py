@@ -14,6 +14,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 
+from usvtool.results import file_name
+
 MAIN, APPENDIX, HTML = "main", "appendix", "html"
 PLACEMENTS = (MAIN, APPENDIX, HTML)
 
@@ -39,7 +41,7 @@ class Table:
 @dataclass(frozen=True)
 class Figure:
     """A figure: ``png`` bytes and ``data``, the CSV of what it plots (written beside the
-    report as ``data/<id>.csv``)."""
+    report as ``figures/<file>.png`` and ``data/<file>.csv``)."""
 
     id: str
     title: str
@@ -47,6 +49,12 @@ class Figure:
     png: bytes
     data: str
     placement: str = MAIN
+
+    @property
+    def file(self) -> str:
+        """The name of its files (without the suffix): its id as a
+        :func:`usvtool.results.file_name` (an id holds a case's name)."""
+        return file_name(self.id)
 
 
 @dataclass

@@ -107,10 +107,10 @@ def _tolerances_path(options: CompareOptions) -> str | None:
 
 def _write(result: CompareResult, out: Path) -> None:
     """Render everything, then write the three files together (``DIR`` made when missing,
-    removed again when the writing fails)."""
+    removed again when the writing fails; no link below it written through)."""
     if out.exists() and not out.is_dir():
         raise UsvError(f"{out}: exists and is not a directory")
     texts = (result.to_html(), result.to_json(), result.to_markdown())
     write_together(
-        {out / name: text.encode("utf-8") for name, text in zip(FILES, texts, strict=True)}
+        {out / name: text.encode("utf-8") for name, text in zip(FILES, texts, strict=True)}, out
     )

@@ -31,6 +31,7 @@ from usvtool import __version__
 from usvtool.errors import UsvError
 from usvtool.report.data import JobResults, Results, seed_text
 from usvtool.report.document import APPENDIX, HTML, Cell, Section, Table
+from usvtool.results import file_name
 from usvtool.yamlfile import read_yaml
 
 #: The repository this report's source lives in: paths inside it are shown relative to it.
@@ -92,6 +93,12 @@ def slug(job: JobResults) -> str:
     return f"{case}-{job.method}" + ("" if job.seed is None else f"-s{job.seed}")
 
 
+def rerun(name: str) -> str:
+    """The path of an example's output ``name`` in ``rerun/``, as a
+    :func:`usvtool.results.file_name` (a case's ``../`` stays in ``rerun/``)."""
+    return f"{RERUN_DIR}/{file_name(name)}"
+
+
 @cache
 def _grid_case(grid_dir: Path) -> str:
     """The case (chart) of a grid job's directory, from its ``job.json``."""
@@ -109,11 +116,11 @@ def command(job: JobResults) -> str:
     words = []
     for arg in map(str, job.config.get("args") or ()):
         if arg in outputs:
-            words.append(f"{RERUN_DIR}/{slug(job)}-{arg}")
+            words.append(rerun(f"{slug(job)}-{arg}"))
         elif arg.startswith("../") or os.path.isabs(arg):
             path = (job.dir / arg).resolve()
             if path.parent.parent.name == "grids" and (path.parent / "job.json").is_file():
-                words.append(f"{RERUN_DIR}/{_grid_case(path.parent)}-{path.name}")
+                words.append(rerun(f"{_grid_case(path.parent)}-{path.name}"))
             else:
                 words.append(shown_path(path))
         else:
