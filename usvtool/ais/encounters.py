@@ -116,8 +116,8 @@ def find_encounters(tracks: Tracks, options: EncounterOptions = EncounterOptions
     first, stop = tracks.track_bounds()
     if not (stop - first >= 2).any():
         inside = " inside --bbox" if options.bbox is not None else ""
-        raise UsvError(f"{source}: no track of two fixes or more{inside} ({tracks.n_rows} fixes "
-                       f"in {tracks.n_tracks} tracks): nothing to interpolate")  # fmt: skip
+        raise UsvError(f"{source}: no track of two fixes or more{inside} to interpolate (fixes: "
+                       f"{tracks.n_rows}, tracks: {tracks.n_tracks})")  # fmt: skip
     step_ns = round(options.step * NS)
     budget = default_budget() if options.max_memory is None else options.max_memory
     grid = _Samples(tracks, step_ns, budget)

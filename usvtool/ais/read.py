@@ -23,6 +23,8 @@ from usvtool.errors import UsvError
 from usvtool.tracks import Tracks, format_time
 
 FORMATS = ("nmea", "marinecadastre", "dma", "generic")
+#: A file's figures in the summary that count no skipped line or row.
+_NOT_SKIPPED = ("file", "format", "positions", "static", "lines")
 
 
 @dataclass(frozen=True)
@@ -129,7 +131,7 @@ def no_fix_left(paths, files: list[dict], counts: dict) -> str:
     """
     names = ", ".join(map(str, paths))
     skipped = [f"{f['file']}: {k} {v}" if len(files) > 1 else f"{k} {v}" for f in files
-               for k, v in f.items() if k not in ("file", "format", "positions", "static") and v]
+               for k, v in f.items() if k not in _NOT_SKIPPED and v]
     rules = [f"{k} {v}" for k, v in counts.items()
              if k not in ("fixes_read", "fixes", "vessels", "tracks") and v]  # fmt: skip
     n = counts["fixes_read"]
