@@ -252,3 +252,47 @@ def test_a_case_naming_a_path_writes_in_the_report_folder_only_under_an_encoded_
     assert "<h3>Chart x/../../../outside/&lt;PWNED&gt;</h3>" in page  # its name, escaped
     assert "<PWNED>" not in page
     assert f'download="{encoded}-map.csv"' in page
+
+
+def test_a_table_without_its_job_folders_is_refused_naming_them_unless_allowed(batch, tmp_path):
+    table = tmp_path / "alone" / "metrics.csv"
+    table.parent.mkdir()
+    shutil.copy(batch, table)
+    rows = [line.split(",") for line in table.read_text().splitlines()[1:]]
+    jobs = sorted({(key, kind) for key, kind, *_ in rows})
+    n = len(jobs)
+    folders = [str(tmp_path / "alone" / kind / key) for key, kind in jobs[:3]]
+    out = tmp_path / "report"
+    line = error_line(usvtool("report", table, "-o", out, "--no-pdf"))
+    assert line == (f"Error: {n} of {n} job folders are missing ({', '.join(folders)} and "
+                    f"{n - 3} more): give the batch's table with its job folders beside it, or "
+                    "--allow-missing to report without their files")
+    assert not out.exists()
+    r = usvtool("report", table, "-o", out, "--no-pdf", "--allow-missing")
+    assert r.returncode == 0, r.stderr
+    assert r.stderr.splitlines() == [
+        f"Warning: {n} job folders missing (--allow-missing): the report is without their "
+        "files; its methods section lists them"]
+    assert json.loads(r.stdout)["missing_jobs"] == n
+    missing = _table_html((out / "index.html").read_text(encoding="utf-8"), "methods-missing")
+    assert missing.count("<tr>") == n + 1  # the header and one row a folder
+    assert all(f">{f}<" in missing for f in folders)
+
+
+@pytest.mark.parametrize("kind, name", [("runs", "trace.csv"), ("routes", "route.geojson"),
+                                        ("grids", "preview.png")])  # fmt: skip
+def test_a_job_file_changed_since_its_run_is_refused_naming_it_and_its_job(
+        batch, tmp_path, kind, name):  # fmt: skip
+    table = copy_of(batch, tmp_path)
+    folder = sorted((table.parent / kind).iterdir())[0]
+    with open(folder / name, "ab") as f:
+        f.write(b"\n")
+    out = tmp_path / "report"
+    line = error_line(usvtool("report", table, "-o", out, "--no-pdf"))
+    assert line == (f"Error: {folder / name}: changed since job {folder.name} ran (its SHA-256 "
+                    "is not the one its job.json records): run the batch again")
+    assert not out.exists()
+    (folder / name).unlink()
+    line = error_line(usvtool("report", table, "-o", out, "--no-pdf", "--allow-missing"))
+    assert line == (f"Error: {folder / name}: gone since job {folder.name} ran (its job.json "
+                    "lists it): run the batch again")

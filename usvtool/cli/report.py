@@ -14,22 +14,30 @@ from usvtool.cli.options import emit, summary_option, write_summary
               help="Directory of index.html, report.pdf, figures/ and data/.")  # fmt: skip
 @click.option("--pdf/--no-pdf", default=True, show_default=True,
               help="Also write report.pdf (WeasyPrint).")  # fmt: skip
+@click.option("--allow-missing", is_flag=True,
+              help="Report without the job folders that are missing (the methods section "
+                   "lists them) rather than refuse.")  # fmt: skip
 @summary_option
-def report(tables, output, pdf, summary_path) -> None:
+def report(tables, output, pdf, allow_missing, summary_path) -> None:
     """The comparison report of results tables (usvtool batch's metrics.csv and the job files
     beside it): index.html, self-contained, and report.pdf from the same templates.
 
     Without WeasyPrint's system libraries the HTML is still written and one line on stderr
-    says what to install.
+    says what to install. Every job folder the tables point to must be there, its files the
+    ones its job.json records.
     """
     from usvtool.atomic import check_outputs
     from usvtool.report.build import ReportOptions, make_report
 
     check_outputs([("--summary", summary_path)])
-    result = make_report(ReportOptions(tuple(tables), output, pdf, order=stage_methods()))
+    result = make_report(ReportOptions(tuple(tables), output, pdf, order=stage_methods(),
+                                       allow_missing=allow_missing))  # fmt: skip
     summary = result.summary()
     if result.hint:
         click.echo(f"Warning: {result.hint}", err=True)
+    if result.missing:
+        click.echo(f"Warning: {len(result.missing)} job folders missing (--allow-missing): the "
+                   "report is without their files; its methods section lists them", err=True)
     if summary_path:
         write_summary(summary_path, summary)
     emit(summary)

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from usvtool.errors import UsvError
-from usvtool.report import manifest
+from usvtool.report import evidence, manifest
 from usvtool.report.data import load
 from usvtool.report.document import Section
 from usvtool.report.output import write_together
@@ -44,13 +44,16 @@ class ReportOptions:
     """``tables``: results tables (``usvtool batch``'s ``metrics.csv``); ``out``: the report's
     directory; ``pdf``: also write ``report.pdf``; ``workers``: processes building the
     sections (None: the cores, at most 4); ``order``: the methods in the order the stages'
-    registries list them (``usvtool report`` gives it; :func:`usvtool.report.data.load`)."""
+    registries list them (``usvtool report`` gives it; :func:`usvtool.report.data.load`);
+    ``allow_missing``: report without the job folders that are missing rather than refuse
+    (:func:`usvtool.report.evidence.check`)."""
 
     tables: tuple[str, ...]
     out: str = "build/report"
     pdf: bool = True
     workers: int | None = None
     order: tuple[str, ...] = ()
+    allow_missing: bool = False
 
 
 @dataclass
@@ -63,6 +66,7 @@ class ReportResult:
     hint: str | None = None
     verdicts: dict[str, int] = field(default_factory=dict)
     main_pages: int | None = None  # the PDF's pages before the appendix
+    missing: list[Path] = field(default_factory=list)  # job folders reported without
 
     def summary(self) -> dict:
         return {
@@ -77,6 +81,7 @@ class ReportResult:
             "tables": sum(len(s.tables()) for s in self.sections),
             "claims": self.verdicts,
             "pdf_hint": self.hint,
+            "missing_jobs": len(self.missing),
         }
 
 
@@ -124,6 +129,7 @@ def make_report(options: ReportOptions) -> ReportResult:
     if not out.parent.is_dir():
         raise UsvError(f"-o {out}: directory {out.parent} does not exist")
     results = load(options.tables, options.order)
+    results.missing = evidence.check(results, options.allow_missing)
     parts = sections(results, options.workers or min(os.cpu_count() or 1, 4))
     subtitle = (f"{len(results.jobs)} jobs from {len(results.tables)} results table(s): "
                 "every optimizer on every chart, every controller in every encounter, beside "
@@ -140,4 +146,4 @@ def make_report(options: ReportOptions) -> ReportResult:
     verdicts = claims.counts(parts)
     return ReportResult(out, parts, len(files[out / "index.html"]),
                         None if document is None else len(document), pages, hint,
-                        verdicts, main_pages)  # fmt: skip
+                        verdicts, main_pages, results.missing)  # fmt: skip

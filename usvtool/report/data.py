@@ -40,6 +40,8 @@ def method_order(name: str, order: Sequence[str] = ()) -> tuple:
     return (place, base, plus + variant)
 
 
+#: A job folder's record: what ran, and its files' SHA-256 (usvtool.digest.recorded).
+RECORD = "job.json"
 #: The row that says how a job ended: a route's collision check, a run's arrival.
 ENDING = {"routes": "collision_free", "runs": "arrived"}
 
@@ -66,12 +68,16 @@ class JobResults:
         row = self.metrics.get(metric)
         return None if row is None else row.number
 
-    def grid_dir(self) -> Path | None:
-        """A route's grid job directory (``<batch>/grids/<key>``, the key in ``job.json``'s
-        ``grid``), when it is there."""
+    def grid_path(self) -> Path | None:
+        """A route's grid job directory, there or not: ``<batch>/grids/<key>``, the key in
+        ``job.json``'s ``grid`` (None without one)."""
         key = self.config.get("grid")
-        path = self.dir.parent.parent / "grids" / file_name(str(key))
-        return path if key and path.is_dir() else None
+        return self.dir.parent.parent / "grids" / file_name(str(key)) if key else None
+
+    def grid_dir(self) -> Path | None:
+        """A route's grid job directory (:meth:`grid_path`), when it is there."""
+        path = self.grid_path()
+        return path if path is not None and path.is_dir() else None
 
     def text(self, metric: str) -> str | None:
         row = self.metrics.get(metric)
@@ -109,6 +115,9 @@ class Results:
     jobs: list[JobResults]
     tables: list[Path]
     order: tuple[str, ...] = ()
+    #: The job folders that are missing, when the report goes on without them
+    #: (:func:`usvtool.report.evidence.check`).
+    missing: list[Path] = field(default_factory=list)
     #: The jobs by (kind, method), made by :meth:`group` on its first call.
     _by_method: dict[tuple[str, str], list[JobResults]] = field(
         default_factory=dict, init=False, repr=False, compare=False)
@@ -187,18 +196,24 @@ def load(tables, order: Sequence[str] = ()) -> Results:
             if job is None:
                 job = mine[row.key] = JobResults(row.key, row.kind, row.case, row.method,
                                                  row.seed, job_dir(table, row))  # fmt: skip
-                config = job.dir / "job.json"
-                if config.is_file():
-                    try:
-                        job.config = json.loads(config.read_text(encoding="utf-8"))
-                    except ValueError as e:
-                        raise UsvError(f"{config}: not JSON ({e})") from None
+                job.config = read_record(job.dir)
             job.metrics[row.metric] = row
         for row in timings:
             if row.key in mine and row.number is not None:
                 mine[row.key].timings[row.metric] = row.number
         jobs.update(mine)
     return Results([jobs[k] for k in sorted(jobs)], [Path(t) for t in tables], tuple(order))
+
+
+def read_record(directory: Path) -> dict:
+    """A job folder's ``job.json`` ({} when there is none)."""
+    path = directory / RECORD
+    if not path.is_file():
+        return {}
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except ValueError as e:
+        raise UsvError(f"{path}: not JSON ({e})") from None
 
 
 def _read(path: Path) -> list[Row]:

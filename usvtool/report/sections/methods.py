@@ -375,4 +375,24 @@ def section(results: Results) -> Section:
     s.blocks += [t for t in (optimizers(results), controllers(results), vessels(results),
                              families(results)) if t is not None]  # fmt: skip
     s.blocks.append(jobs_table(results))
+    if results.missing:
+        s.paragraphs.append(missing_paragraph(results))
+        s.blocks.append(missing_table(results))
     return s
+
+
+def missing_paragraph(results: Results) -> str:
+    """What a report made with ``--allow-missing`` is without."""
+    return (f"{len(results.missing)} job folders were missing (usvtool report --allow-missing, "
+            "listed in the appendix): the figures, maps, parameters and command lines drawn "
+            "from their files are left out, while their rows of the results tables count in "
+            "the tables and statistics.")
+
+
+def missing_table(results: Results) -> Table:
+    """Every job folder the report went without."""
+    rows = [[Cell(shown_path(d), "mono")] for d in results.missing]
+    return Table("methods-missing", f"Job folders missing ({len(rows)})",
+                 "The folders of jobs of the results tables (and of their routes' grids) that "
+                 "were not there: no file of theirs is in this report.", ["folder"], rows,
+                 APPENDIX)  # fmt: skip
