@@ -25,6 +25,8 @@ from usvtool.tracks import Tracks, format_time
 FORMATS = ("nmea", "marinecadastre", "dma", "generic")
 #: A file's figures in the summary that count no skipped line or row.
 _NOT_SKIPPED = ("file", "format", "positions", "static", "lines")
+#: The cleaning rules that drop fixes (usvtool/ais/clean.py).
+_DROPPED = ("invalid_mmsi", "invalid_position", "duplicates", "too_fast")
 
 
 @dataclass(frozen=True)
@@ -132,8 +134,7 @@ def no_fix_left(paths, files: list[dict], counts: dict) -> str:
     names = ", ".join(map(str, paths))
     skipped = [f"{f['file']}: {k} {v}" if len(files) > 1 else f"{k} {v}" for f in files
                for k, v in f.items() if k not in _NOT_SKIPPED and v]
-    rules = [f"{k} {v}" for k, v in counts.items()
-             if k not in ("fixes_read", "fixes", "vessels", "tracks") and v]  # fmt: skip
+    rules = [f"{k} {counts[k]}" for k in _DROPPED if counts.get(k)]
     n = counts["fixes_read"]
     text = f"{names}: no fix left after cleaning: {n} position{'' if n == 1 else 's'} read"
     if skipped:
