@@ -239,3 +239,15 @@ def test_an_output_folder_that_is_a_link_is_written_through(make, tmp_path):
     make(tmp_path / "link", names=("f1",))
     assert sorted(tree(tmp_path / "real")) == [".usvtool-report.json", "data", "data/f1.csv",
                                                "figures", "figures/f1.png", "index.html"]
+
+
+@pytest.mark.parametrize("value, said", [("701.5", "line 3 repeats line 2"),
+                                         ("99999", "line 2 says '701.5', line 3 says '99999'")])
+def test_a_table_giving_a_jobs_metric_twice_is_refused_naming_the_lines(make, table, tmp_path,
+                                                                       value, said):  # fmt: skip
+    with open(table, "a") as f:
+        f.write(f"0a,routes,env1,iwso,1,length_m,{value}\n")
+    message = f"{table}: job 0a, metric length_m: {said} (a job has one row a metric)"
+    with pytest.raises(UsvError, match=f"^{re.escape(message)}$"):
+        make(tmp_path / "report")
+    assert not (tmp_path / "report").exists()

@@ -289,6 +289,23 @@ def test_a_metric_of_a_job_given_twice_is_refused_naming_the_lines(usv, tables, 
     assert not out.exists()
 
 
+def test_an_output_that_is_a_link_below_the_folder_is_refused_and_its_target_kept(
+        usv, tables, tmp_path):  # fmt: skip
+    base, head = tables(baseline_rows())
+    out = tmp_path / "out"
+    out.mkdir()
+    (tmp_path / "precious.md").write_text("precious")
+    (out / "summary.md").symlink_to(tmp_path / "precious.md")
+    r = usv("compare", base, head, "-o", out)
+    assert (r.exit_code, r.stdout) == (1, "")
+    assert r.stderr.splitlines() == [
+        f"Error: {out / 'summary.md'}: a symbolic link (to {tmp_path / 'precious.md'}) in the "
+        f"output directory {out}: nothing is written or removed through a link below it; remove "
+        "the link or choose another directory"]
+    assert (tmp_path / "precious.md").read_text() == "precious"
+    assert sorted(p.name for p in out.iterdir()) == ["summary.md"]
+
+
 def test_a_failure_leaves_earlier_outputs_as_they_were(usv, tables, tmp_path):
     base, head = tables(baseline_rows())
     out = tmp_path / "out"
