@@ -251,3 +251,26 @@ def test_a_table_giving_a_jobs_metric_twice_is_refused_naming_the_lines(make, ta
     with pytest.raises(UsvError, match=f"^{re.escape(message)}$"):
         make(tmp_path / "report")
     assert not (tmp_path / "report").exists()
+
+
+@pytest.mark.parametrize("record, why", [
+    (None, "missing (job 0a): the folder's files cannot be checked; run the batch again"),
+    ({"kind": "routes", "key": "0a"}, "records no SHA-256 of its files (job 0a): run the batch "
+                                      "again"),
+    ({"kind": "routes", "key": "0b", "files": {}}, "is not its record (job 0a): run the batch "
+                                                   "again"),
+    ({"key": "0a", "files": {"../../metrics.csv": {"size": 1, "sha256": "00"}}},
+     "lists '../../metrics.csv', not a file of its folder (job 0a)"),
+])  # fmt: skip
+def test_a_job_folder_whose_files_cannot_be_checked_is_refused_even_with_allow_missing(
+        table, draw, tmp_path, record, why):  # fmt: skip
+    path = table.parent / "routes" / "0a" / "job.json"
+    if record is None:
+        path.unlink()
+    else:
+        path.write_text(json.dumps(record))
+    draw()
+    with pytest.raises(UsvError, match=f"^{re.escape(f'{path}: {why}')}$"):
+        build.make_report(build.ReportOptions((str(table),), str(tmp_path / "r"), pdf=False,
+                                              allow_missing=True))  # fmt: skip
+    assert not (tmp_path / "r").exists()

@@ -7,10 +7,12 @@ once, before the sections read any, and refuses in one line:
 
 - a file changed since its job ran (its SHA-256 is not the recorded one), or gone from its
   folder, naming the file and the job;
-- a record that lists no SHA-256 (an older usvtool's batch) or is another job's;
-- folders that are missing (no folder, or no ``job.json`` in it: a table copied without its
-  batch), naming up to :data:`NAMED` of them and how many, unless the report is told to go on
-  without them (``allow_missing``: the methods section lists them).
+- a folder without its record, a record that lists no SHA-256 (an older usvtool's batch) or
+  is another job's;
+- folders that are missing (a table copied without its batch), naming up to :data:`NAMED` of
+  them and how many, unless the report is told to go on without them (``allow_missing``: the
+  methods section lists them). A folder that is there is checked either way: no file of it is
+  read unchecked.
 """
 
 from __future__ import annotations
@@ -29,11 +31,13 @@ def check(results: Results, allow_missing: bool = False) -> list[Path]:
     """The job folders of ``results`` that are missing (refused unless ``allow_missing``),
     once every file of the others is checked against its record."""
     folders = job_folders(results)
-    missing = [d for d in folders if not (d / RECORD).is_file()]
+    missing = [d for d in folders if not d.exists()]
     if missing and not allow_missing:
         raise UsvError(refusal(missing, len(folders)))
-    for folder in folders.keys() - set(missing):
-        _check_folder(folder, folders[folder])
+    gone = set(missing)
+    for folder, key in folders.items():
+        if folder not in gone:
+            _check_folder(folder, key)
     return missing
 
 
@@ -58,6 +62,9 @@ def refusal(missing: list[Path], total: int) -> str:
 
 def _check_folder(folder: Path, key: str) -> None:
     """Refuse a file of the job ``key``'s folder that is not the one its record lists."""
+    if not (folder / RECORD).is_file():
+        raise UsvError(f"{folder / RECORD}: missing (job {key}): the folder's files cannot be "
+                       "checked; run the batch again")  # fmt: skip
     record = read_record(folder)
     digests = recorded(record)
     if digests is None or record.get("key") != key:
