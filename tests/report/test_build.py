@@ -274,3 +274,14 @@ def test_a_job_folder_whose_files_cannot_be_checked_is_refused_even_with_allow_m
         build.make_report(build.ReportOptions((str(table),), str(tmp_path / "r"), pdf=False,
                                               allow_missing=True))  # fmt: skip
     assert not (tmp_path / "r").exists()
+
+
+def test_a_file_in_a_job_folder_its_record_does_not_list_is_refused(make, table, tmp_path):
+    extra = table.parent / "routes" / "0a" / "route.geojson"
+    extra.write_text("{}")
+    with pytest.raises(UsvError, match=f"^{re.escape(str(extra))}: not a file job 0a wrote \\(its "
+                                       "job.json does not list it\\): remove it, or run the "
+                                       "batch again$"):  # fmt: skip
+        make(tmp_path / "r")
+    extra.unlink()
+    make(tmp_path / "r")  # the folder as its record lists it

@@ -5,8 +5,9 @@ listing each of its files with the SHA-256 the batch recorded: :func:`usvtool.di
 as has each route's grid job (``grids/<key>/``). :func:`check` reads each file of those folders
 once, before the sections read any, and refuses in one line:
 
-- a file changed since its job ran (its SHA-256 is not the recorded one), or gone from its
-  folder, naming the file and the job;
+- a file changed since its job ran (its SHA-256 is not the recorded one), gone from its
+  folder, or one its record does not list (the batch lists every file of the folder), naming
+  the file and the job;
 - a folder without its record, a record that lists no SHA-256 (an older usvtool's batch) or
   is another job's;
 - folders that are missing (a table copied without its batch), naming up to :data:`NAMED` of
@@ -72,6 +73,17 @@ def _check_folder(folder: Path, key: str) -> None:
         raise UsvError(f"{folder / RECORD}: {what} (job {key}): run the batch again")
     for name, digest in digests.items():
         _check_file(folder, name, digest, key)
+    unlisted = sorted(_files(folder) - digests.keys())
+    if unlisted:
+        raise UsvError(f"{folder / unlisted[0]}: not a file job {key} wrote (its job.json does "
+                       "not list it): remove it, or run the batch again")  # fmt: skip
+
+
+def _files(folder: Path) -> set[str]:
+    """The files of a job folder but its record, by path relative to it (as the batch lists
+    them: :mod:`usvtool.batch.record`)."""
+    return {p.relative_to(folder).as_posix() for p in folder.rglob("*")
+            if p.is_file() and p.name != RECORD}  # fmt: skip
 
 
 def _check_file(folder: Path, name: str, digest: str, key: str) -> None:
