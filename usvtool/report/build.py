@@ -128,6 +128,7 @@ def make_report(options: ReportOptions) -> ReportResult:
         raise UsvError(f"-o {out}: is a file, not a directory")
     if not out.parent.is_dir():
         raise UsvError(f"-o {out}: directory {out.parent} does not exist")
+    before = manifest.previous(out)  # refused before the work when it is not the report's
     results = load(options.tables, options.order)
     results.missing = evidence.check(results, options.allow_missing)
     parts = sections(results, options.workers or min(os.cpu_count() or 1, 4))
@@ -142,7 +143,7 @@ def make_report(options: ReportOptions) -> ReportResult:
         except PdfUnavailable as e:
             hint = str(e)
     files = outputs(out, page, document, parts)
-    write_together(files, out, remove=sorted(manifest.previous(out) - set(files)))
+    write_together(files, out, remove=sorted(before - set(files)))
     verdicts = claims.counts(parts)
     return ReportResult(out, parts, len(files[out / "index.html"]),
                         None if document is None else len(document), pages, hint,
