@@ -8,6 +8,7 @@ The reference: a segment collides when it intersects the closed unit square of a
 
 import contextlib
 import importlib.util
+import os
 import shutil
 from pathlib import Path
 
@@ -17,6 +18,13 @@ import shapely
 from click.testing import CliRunner
 
 ROOT = Path(__file__).resolve().parent.parent
+#: Settings of whoever started the suite that no test, nor any process a test starts, may
+#: inherit: ``make -s test`` exports MAKEFLAGS=s (a make a test starts then prints nothing), a
+#: caller's pytest options, the batch's fault injection (usvtool.batch.failpoint).
+CALLER_SETTINGS = ("MAKEFLAGS", "MFLAGS", "GNUMAKEFLAGS", "MAKELEVEL", "MAKEOVERRIDES", "MAKEFILES",
+                   "PYTEST_ADDOPTS", "PYTEST_PLUGINS", "USVTOOL_FAILPOINT")  # fmt: skip
+for _name in CALLER_SETTINGS:
+    os.environ.pop(_name, None)
 CHARTS = ROOT / "charts"
 KAP = CHARTS / "noaa" / "11361_4.KAP"
 ENC = CHARTS / "noaa" / "US5MA12M.000"

@@ -174,51 +174,47 @@ def _pipeline(tmp_path: Path, scenarios: dict[str, str]) -> Path:
     return tmp_path / "p.yaml"
 
 
-def _cwd(pid: str) -> str:
-    try:
-        return os.readlink(f"/proc/{pid}/cwd")
-    except OSError:
-        return ""
-
-
-def test_a_failing_job_and_killed_workers_fail_alone(tmp_path):
+def _failing_pipeline(tmp_path):
+    """The tiny pipeline's runs with three more scenarios: "bad" (its command fails), "killed"
+    (the one a failpoint kills) and "good"; the keys of the "killed" runs."""
     good = SCENARIO.read_text()
     path = _pipeline(tmp_path, {"good": good, "bad": good.replace("speed: 4}", "speed: 4, "
                                 "max_speed: 0}"),  # the command raises
-                                "long": good.replace("duration: 6", "duration: 400")})
+                                "killed": good.replace("duration: 6", "duration: 7")})
     names = stage_names()
-    long = {j.key for j in expand(load(path, names), names) if j.case == "long"}
+    return path, sorted(j.key for j in expand(load(path, names), names) if j.case == "killed")
+
+
+@pytest.mark.parametrize("point", ["before", "during", "written", "sending"])
+def test_a_worker_killed_at_any_point_of_a_job_fails_that_job_alone(tmp_path, point):
+    """USVTOOL_FAILPOINT kills the worker of each "killed" run at ``point`` (SIGKILL): the batch
+    settles every job and ends; a job whose result was complete and in place before its worker
+    died ("written", "sending": the reply cut short in the pipe) is done, the others fail alone
+    with the cause, and run again next time."""
+    path, long = _failing_pipeline(tmp_path)
     out = tmp_path / "out"
-    cmd = [sys.executable, "-m", "usvtool.cli", "batch", str(path), "-j", "2", "-o", str(out)]
-    proc = subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True)  # fmt: skip
-    deadline = time.monotonic() + 90
-    killed: set[str] = set()
-    while killed != long and time.monotonic() < deadline and proc.poll() is None:
-        for pid in (p for p in os.listdir("/proc") if p.isdigit()):  # a worker running "long"
-            key = Path(_cwd(pid)).name.removeprefix(".tmp-").split("-")[0]
-            if key in long - killed:
-                os.kill(int(pid), signal.SIGKILL)
-                killed.add(key)
-        time.sleep(0.05)
-    stdout, stderr = proc.communicate(timeout=120)
-    assert killed == long and proc.returncode == 1, stderr
-    assert f"4 of {JOBS + 4} jobs failed" in stderr
-    summary = json.loads(stdout)
-    assert (summary["done"], summary["failed"]) == (JOBS, 4)
+    env = {**os.environ, "USVTOOL_FAILPOINT": ",".join(f"{point}:{k}" for k in long)}
+    proc = subprocess.run([sys.executable, "-m", "usvtool.cli", "batch", str(path), "-j", "2",
+                           "-o", str(out)], cwd=ROOT, capture_output=True, text=True, env=env,
+                          timeout=240)  # fmt: skip
+    summary = json.loads(proc.stdout)
     errors = {(f["case"], f["method"]): f["error"] for f in summary["failures"]}
-    assert set(errors) == {(case, c) for case in ("bad", "long") for c in ("dwa", "gdwa")}
-    assert all("max_speed must be > 0" in errors["bad", c] for c in ("dwa", "gdwa"))
-    assert {errors["long", c] for c in ("dwa", "gdwa")} == {
-        "its worker process died (killed by SIGKILL)"}
+    assert all("max_speed must be > 0" in errors.pop(("bad", c)) for c in ("dwa", "gdwa"))
+    if point in ("written", "sending"):
+        assert errors == {} and (summary["done"], summary["failed"]) == (JOBS + 2, 2)
+        assert {r.case for r in read_results(out / "metrics.csv") if r.kind == "runs"} == {
+            "good", "killed"}
+    else:
+        assert errors == {("killed", c): "its worker process died (killed by SIGKILL)"
+                          for c in ("dwa", "gdwa")}  # fmt: skip
+        assert (summary["done"], summary["failed"]) == (JOBS, 4)
+        assert f"4 of {JOBS + 4} jobs failed" in proc.stderr
+        assert {r.case for r in read_results(out / "metrics.csv") if r.kind == "runs"} == {"good"}
     recorded = sorted(p.read_text() for p in out.glob("runs/*/error.txt"))
-    assert len(recorded) == 4 and all(text.count("\n") == 1 for text in recorded)
-    rows = read_results(out / "metrics.csv")
-    assert {r.case for r in rows if r.kind == "runs"} == {"good"}
-    assert not list(out.glob("*/.tmp-*"))
-    (tmp_path / "s" / "long.yaml").unlink()
-    again = batch(path, "-o", out)  # a failed job runs again, a finished one is skipped
-    assert again.returncode == 1 and json.loads(again.stdout)["skipped"] == JOBS
+    assert len(recorded) == summary["failed"] and all(t.count("\n") == 1 for t in recorded)
+    assert proc.returncode == 1 and not list(out.glob("*/.tmp-*"))
+    again = batch(path, "-o", out)  # a failed job runs again (no failpoint now), a done one not
+    assert again.returncode == 1 and json.loads(again.stdout)["skipped"] == summary["done"]
 
 
 def test_a_dask_cluster_gives_the_same_bytes(reference, tmp_path):

@@ -206,3 +206,15 @@ def test_a_file_new_in_a_charts_folder_regenerates_the_fragment(project):
     fragment = (project / "pipeline.mk").read_text()
     assert "CHART_INPUTS_s := enc/CELL.001 enc/CELL.002 enc/CELL.003\n" in fragment
     assert make_project(project, "-n", "-W", "enc/CELL.003").stdout.count(" preprocess ") == 1
+
+
+@pytest.mark.parametrize("setting", ["MAKEFLAGS=s", "MAKEFLAGS=n", "MAKELEVEL=3"])
+def test_the_tests_that_start_make_ignore_the_callers_make_and_pytest_settings(setting):
+    """``make -s test`` exports MAKEFLAGS=s to the suite; the tests that start make pass
+    all the same (they used to fail: a dry run printed nothing)."""
+    name, _, value = setting.partition("=")
+    r = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:xdist", "-p",
+                        "no:cacheprovider", f"{__file__}::test_a_file_new_in_a_charts_folder"
+                        "_regenerates_the_fragment"], cwd=ROOT, capture_output=True, text=True,
+                       env={**os.environ, name: value})  # fmt: skip
+    assert r.returncode == 0 and "1 passed" in r.stdout, r.stdout + r.stderr

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import fcntl
 import heapq
+import json
 import os
 import queue
 import shutil
@@ -29,7 +30,7 @@ from pathlib import Path
 from usvtool.batch import results_tables
 from usvtool.batch.jobs import PRIORITY, Job, ScenarioFiles, expand
 from usvtool.batch.progress import Bar, Lines
-from usvtool.batch.record import damage
+from usvtool.batch.record import RECORD, damage
 from usvtool.batch.worker import TMP_PREFIX, Command, Outcome, execute, record_failure, with_memory
 from usvtool.budget import default_budget
 from usvtool.errors import UsvError
@@ -127,6 +128,15 @@ def _clear(jobs: list[Job], out: Path) -> list[tuple[Job, str]]:
     return damaged
 
 
+def _complete(job: Job, out: Path) -> Outcome | None:
+    """The outcome of a job whose worker died once its result was complete and in place (the
+    files its ``job.json`` records): done (None when it is not)."""
+    d = out / job.kind / job.key
+    if not _state(job, out) or damage(d, job.key) is not None:
+        return None
+    return Outcome(None, json.loads((d / RECORD).read_text(encoding="utf-8"))["wall_time_s"])
+
+
 class _Run:
     """The jobs to run, their dependencies, and what became of them."""
 
@@ -190,7 +200,8 @@ def _run_jobs(executor, run: _Run, out: Path, command: Command) -> None:
             try:
                 outcome: Outcome = future.result()
             except Exception as exc:  # the task itself failed: its worker died, ...
-                outcome = record_failure(job, str(out), executor.failure(exc))
+                outcome = _complete(job, out) or record_failure(job, str(out),
+                                                                 executor.failure(exc))
             run.finish(job, outcome.error, outcome.wall_time_s)
             if outcome.unrecorded is not None:
                 run.stop(job, outcome.unrecorded)

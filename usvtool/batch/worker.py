@@ -27,6 +27,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from usvtool.batch.failpoint import reach
 from usvtool.batch.jobs import Job
 from usvtool.batch.record import CannotWrite, cannot_write, write_record, write_text
 
@@ -107,6 +108,7 @@ def execute(job: Job, out: str, command: Command) -> Outcome:
     try:
         tmp = fresh_directory(kind_dir, job.key)
         try:
+            reach("during", job.key)
             status, stdout, stderr, wall = in_directory(tmp, command, list(job.args))
             wall = round(wall, 3)
             if status in INTERRUPTED:
@@ -114,6 +116,7 @@ def execute(job: Job, out: str, command: Command) -> Outcome:
             if status == 0:
                 write_text(tmp / "summary.json", stdout)
                 _finish(job, tmp, kind_dir, wall, None)
+                reach("written", job.key)
                 return Outcome(None, wall)
             error = one_line(stderr)
         finally:
