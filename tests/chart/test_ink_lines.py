@@ -193,3 +193,64 @@ def test_structures_ending_in_water_stay_obstacles(kind, seed):
     _, hazard, new_land = chart.grid()
     symbol = chart.symbol > 0
     assert (hazard | new_land)[symbol].mean() > 0.95, kind
+
+
+# Along the channel: roads and rails drawn beside a creek, graticule ticks, leader lines.
+ALONG = ("rail", "road", "ticks", "leader")
+
+
+def along(kind: str, seed: int, k: int, channel: int) -> Chart:
+    """A chart whose channel has a printed ``kind`` beside it or over it (see :data:`ALONG`).
+
+    - rail / road: two parallel lines along the channel on its north bank (the creek-side one
+      from two pixels inside the land to one pixel over the water, so sometimes touching it or
+      standing on its edge), 3 px bold, the paper white between them (it reads as water), and
+      for a rail cross-ties every 6 to 9 px from line to line;
+    - ticks: short graticule ticks, 2 or 3 px, from both banks into the water (a third of the
+      channel at most) and a cross over the water;
+    - leader: a thin line (1 or 2 px) from a label on the north land across the channel, ending
+      on the south land.
+    """
+    chart = Chart(seed, k, channel)
+    rng, top, bottom = chart.rng, chart.top, chart.bottom
+    x0, x1 = 0, chart.size - 1
+    if kind in ("rail", "road"):
+        near = top + int(rng.integers(-2, 2))  # the creek-side line's middle row
+        gap = int(rng.integers(4, 7))  # between the lines' middles
+        far = near - gap
+        chart.land[far + 1 : near] = False  # the paper between them
+        chart.line((x0, near), (x1, near), 3)
+        chart.line((x0, far), (x1, far), 3)
+        if kind == "rail":
+            for x in range(int(rng.integers(2, 6)), chart.size, int(rng.integers(6, 10))):
+                chart.line((x, far), (x, near), 2)
+    elif kind == "ticks":
+        thick = int(rng.integers(2, 4))
+        reach = max(2, (bottom - top) // 3)
+        for x in rng.integers(2 * k, chart.size - 2 * k, 6):
+            chart.line((x, top - 2), (x, top + reach - 1), thick)
+            chart.line((x + 3, bottom + 1), (x + 3, bottom - reach), thick)
+        cx, cy, arm = chart.size // 2, (top + bottom) // 2, int(rng.integers(3, 6))
+        chart.line((cx - arm, cy), (cx + arm, cy), thick)
+        chart.line((cx, cy - arm), (cx, cy + arm), thick)
+    else:  # a leader line from a label north of the channel to the south land
+        x = int(rng.integers(8 * k, 28 * k))
+        cv2.putText(chart.ink, "Pipe", (x, top - 3 * k), cv2.FONT_HERSHEY_PLAIN, 0.9, 1, 1,
+                    cv2.LINE_8)  # fmt: skip
+        end = x + int(rng.integers(-4 * k, 4 * k))
+        chart.line((x + 10, top - 3 * k + 2), (end, bottom + 2 * k), int(rng.integers(1, 3)))
+    return chart
+
+
+ALONG_CASES = [(kind, seed, k, channel)
+               for kind in ALONG
+               for seed in range(3)
+               for channel in (1, 2, 3)
+               for k in ((6,) if channel == 1 else (4, 6))]  # fmt: skip
+
+
+@pytest.mark.parametrize("kind, seed, k, channel", ALONG_CASES)
+def test_lines_along_or_over_a_channel_keep_it_open(kind, seed, k, channel):
+    chart = along(kind, seed, k, channel)
+    navigable, hazard, _ = chart.grid()
+    assert one_body(navigable, chart), f"{kind}: the channel is closed"
