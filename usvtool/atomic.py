@@ -22,6 +22,9 @@ How the pieces fit:
   raised when that code is done: so either every rename is done or none has started, and the
   temporaries are always removed. A signal held before the renames start cancels them. The
   first target (the main output, the one Makefiles look at) is renamed last.
+- A target that exists and is not a regular file (``/dev/null``, ``/dev/stdout``, a FIFO, or a
+  link to one: :func:`in_place`) is written where it is, never renamed onto: that would
+  replace the node with a regular file.
 - Limits: a rename that fails by itself (a target turned into a directory meanwhile; a sticky
   directory where the target belongs to another user) is reported naming it, and targets
   renamed before it keep their new content: the main output, renamed last, is then untouched.
@@ -39,6 +42,7 @@ import contextlib
 import os
 import secrets
 import signal
+import stat
 import threading
 from collections.abc import Callable, Iterable
 from pathlib import Path
@@ -75,14 +79,28 @@ def check_output_path(path: str | os.PathLike, option: str = "-o") -> Path:
     return p
 
 
+def in_place(target: str | os.PathLike) -> bool:
+    """Whether ``target`` is written where it is rather than staged: it exists and is not a
+    regular file (``/dev/null``, ``/dev/stdout``, a FIFO, a terminal, or a link to one).
+    Renaming a file onto it would replace the node itself (run as root, ``-o /dev/null``
+    would remove the system's); such a target cannot be all-or-nothing anyway."""
+    try:
+        return not stat.S_ISREG(os.stat(target).st_mode)
+    except (OSError, ValueError):
+        return False
+
+
 def check_outputs(outputs: Iterable[tuple[str, str | os.PathLike | None]]) -> None:
-    """:func:`check_output_path` for each (option, path) given, and refuse one file named twice."""
+    """:func:`check_output_path` for each (option, path) given, and refuse one file named twice
+    (but for a device or a pipe: :func:`in_place`)."""
     seen: dict[Path, str] = {}
     for option, path in outputs:
         if path is None:
             continue
         p = check_output_path(path, option)
         label = f"{option} {os.fspath(path)}" if option else os.fspath(path)
+        if in_place(p):  # /dev/null for two outputs: both written there
+            continue
         if p.resolve() in seen:
             raise UsvError(f"{label}: same file as {seen[p.resolve()]}")
         seen[p.resolve()] = label
@@ -146,7 +164,8 @@ class catch_signals:  # lower case: used like contextlib.suppress
 
 class staged(catch_signals):
     """``with staged(*targets) as temporaries:`` a temporary path per target (None for None),
-    all renamed onto their targets when the block ends normally, all removed otherwise.
+    all renamed onto their targets when the block ends normally, all removed otherwise. A
+    target that is not a regular file (:func:`in_place`) is handed back as it is.
 
     Refuses a target in a missing directory, a directory, and one file given twice. A target
     that is the temporary of an active staging is handed back as it is (nested staging).
@@ -162,7 +181,7 @@ class staged(catch_signals):
         super().__enter__()
         try:
             for t in self._targets:
-                if t is not None and os.path.abspath(t) not in _handed_out:
+                if t is not None and os.path.abspath(t) not in _handed_out and not in_place(t):
                     self._temps[Path(t)] = tmp = _new_temporary(Path(t))
                     _handed_out[os.path.abspath(tmp)] = Path(t)
             if self._previous is not None and _pending is not None:

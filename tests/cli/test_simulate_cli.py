@@ -249,7 +249,7 @@ def test_outputs_refused_before_the_run(case, usv):
     assert_failed(r, 1, "does not exist")
     text = scenario.read_text()
     r = usv("simulate", scenario, "-o", out / "trace.csv", "--tracks", scenario)
-    assert_failed(r, 1, "--tracks", "is the scenario itself")
+    assert_failed(r, 1, "--tracks", "the same file as the input SCENARIO.yaml")
     assert scenario.read_text() == text
     assert_untouched(out)
 

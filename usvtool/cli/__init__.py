@@ -44,8 +44,10 @@ class LazyGroup(click.Group):
     def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
         if name not in SUBCOMMANDS:
             return None
+        from usvtool.cli.guard import guarded
+
         module = importlib.import_module(SUBCOMMANDS[name][0])
-        return getattr(module, name)
+        return guarded(getattr(module, name))
 
     def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
         rows = [(name, SUBCOMMANDS[name][1]) for name in self.list_commands(ctx)]
@@ -65,9 +67,10 @@ class LazyGroup(click.Group):
         except (click.ClickException, click.exceptions.Exit, click.Abort):
             raise
         except OSError as exc:  # a file the OS refused (disk full, permission): named
-            if exc.filename is None or (ctx.obj and ctx.obj.get("verbose", 0) > 0):
+            if ctx.obj and ctx.obj.get("verbose", 0) > 0:
                 raise
-            raise click.ClickException(one_line(f"{exc.filename}: {exc.strerror}")) from None
+            where = exc.filename if exc.filename is not None else type(exc).__name__
+            raise click.ClickException(one_line(f"{where}: {exc.strerror or exc}")) from None
         except Exception as exc:  # a bug: one line unless -v asks for the traceback
             if ctx.obj and ctx.obj.get("verbose", 0) > 0:
                 raise

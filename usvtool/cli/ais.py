@@ -8,6 +8,7 @@ import click
 from usvtool.cli.options import (
     NON_NEGATIVE,
     POSITIVE,
+    OutputDir,
     OutputPath,
     emit,
     max_memory_option,
@@ -136,7 +137,7 @@ def encounters(tracks, output, cpa, tcpa, bbox, step, min_speed, max_memory,
 
 @ais.command("scenario")
 @click.argument("tracks", metavar="TRACKS", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", required=True, type=click.Path(file_okay=False), metavar="DIR",
+@click.option("-o", "--output", required=True, type=OutputDir(), metavar="DIR",
               help="The directory to write scenario.yaml, route.geojson and the targets' "
               "tracks into (made if missing).")  # fmt: skip
 @click.option("--own", type=int, metavar="MMSI",

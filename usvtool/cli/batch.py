@@ -18,7 +18,7 @@ from pathlib import Path
 
 import click
 
-from usvtool.cli.options import MEMORY_SIZE, OutputPath, emit, write_summary
+from usvtool.cli.options import MEMORY_SIZE, OutputDir, OutputPath, emit, write_summary
 from usvtool.pipeline import FamilySpec, FileOptions, Names
 
 
@@ -89,12 +89,12 @@ def scenario_files(path: Path) -> list[Path]:
               help="Local worker processes (default: the number of cores).")  # fmt: skip
 @click.option("--scheduler", metavar="tcp://HOST:PORT",
               help="Run the jobs on this Dask scheduler's workers instead (usvtool[dask]).")
-@click.option("-o", "--output", "out_dir", type=click.Path(file_okay=False), default="build/batch",
+@click.option("-o", "--output", "out_dir", type=OutputDir(), default="build/batch",
               show_default=True, help="Directory of the results and metrics.csv.")  # fmt: skip
 @click.option("--timeout", type=click.FloatRange(min=0, min_open=True), metavar="SECONDS",
               help="Stop a job that runs longer than this and count it failed (it runs again "
               "on the next batch); local workers only.")  # fmt: skip
-@click.option("--summary", "summary_path", type=click.Path(dir_okay=False), metavar="FILE.json",
+@click.option("--summary", "summary_path", type=OutputPath(), metavar="FILE.json",
               help="Also write the summary JSON printed on stdout to this file (atomically, "
               "once the tables are written; failed jobs too).")  # fmt: skip
 @click.option("--max-memory", type=MEMORY_SIZE, metavar="SIZE",

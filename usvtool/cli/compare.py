@@ -7,13 +7,13 @@ import logging
 
 import click
 
-from usvtool.cli.options import emit
+from usvtool.cli.options import OutputDir, emit
 
 
 @click.command()
 @click.argument("baseline", metavar="BASELINE.csv", type=click.Path(dir_okay=False))
 @click.argument("current", metavar="CURRENT.csv", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", "out_dir", type=click.Path(file_okay=False),
+@click.option("-o", "--output", "out_dir", type=OutputDir(),
               default="build/regression", show_default=True,
               help="Directory of index.html, regression.json and summary.md.")  # fmt: skip
 @click.option("--tolerances", type=click.Path(dir_okay=False), metavar="FILE.yaml",

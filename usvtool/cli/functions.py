@@ -12,7 +12,7 @@ import sys
 
 import click
 
-from usvtool.cli.options import emit, seed_option
+from usvtool.cli.options import OutputPath, emit, seed_option
 from usvtool.plan.benchmark_functions import FUNCTIONS
 from usvtool.plan.optimizers import OPTIMIZERS
 
@@ -53,7 +53,7 @@ from usvtool.plan.optimizers import OPTIMIZERS
 )
 @click.option(
     "--table",
-    type=click.Path(dir_okay=False),
+    type=OutputPath(),
     help="Write the human-readable table here (default: stderr).",
 )
 def functions(

@@ -6,13 +6,13 @@ from pathlib import Path
 
 import click
 
-from usvtool.cli.options import emit, summary_option, write_summary
+from usvtool.cli.options import OutputPath, emit, summary_option, write_summary
 
 
 @click.command()
-@click.argument("inputs", metavar="INPUT...", nargs=-1, required=True)
+@click.argument("inputs", metavar="INPUT...", nargs=-1, required=True, type=click.Path())
 @click.option(
-    "-o", "--output", type=click.Path(dir_okay=False),
+    "-o", "--output", type=OutputPath(),
     help="Table to write: CSV, or JSON when it ends in .json (default: CSV on stdout).",
 )  # fmt: skip
 @click.option(

@@ -24,6 +24,13 @@ class OutputPath(click.Path):
         super().__init__(dir_okay=False)
 
 
+class OutputDir(click.Path):
+    """A folder the command writes into (made if missing)."""
+
+    def __init__(self) -> None:
+        super().__init__(file_okay=False)
+
+
 def output_option(help: str):
     return click.option("-o", "--output", required=True, type=OutputPath(), help=help)
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from usvtool.cli.options import POSITIVE, emit, output_option
+from usvtool.cli.options import POSITIVE, OutputPath, emit, output_option
 
 
 @click.command()
@@ -12,7 +12,7 @@ from usvtool.cli.options import POSITIVE, emit, output_option
 @output_option("Chart GeoTIFF to write (RGB, UTM).")
 @click.option(
     "--truth",
-    type=click.Path(dir_okay=False),
+    type=OutputPath(),
     help="Also write the land truth GeoTIFF (1 land, 0 water, 255 outside coverage).",
 )
 @click.option("--resolution", type=POSITIVE, default=10.0, show_default=True, help="Metres/pixel.")
@@ -33,7 +33,9 @@ def render(
     soundings: bool,
 ) -> None:
     """Draw the S-57 CELL (.000, updates beside it applied) in the S-52 day colours."""
-    from usvtool.atomic import check_output_path
+    from pathlib import Path
+
+    from usvtool.atomic import check_outputs
     from usvtool.chart.rendering import RenderOptions
     from usvtool.chart.rendering import render as run
 
@@ -42,10 +44,8 @@ def render(
             f"--shallow {shallow:g} --safety {safety:g} --deep {deep:g}: "
             "need shallow <= safety <= deep"
         )
-    out = check_output_path(output, "-o")
-    truth_path = check_output_path(truth, "--truth") if truth else None
-    if truth_path and truth_path.resolve() == out.resolve():
-        raise click.UsageError(f"--truth {truth}: same file as -o")
+    check_outputs([("-o", output), ("--truth", truth)])
+    out, truth_path = Path(output), Path(truth) if truth else None
     options = RenderOptions(
         resolution=resolution, shallow=shallow, safety=safety, deep=deep, soundings=soundings
     )

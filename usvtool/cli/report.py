@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import click
 
-from usvtool.cli.options import emit, summary_option, write_summary
+from usvtool.cli.options import OutputDir, emit, summary_option, write_summary
 
 
 @click.command()
-@click.argument("tables", metavar="RESULTS.csv...", nargs=-1, required=True)
+@click.argument("tables", metavar="RESULTS.csv...", nargs=-1, required=True,
+                type=click.Path(dir_okay=False))
 @click.option("-o", "--output", default="build/report", show_default=True,
-              type=click.Path(file_okay=False), metavar="DIR",
+              type=OutputDir(), metavar="DIR",
               help="Directory of index.html, report.pdf, figures/ and data/.")  # fmt: skip
 @click.option("--pdf/--no-pdf", default=True, show_default=True,
               help="Also write report.pdf (WeasyPrint).")  # fmt: skip

@@ -86,8 +86,8 @@ def make_family_scene(family: str | None, kind: str | None, scene: int, options:
 @param_option("A controller parameter (repeatable), over the scenario's.")
 @seed_option
 @output_option("Trace CSV to write.")
-@click.option("--events", type=click.Path(dir_okay=False), help="Also write the events JSON.")
-@click.option("--tracks", type=click.Path(dir_okay=False), help="Also write the tracks GeoJSON.")
+@click.option("--events", type=OutputPath(), help="Also write the events JSON.")
+@click.option("--tracks", type=OutputPath(), help="Also write the tracks GeoJSON.")
 @max_memory_option
 @summary_option
 def simulate(scenario_path: str | None, family: str | None, kind: str | None, scene_number: int,
@@ -122,11 +122,7 @@ def simulate(scenario_path: str | None, family: str | None, kind: str | None, sc
     outputs = [("-o", output), ("--events", events), ("--tracks", tracks),
                ("--summary", summary_path)]  # fmt: skip
     check_outputs([*outputs, *scene_outputs])
-    if scene is None:
-        for option, path in outputs:
-            if path is not None and Path(path).resolve() == Path(scenario_path).resolve():
-                raise UsvError(f"{option} {path}: is the scenario itself")
-    else:
+    if scene is not None:
         write_scene(scene, scenario_out)
         scenario_path = scenario_out
     scenario = read_scenario(scenario_path)
