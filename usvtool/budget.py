@@ -8,8 +8,12 @@ per-element figures are measured peaks (docs/preprocess.md, docs/planning.md,
 docs/simulate.md).
 
 The budget is ``--max-memory`` (:func:`parse_size`: ``4G``, ``512M``, ``2.5GiB`` or plain
-bytes), by default :data:`DEFAULT_FRACTION` of the machine's memory (:func:`machine_memory`).
-``usvtool batch`` gives each job its share of its own budget (docs/batch.md).
+bytes), by default the least of :data:`DEFAULT_FRACTION` of the machine's memory
+(:func:`machine_memory`) and :data:`ROOM_FRACTION` of the room left under the process's
+address-space limits (:func:`room_budget`). ``usvtool batch`` gives each job its share of its
+own budget (docs/batch.md). A job allowed that still runs out of memory (the estimate was short,
+or ``--max-memory`` more than the process can map) ends in one line all the same: the stages
+wrap their big allocations in :func:`allocating`.
 
 >>> parse_size("2.5GiB") == 5 * 2**29, parse_size("512m"), parse_size("1000")
 (True, 536870912, 1000)
@@ -25,6 +29,9 @@ from __future__ import annotations
 import math
 import os
 import re
+import resource
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 from usvtool.errors import UsvError
@@ -32,6 +39,14 @@ from usvtool.errors import UsvError
 #: The default budget's share of the machine's memory: a job may take half, leaving the rest
 #: to the system and the other programs (two local batch workers get a quarter each).
 DEFAULT_FRACTION = 0.5
+#: The share of the room left under RLIMIT_AS (RLIMIT_DATA) that a job may count on: the limit
+#: minus what is mapped when the job is checked (``VmSize``, ``VmData``). The rest is for what
+#: the process maps after the check beyond the estimate: numba's and LLVM's compilations, the
+#: threads' malloc arenas, a library's reserved but untouched mappings (measured 1.1-1.3 times
+#: the estimate for small runs, 0.6-0.9 for large ones: docs/preprocess.md, "Memory budget").
+ROOM_FRACTION = 0.75
+#: Each address-space limit and the ``/proc/self/status`` field of what it already counts.
+_LIMITS = ((resource.RLIMIT_AS, "VmSize"), (resource.RLIMIT_DATA, "VmData"))
 MiB = 1 << 20
 GiB = 1 << 30
 _UNITS = {"": 1, "k": 1 << 10, "m": MiB, "g": GiB, "t": 1 << 40}
@@ -69,8 +84,20 @@ def machine_memory() -> int:
 
 
 def default_budget() -> int:
-    """The budget when none is given: :data:`DEFAULT_FRACTION` of :func:`machine_memory`."""
-    return int(machine_memory() * DEFAULT_FRACTION)
+    """The budget when none is given: :data:`DEFAULT_FRACTION` of :func:`machine_memory`, or
+    :func:`room_budget` when that is lower."""
+    share = int(machine_memory() * DEFAULT_FRACTION)
+    room = room_budget()
+    return share if room is None else min(share, room)
+
+
+def room_budget() -> int | None:
+    """:data:`ROOM_FRACTION` of the room left under the process's soft RLIMIT_AS and
+    RLIMIT_DATA (the limit minus what it already counts), the lesser; None when neither is
+    set."""
+    rooms = [limit - _status_bytes(field) for kind, field in _LIMITS
+             if (limit := _soft_limit(kind)) is not None]  # fmt: skip
+    return int(max(0, min(rooms)) * ROOM_FRACTION) if rooms else None
 
 
 def require(nbytes: float, what: str, remedy: str, budget: int | None = None) -> None:
@@ -85,6 +112,27 @@ def require(nbytes: float, what: str, remedy: str, budget: int | None = None) ->
             f"{what} needs about {size_text(nbytes)} of memory, more than the budget of "
             f"{size_text(budget)} (--max-memory); {remedy}"
         )
+
+
+@contextmanager
+def allocating(nbytes: float, what: str, remedy: str) -> Iterator[None]:
+    """Turn a ``MemoryError`` raised inside into a one-line :class:`UsvError`: ``"out of memory
+    while {what} (about N GiB needed); {remedy}"``, ``what`` naming the input and the work
+    (``"reading 10 x 10 pixels of x.tif"``), ``nbytes`` its estimated need.
+
+    >>> with allocating(3 * GiB, "reading 10 x 10 pixels of x.tif", "give a smaller image"):
+    ...     raise MemoryError
+    Traceback (most recent call last):
+    ...
+    usvtool.errors.UsvError: out of memory while reading 10 x 10 pixels of x.tif (about 3.00 \
+GiB needed); give a smaller image
+    """
+    try:
+        yield
+    except MemoryError:
+        raise UsvError(
+            f"out of memory while {what} (about {size_text(nbytes)} needed); {remedy}"
+        ) from None
 
 
 def size_text(nbytes: float) -> str:
@@ -104,6 +152,22 @@ def _meminfo_total() -> int:
         if line.startswith("MemTotal:"):
             return int(line.split()[1]) * 1024
     raise OSError("/proc/meminfo: no MemTotal")
+
+
+def _soft_limit(kind: int) -> int | None:
+    """The soft limit of resource ``kind`` in bytes, None when unlimited."""
+    soft = resource.getrlimit(kind)[0]
+    return None if soft == resource.RLIM_INFINITY else soft
+
+
+def _status_bytes(field: str) -> int:
+    """Bytes of a ``/proc/self/status`` size field (``VmSize``, ``VmData``), 0 when unknown."""
+    try:
+        lines = Path("/proc/self/status").read_text().splitlines()
+    except OSError:
+        return 0
+    return next((int(line.split()[1]) * 1024 for line in lines
+                 if line.startswith(f"{field}:")), 0)  # fmt: skip
 
 
 def _cgroup_limit() -> int | None:

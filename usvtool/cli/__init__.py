@@ -71,6 +71,11 @@ class LazyGroup(click.Group):
                 raise
             where = exc.filename if exc.filename is not None else type(exc).__name__
             raise click.ClickException(one_line(f"{where}: {exc.strerror or exc}")) from None
+        except MemoryError:  # past the stages' guards (usvtool.budget.allocating): one line
+            raise click.ClickException(
+                f"out of memory while running usvtool {ctx.invoked_subcommand}; lower its "
+                "inputs' sizes or --max-memory"
+            ) from None
         except Exception as exc:  # a bug: one line unless -v asks for the traceback
             if ctx.obj and ctx.obj.get("verbose", 0) > 0:
                 raise
