@@ -13,12 +13,15 @@ the batch ends with one line saying why and where.
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import fcntl
 import heapq
 import json
 import os
 import queue
 import shutil
+import stat
 import sys
 import time
 from collections import defaultdict
@@ -88,9 +91,19 @@ def _executor(options: BatchOptions):
 
 @contextmanager
 def _locked(out: Path):
-    """Hold ``out/.lock`` for the batch: a second batch in the same directory is refused."""
+    """Hold ``out/.lock`` for the batch: a second batch in the same directory is refused. The
+    lock is opened without truncating and never through a link (a ``.lock`` linked to a file
+    elsewhere used to truncate that file)."""
     out.mkdir(parents=True, exist_ok=True)
-    with open(out / ".lock", "w") as lock:
+    path = out / ".lock"
+    try:
+        fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_NOFOLLOW | os.O_NONBLOCK, 0o666)
+    except OSError as exc:
+        why = "a link" if exc.errno == errno.ELOOP else exc.strerror
+        raise UsvError(f"-o {out}: cannot open its lock {path}: {why}; remove it") from None
+    with os.fdopen(fd, "w") as lock:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            raise UsvError(f"-o {out}: its lock {path} is not a regular file; remove it")
         try:
             fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:
@@ -98,31 +111,59 @@ def _locked(out: Path):
         yield
 
 
+def _refuse_links(out: Path, jobs: list[Job]) -> None:
+    """Refuse a link where the batch writes its jobs' folders (``out/<kind>``): the results
+    would land wherever it points."""
+    for kind in sorted({j.kind for j in jobs}):
+        if (out / kind).is_symlink():
+            raise UsvError(f"-o {out}: {out / kind} is a link; the batch writes only inside -o: "
+                           "remove it (or make it a folder)")  # fmt: skip
+
+
+def _remove(path: Path, what: str) -> None:
+    """Remove the folder ``path`` (only the link, if it is one); :class:`UsvError` naming it,
+    the file refused and ``what`` it is when the system refuses."""
+    try:
+        if path.is_symlink():
+            path.unlink()
+        else:
+            shutil.rmtree(path)
+    except OSError as exc:
+        where = f" ({exc.filename})" if exc.filename and str(exc.filename) != str(path) else ""
+        raise UsvError(f"{path}: cannot remove {what}: {exc.strerror or exc}{where}") from None
+
+
 def _remove_temporaries(out: Path) -> None:
-    for stale in out.glob(f"*/{TMP_PREFIX}*"):
-        shutil.rmtree(stale, ignore_errors=True)
-    for stale in out.glob(f"{TMP_PREFIX}*"):
-        shutil.rmtree(stale, ignore_errors=True)
+    """Remove the hidden folders of jobs that did not finish (a link: the link only); what the
+    system refuses stays, hidden and never read."""
+    for stale in [*out.glob(f"*/{TMP_PREFIX}*"), *out.glob(f"{TMP_PREFIX}*")]:
+        with contextlib.suppress(UsvError):
+            _remove(stale, "a temporary folder")
 
 
 def _state(job: Job, out: Path) -> bool | None:
-    """True when the job's result is present, False when it failed before, None when absent."""
+    """True when the job's result is present, False when it failed before, None when absent
+    (a link there is not a result: :func:`_clear` removes it)."""
     d = out / job.kind / job.key
-    if not d.is_dir():
+    if not d.is_dir() or d.is_symlink():
         return None
     return not (d / "error.txt").is_file()
 
 
 def _clear(jobs: list[Job], out: Path) -> list[tuple[Job, str]]:
     """Remove the directories of the jobs that failed before and of the damaged ones (their
-    files are not those their ``job.json`` records), so that they run again: the damaged jobs,
-    each with what is wrong."""
+    files are not those their ``job.json`` records; a link in place of the folder: the link
+    only), so that they run again: the damaged jobs, each with what is wrong."""
     damaged = []
     for job in jobs:
+        d = out / job.kind / job.key
         state = _state(job, out)
-        problem = damage(out / job.kind / job.key, job.key) if state else None
+        problem = damage(d, job.key) if state else None
+        if d.is_symlink():
+            problem = f"{d}: a link, not the folder its job wrote (the link removed)"
         if state is False or problem is not None:
-            shutil.rmtree(out / job.kind / job.key)
+            _remove(d, f"the folder of {job.label} ({'failed' if problem is None else 'damaged'}) "
+                    "to run it again")  # fmt: skip
         if problem is not None:
             damaged.append((job, problem))
     return damaged
@@ -248,6 +289,7 @@ def run_batch(pipeline_path, options: BatchOptions) -> BatchResult:
     executor = _executor(options)
     try:
         with _locked(out):
+            _refuse_links(out, jobs)
             _remove_temporaries(out)
             damaged = _clear(jobs, out)  # a failed or damaged job runs again
             skipped = [j for j in jobs if _state(j, out)]  # a finished one is skipped
