@@ -255,18 +255,3 @@ def test_lines_along_or_over_a_channel_keep_it_open(kind, seed, k, channel):
     navigable, hazard, _ = chart.grid()
     assert one_body(navigable, chart), f"{kind}: the channel is closed"
 
-
-@pytest.mark.parametrize("seed", [0, 1, 2])
-@pytest.mark.parametrize("kind", ["rail", "road"])
-def test_a_jetty_beside_a_rail_stays_an_obstacle(kind, seed):
-    """A jetty from the south bank, ending halfway across a three-cell channel whose north bank
-    carries a rail or a road: the jetty stays an obstacle, the rail or road is clutter."""
-    chart = along(kind, seed, 4 + 2 * (seed % 2), 3)
-    road = chart.symbol > 0
-    chart.symbol[:] = 0
-    x, middle = float(chart.rng.uniform(14, 26) * chart.k), (chart.top + chart.bottom) // 2
-    chart.line((x, chart.bottom + 2), (x + 2, middle + 2), 4)
-    navigable, hazard, new_land = chart.grid()
-    jetty = (chart.symbol > 0) & ~road
-    assert (hazard | new_land)[jetty].mean() > 0.9  # a short jetty: the opening rounds its tip
-    assert one_body(navigable, chart)
