@@ -240,18 +240,21 @@ def spreadsheet_safe(texts):
     return safe if array is texts else safe.to_pylist()
 
 
-def spreadsheet_text(array):
-    """The texts of a pyarrow string array as :func:`spreadsheet_safe` had them: the ``'``
-    it put before a formula character removed.
+def spreadsheet_text(texts):
+    """The texts (a pyarrow string array, or a sequence of ``str``) as :func:`spreadsheet_safe`
+    had them: the ``'`` it put before a formula character removed.
 
-    >>> import pyarrow as pa
-    >>> spreadsheet_text(pa.array(["'=1", "''-cmd", "'quote", "=2"])).to_pylist()
+    >>> spreadsheet_text(["'=1", "''-cmd", "'quote", "=2"])
     ['=1', "'-cmd", "'quote", '=2']
     """
+    import pyarrow as pa
     import pyarrow.compute as pc
 
+    array = texts if isinstance(texts, pa.Array | pa.ChunkedArray) else pa.array(
+        list(texts), pa.string())  # fmt: skip
     added = pc.match_substring_regex(array, "'" + _FORMULA[1:])
-    return pc.if_else(added, pc.utf8_slice_codeunits(array, 1), array)
+    text = pc.if_else(added, pc.utf8_slice_codeunits(array, 1), array)
+    return text if array is texts else text.to_pylist()
 
 
 

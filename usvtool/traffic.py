@@ -48,7 +48,7 @@ import numpy as np
 
 from usvtool.angles import wrap180, wrap360
 from usvtool.errors import UsvError, check_input_file
-from usvtool.tracks import NS, Tracks, format_time
+from usvtool.tracks import NS, Tracks, format_time, spreadsheet_safe, spreadsheet_text
 
 EARTH_RADIUS = 6_371_008.8  # m, IUGG mean radius
 KNOT = 1852.0 / 3600.0  # m/s
@@ -68,6 +68,7 @@ COLUMNS = ("rank", "mmsi_a", "mmsi_b", "track_a", "track_b", "name_a", "name_b",
 DECIMALS = {"length_a": 1, "length_b": 1, "cpa_m": 1, "tcpa_s": 1, "range_m": 1, "sog_a": 2,
             "sog_b": 2, "cog_a": 1, "cog_b": 1, "lon": 6, "lat": 6}  # fmt: skip
 _INTEGERS = ("rank", "mmsi_a", "mmsi_b", "track_a", "track_b")
+_NAMES = ("name_a", "name_b")
 #: How an encounter is picked as a scene (:func:`pick_encounter`).
 KINDS = ("any", "under-way")
 
@@ -87,12 +88,15 @@ def _text(column: str, value) -> str:
 
 
 def encounters_csv(rows: list[dict]) -> str:
-    """The encounters CSV of ``rows`` (dicts of :data:`COLUMNS`)."""
+    """The encounters CSV of ``rows`` (dicts of :data:`COLUMNS`); the vessels' names
+    spreadsheet-safe (:func:`usvtool.tracks.spreadsheet_safe`; :func:`read_encounters` gives
+    them back as they were)."""
     out = io.StringIO()
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow(COLUMNS)
-    for r in rows:
-        writer.writerow([_text(c, r[c]) for c in COLUMNS])
+    names = {c: spreadsheet_safe([r[c] for r in rows]) for c in _NAMES} if rows else {}
+    for i, r in enumerate(rows):
+        writer.writerow([_text(c, names[c][i] if c in names else r[c]) for c in COLUMNS])
     return out.getvalue()
 
 
@@ -100,7 +104,7 @@ def read_encounters(path: str | os.PathLike) -> list[dict]:
     """The rows of an encounters CSV: numbers as floats (empty: NaN), MMSIs, tracks and ranks
     as ints, ``censored`` a bool; one line naming the line and column at fault."""
     check_input_file(path)
-    with open(path, encoding="utf-8", newline="") as f:
+    with open(path, encoding="utf-8-sig", newline="") as f:  # a spreadsheet's BOM too
         reader = csv.reader(f)
         header = next(reader, [])
         if tuple(header) != COLUMNS:
@@ -124,6 +128,9 @@ def read_encounters(path: str | os.PathLike) -> list[dict]:
                     raise UsvError(f"{path}: line {reader.line_num}, column {c}: {row[c]!r} is "
                                    "not of its kind") from None  # fmt: skip
             rows.append(row)
+    for c in _NAMES if rows else ():
+        for row, name in zip(rows, spreadsheet_text([r[c] for r in rows]), strict=True):
+            row[c] = name
     return rows
 
 
@@ -404,12 +411,15 @@ def traffic_scenario(tracks: Tracks, own: int, window: tuple[int, int], *, radiu
 
 
 def scenario_yaml(data: dict, comments: list[str]) -> str:
-    """A scenario mapping's YAML headed by ``comments`` (``# `` lines)."""
+    """A scenario mapping's YAML headed by ``comments`` (``# `` lines, each one line whatever
+    text from an input it holds: :func:`usvtool.yamlfile.comment`)."""
     import yaml
+
+    from usvtool.yamlfile import comment
 
     body = yaml.safe_dump(data, sort_keys=False, default_flow_style=None, width=100,
                           allow_unicode=True)  # fmt: skip
-    return "".join(f"# {c}\n" for c in comments) + body
+    return "".join(f"{comment(c)}\n" for c in comments) + body
 
 
 class _Frame:

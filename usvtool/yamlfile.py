@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import os
 import re
+import unicodedata
 
 import yaml
 
@@ -145,3 +146,17 @@ def read_yaml(path: str | os.PathLike):
         if isinstance(exc, _Refused):
             raise UsvError(f"{path}: {line}{problem}"[:200]) from None
         raise UsvError(f"{path}: not valid YAML ({line}{problem})"[:200]) from None
+
+
+def comment(text: str) -> str:
+    """``text`` as one YAML comment line (``# ...``, no line break): each control character and
+    line or paragraph separator (YAML ends a comment at any line break) as its Python escape, so
+    that text from an input (a path, a vessel's name, an option's value) cannot end the comment
+    and become a key.
+
+    >>> comment("a.csv\\nweather: {}\\u2028x")
+    '# a.csv\\\\nweather: {}\\\\u2028x'
+    """
+    return "# " + "".join(repr(c)[1:-1] if unicodedata.category(c) in ("Cc", "Zl", "Zp") else c
+                          for c in text)  # fmt: skip
+

@@ -110,3 +110,18 @@ def test_summarise_ignores_the_course_of_a_ship_standing_still():
     assert (m.course_change, m.largest_turn, m.speed_min) == pytest.approx((30.0, 30.0, 0.0))
     m = summarise([10.0, 340.0, 20.0], [1.0, 1.0, 1.0], (10.0, 1.0), (20.0, 1.0))
     assert m.largest_turn == pytest.approx(-30.0) and m.speed_max == pytest.approx(1 / KNOT)
+
+
+def test_the_encounters_csv_gives_back_names_a_spreadsheet_shows_as_text(tmp_path):
+    """Names are written behind a ``'`` where a spreadsheet would run them as a formula, and
+    read back as they were; a spreadsheet's byte order mark is accepted."""
+    rows = read_encounters(ENCOUNTERS)[:2]
+    rows[0] |= {"name_a": '=HYPERLINK("http://x","click")', "name_b": "+1-2"}
+    rows[1] |= {"name_a": "'-cmd", "name_b": "TUG -7"}
+    text = encounters_csv(rows)
+    cells = list(csv.reader(text.splitlines()))
+    assert [cells[1][5:7], cells[2][5:7]] == [["'=HYPERLINK(\"http://x\",\"click\")", "'+1-2"],
+                                              ["''-cmd", "TUG -7"]]  # fmt: skip
+    path = tmp_path / "e.csv"
+    path.write_text("\ufeff" + text, encoding="utf-8")
+    assert read_encounters(path) == rows

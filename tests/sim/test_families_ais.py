@@ -124,3 +124,15 @@ def test_with_a_map_the_scene_runs_on_a_copy_of_it_in_lon_lat(tmp_path):
         make_scene("ais", "under-way", 1, {**FILES, "map": str(land)})
     with pytest.raises(UsvError, match="no such file"):
         make_scene("ais", "under-way", 1, {**FILES, "map": str(tmp_path / "none.tif")})
+
+
+def test_a_line_break_in_an_option_stays_in_its_comment(tmp_path):
+    """A file option's path holding a line break and a YAML key used to end the scene file's
+    header comment: the scene then ran in that weather."""
+    hostile = tmp_path / "x\nweather: {wind_speed: 30}\n.csv"
+    hostile.write_bytes(Path(FILES["encounters"]).read_bytes())
+    scene = make_scene("ais", "any", 6, {**FILES, "encounters": str(hostile)})
+    write_scene(scene, tmp_path / "scene.yaml")
+    text = (tmp_path / "scene.yaml").read_text()
+    assert "weather" not in yaml.safe_load(text)
+    assert "x\\nweather: {wind_speed: 30}\\n.csv" in text  # escaped, on its comment's line

@@ -41,7 +41,7 @@ from usvtool.budget import default_budget, require
 from usvtool.encounter import CLASS_NAMES, assess
 from usvtool.encounter import cpa as straight_cpa
 from usvtool.errors import UsvError
-from usvtool.tracks import NS, Tracks, format_time, spreadsheet_safe
+from usvtool.tracks import NS, Tracks, format_time
 from usvtool.traffic import EARTH_RADIUS, KNOT, STILL, encounters_csv
 
 #: Pair samples followed at once in the second phase (bounds its memory: some 40 B each x 20).
@@ -96,14 +96,8 @@ class EncounterResult:
                 **self.figures}  # fmt: skip
 
     def to_csv(self) -> str:
-        """The encounters CSV, every text cell spreadsheet-safe
-        (:func:`usvtool.tracks.spreadsheet_safe`)."""
-        if not self.rows:
-            return encounters_csv([])
-        texts = [c for c, v in self.rows[0].items() if isinstance(v, str)]
-        safe = {c: spreadsheet_safe([r[c] for r in self.rows]) for c in texts}
-        return encounters_csv([r | {c: safe[c][i] for c in texts}
-                               for i, r in enumerate(self.rows)])  # fmt: skip
+        """The encounters CSV (:func:`usvtool.traffic.encounters_csv`)."""
+        return encounters_csv(self.rows)
 
 
 def find_encounters(tracks: Tracks, options: EncounterOptions = EncounterOptions(),

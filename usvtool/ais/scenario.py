@@ -14,8 +14,8 @@ replaying its track; lon/lat on a ``--map`` with a CRS, else the local UTM metre
 (:mod:`usvtool.traffic`).
 
 Text from the inputs (a path, a vessel's name) goes into the YAML's header comments with its
-line breaks and other control characters escaped (:func:`comment_text`), so it cannot end a
-comment. Beside the scenario, :data:`MANIFEST` lists the files written; the next ``ais
+line breaks and other control characters escaped (:func:`usvtool.yamlfile.comment`), so it
+cannot end a comment. Beside the scenario, :data:`MANIFEST` lists the files written; the next ``ais
 scenario`` into that directory removes those of them it does not write again (a previous
 window's targets), and nothing else.
 """
@@ -26,7 +26,6 @@ import json
 import math
 import os
 import re
-import unicodedata
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -101,20 +100,8 @@ def make_scenario(tracks: Tracks, options: ScenarioOptions,
     made = traffic_scenario(tracks, own, window, radius=options.radius, vessel=options.vessel,
                             controller=options.controller, duration=options.duration,
                             map_path=options.map, directory=directory, what=what)  # fmt: skip
-    comments = [comment_text(c) for c in made.comments]
-    return ScenarioResult({**made.files, SCENARIO: scenario_yaml(made.scenario, comments)},
+    return ScenarioResult({**made.files, SCENARIO: scenario_yaml(made.scenario, made.comments)},
                           {**made.figures, "encounter": encounter})  # fmt: skip
-
-
-def comment_text(text: str) -> str:
-    """``text`` on one line for a YAML comment: each control character and line or paragraph
-    separator (a comment ends at any YAML line break) as its Python escape.
-
-    >>> comment_text("a.csv\\nweather: {}\\u2028x")
-    'a.csv\\\\nweather: {}\\\\u2028x'
-    """
-    return "".join(repr(c)[1:-1] if unicodedata.category(c) in ("Cc", "Zl", "Zp") else c
-                   for c in text)  # fmt: skip
 
 
 def scenario_paths(directory: str | os.PathLike, result: ScenarioResult) -> list[Path]:

@@ -11,6 +11,7 @@ from pathlib import Path
 import yaml
 
 from usvtool.sim.families.base import Scene
+from usvtool.yamlfile import comment
 
 
 def scene_files(scene: Scene, path: str | Path) -> list[Path]:
@@ -31,15 +32,15 @@ def scene_text(scene: Scene, stem: str) -> str:
         holder[key] = f"{stem}.{suffix}"
     given = ", ".join(f"{k}={v}" for k, v in sorted(scene.given.items())) or "none"
     rejected = ", ".join(f"{n} {r}" for r, n in sorted(scene.rejected.items())) or "none"
-    header = [
-        f"# Scene {scene.scene} of kind {scene.kind} of the scene family {scene.family} "
+    header = [comment(line) for line in (  # an option's value may hold a line break
+        f"Scene {scene.scene} of kind {scene.kind} of the scene family {scene.family} "
         "(docs/families.md);",
-        f"# options given: {given}; draw {scene.draws} (rejected: {rejected}).",
-        f"# Written again by: usvtool scene --family {scene.family} --kind {scene.kind} --scene "
+        f"options given: {given}; draw {scene.draws} (rejected: {rejected}).",
+        f"Written again by: usvtool scene --family {scene.family} --kind {scene.kind} --scene "
         f"{scene.scene}" + "".join(f" --family-option {k}={v}" for k, v in
                                    sorted(scene.given.items())) + " -o FILE",
-        *(f"# {line}" for line in scene.draw.comments),
-    ]  # fmt: skip
+        *scene.draw.comments,
+    )]  # fmt: skip
     body = yaml.safe_dump(mapping, sort_keys=False, default_flow_style=None, width=100)
     return "\n".join(header) + "\n" + body
 
