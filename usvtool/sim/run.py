@@ -90,9 +90,19 @@ def simulate(scenario: Scenario, options: SimOptions | None = None) -> SimResult
     sim = scenario.sim
     n_steps = int(round(sim.duration / sim.dt))
     ships = len(scenario.targets) + 1
-    memory.check_run(scenario.path, controller, n_steps, ships, opts.max_memory)
-    setup = _Setup(scenario, lambda width, height: memory.check_run(
-        None, controller, n_steps, ships, opts.max_memory, (width, height)))  # fmt: skip
+    tracks = memory.track_sizes(t.track for t in scenario.targets if t.track is not None)
+    with memory.check_run(scenario.path, controller, n_steps, ships, opts.max_memory,
+                          tracks=tracks):  # fmt: skip
+        setup = _Setup(scenario, lambda width, height: memory.check_run(
+            None, controller, n_steps, ships, opts.max_memory, (width, height),
+            tracks))  # fmt: skip
+        return _run(scenario, opts, controller, n_steps, setup)
+
+
+def _run(scenario: Scenario, opts: SimOptions, controller, n_steps: int,
+         setup: _Setup) -> SimResult:  # fmt: skip
+    """The run of :func:`simulate` once its memory is checked and its files read."""
+    sim = scenario.sim
     times = sim.dt * np.arange(n_steps + 1)
     rng = np.random.default_rng(opts.seed)
     # one step beyond the end, for the targets' velocities at the last step
