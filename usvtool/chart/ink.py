@@ -40,7 +40,10 @@ keep touching symbols of different inks apart and tell black structures from mag
   breakwaters): at least ``25 w`` across (box diagonal ``D``), holding between 0.75 and 1 times
   ``D 2 R`` of ink, in a layer the caller names dark (``dark_layers``; all ink when no layers
   are given). Charts draw structures in black, ranges and limits in magenta: on 11361_4 thick
-  magenta range lines cross the river, and without the darkness test they became walls.
+  magenta range lines cross the river, and without the darkness test they became walls. A
+  stroke from the shore must *run out* from it: some of it at least :data:`PIER_REACH` of its
+  box's diagonal from the land. Roads and rails drawn along a creek's bank do not; they are
+  clutter, but still join the hazards in the line-crossing groups below.
 - *dock networks* drawn in ordinary strokes (marina finger piers): the ink of one colour layer
   outside the shore band, cut where layers meet, in 8-connected networks that come within
   ``2 w + 3/2`` of land, are at least ``20 w`` across (box diagonal ``D``), hold at least
