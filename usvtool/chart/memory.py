@@ -16,11 +16,15 @@ table): 18.1-18.6 bytes per pixel for RGB GeoTIFFs of 14-191 megapixels, 23.5 fo
 RGBA one, 18.3 for the palette KAP SanDiego_2 (warped), 11-12 bytes per cell for S-57 and
 GeoJSON grids, 110-126 with ``occupancy``; the process itself (Python, NumPy, GDAL, OpenCV,
 scikit-fuzzy) takes 130-230 MB. Every estimate lies 5-40 % above the measured peak.
+
+Each check returns the guard (:func:`usvtool.budget.allocating`) its phase runs in.
 """
 
 from __future__ import annotations
 
-from usvtool.budget import MiB, require
+from contextlib import AbstractContextManager
+
+from usvtool.budget import MiB, allocating, require
 
 PROCESS = 256 * MiB  # the process and the 2^24-entry colour tables of colours.index_packed
 PIXEL_WORK = 18  # bytes per pixel while reading and segmenting, beyond the bands read
@@ -29,6 +33,8 @@ CELL_RASTER = 34  # bytes per grid cell of a raster chart
 CELL_VECTOR = 12  # bytes per grid cell of a vector chart (S-57, GeoJSON)
 CELL_VECTOR_FINE = 120  # the same with occupancy > 0
 MAX_BANDS = 4  # colour and alpha: the bands a raster source reads at most
+PIXELS_REMEDY = "give a smaller chart image (e.g. gdal_translate -outsize or -srcwin)"
+CELLS_REMEDY = "give a larger --cell-size"
 
 
 def pixels_need(width: int, height: int, bands: int, itemsize: int) -> int:
@@ -45,16 +51,26 @@ def cells_need(width: int, height: int, pixels: int, fine: bool) -> int:
     return PROCESS + width * height * (CELL_VECTOR_FINE if fine else CELL_VECTOR)
 
 
-def check_pixels(path, width: int, height: int, bands: int, itemsize: int, budget=None) -> None:
+def check_pixels(path, width: int, height: int, bands: int, itemsize: int,
+                 budget=None) -> AbstractContextManager:  # fmt: skip
     """Refuse reading a raster that would need more than ``budget`` bytes (None: the default
-    budget): :func:`pixels_need`."""
-    require(pixels_need(width, height, bands, itemsize),
-            f"{path}: reading {width} x {height} pixels",
-            "give a smaller chart image (e.g. gdal_translate -outsize or -srcwin)",
-            budget)  # fmt: skip
+    budget): :func:`pixels_need`; else the guard to read it in."""
+    need = pixels_need(width, height, bands, itemsize)
+    require(need, f"{path}: reading {width} x {height} pixels", PIXELS_REMEDY, budget)
+    return allocating(need, f"reading {width} x {height} pixels of {path}", PIXELS_REMEDY)
 
 
-def check_cells(path, width: int, height: int, pixels: int, fine: bool, budget=None) -> None:
-    """Refuse gridding that would need more than ``budget`` bytes: :func:`cells_need`."""
-    require(cells_need(width, height, pixels, fine), f"{path}: gridding {width} x {height} cells",
-            "give a larger --cell-size", budget)  # fmt: skip
+def segmenting(path, width: int, height: int) -> AbstractContextManager:
+    """The guard of segmenting ``path``'s ``width`` x ``height`` indexed pixels (checked with
+    its reading: :func:`check_pixels`)."""
+    return allocating(pixels_need(width, height, 1, 1),
+                      f"segmenting {width} x {height} pixels of {path}", PIXELS_REMEDY)  # fmt: skip
+
+
+def check_cells(path, width: int, height: int, pixels: int, fine: bool,
+                budget=None) -> AbstractContextManager:  # fmt: skip
+    """Refuse gridding that would need more than ``budget`` bytes: :func:`cells_need`; else the
+    guard to grid in."""
+    need = cells_need(width, height, pixels, fine)
+    require(need, f"{path}: gridding {width} x {height} cells", CELLS_REMEDY, budget)
+    return allocating(need, f"gridding {width} x {height} cells of {path}", CELLS_REMEDY)

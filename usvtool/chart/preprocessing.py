@@ -84,24 +84,25 @@ def preprocess(path, options: PreprocessOptions | None = None) -> PreprocessResu
     if kind in ("raster", "kap"):
         chart = sources.read_raster(path, opts.resolution, opts.cutline, opts.max_memory)
         timings["read"] = time.perf_counter() - t
-        seg = _named(path, segment)(
-            (chart.index, chart.palette),
-            chart.valid,
-            clusters=opts.clusters,
-            land_colours=opts.land_colours,
-            channel=opts.channel,
-            threshold=opts.threshold,
-            min_area=opts.min_area,
-            ink=opts.ink,
-            seed=opts.seed,
-        )
+        with memory.segmenting(path, chart.index.shape[1], chart.index.shape[0]):
+            seg = _named(path, segment)(
+                (chart.index, chart.palette),
+                chart.valid,
+                clusters=opts.clusters,
+                land_colours=opts.land_colours,
+                channel=opts.channel,
+                threshold=opts.threshold,
+                min_area=opts.min_area,
+                ink=opts.ink,
+                seed=opts.seed,
+            )
         timings.update({f"segment_{k}": v for k, v in seg.timings.items()})
         t = time.perf_counter()
         frame = gridding.grid_frame(chart.frame.bounds, opts.cell, chart.frame.crs)
-        memory.check_cells(path, frame.width, frame.height, chart.index.size, False,
-                           opts.max_memory)  # fmt: skip
-        fraction = gridding.occupancy_fraction(seg.blocked, chart.frame, frame)
-        obstacle = gridding.obstacles_from_fraction(fraction, opts.occupancy)
+        with memory.check_cells(path, frame.width, frame.height, chart.index.size, False,
+                                opts.max_memory):  # fmt: skip
+            fraction = gridding.occupancy_fraction(seg.blocked, chart.frame, frame)
+            obstacle = gridding.obstacles_from_fraction(fraction, opts.occupancy)
         crs = chart.frame.crs
         extra = {
             "threshold": seg.threshold,
@@ -131,9 +132,9 @@ def preprocess(path, options: PreprocessOptions | None = None) -> PreprocessResu
         timings["read"] = time.perf_counter() - t
         t = time.perf_counter()
         frame = gridding.grid_frame(vec.extent.bounds, opts.cell, vec.crs)
-        memory.check_cells(path, frame.width, frame.height, 0, opts.occupancy > 0,
-                           opts.max_memory)  # fmt: skip
-        obstacle = _rasterise(vec, frame, opts.occupancy)
+        with memory.check_cells(path, frame.width, frame.height, 0, opts.occupancy > 0,
+                                opts.max_memory):  # fmt: skip
+            obstacle = _rasterise(vec, frame, opts.occupancy)
         crs = vec.crs
     timings["grid"] = time.perf_counter() - t
 

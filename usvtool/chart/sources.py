@@ -132,8 +132,9 @@ def read_raster(
                         "only (drop it)"
                     )
                 itemsize = np.dtype(ds.dtypes[0]).itemsize
-                memory.check_pixels(path, ds.width, ds.height, ds.count, itemsize, max_memory)
-                index, palette, valid = _read_pixels(ds, path)
+                with memory.check_pixels(path, ds.width, ds.height, ds.count, itemsize,
+                                         max_memory):  # fmt: skip
+                    index, palette, valid = _read_pixels(ds, path)
     except RasterioIOError as exc:
         raise UsvError(f"{path}: not a readable chart image ({_first_line(exc)})") from None
 
