@@ -247,6 +247,23 @@ class Pipeline:
     functions: FunctionMatrix | None = None
     families: tuple[FamilyEntry, ...] = ()
 
+    def job_counts(self, exact: Names | None = None) -> list[tuple[str, int]]:
+        """(field, jobs) of each matrix, counted without expanding it (the matrices' products;
+        with ``exact``, an exact planner's route once): what :meth:`route_jobs`,
+        :meth:`simulation_jobs`, :meth:`family_jobs` and :meth:`function_jobs` would list."""
+        counts = [(f"routes.{m.name}", len(m.charts) * sum(
+            1 if exact is not None and exact.is_exact(a) else len(m.seeds) for a in m.algorithms
+        )) for m in self.routes.values()]  # fmt: skip
+        if self.simulation is not None:
+            s = self.simulation
+            counts.append(("simulation", len(s.scenarios) * len(s.controllers) * len(s.seeds)))
+        counts += [(f"families[{i}]", len(e.kinds) * len(e.scenes) * len(e.controllers)
+                    * len(e.seeds)) for i, e in enumerate(self.families)]  # fmt: skip
+        if self.functions is not None:
+            f = self.functions
+            counts.append(("functions", len(f.functions) * len(f.algorithms) * len(f.seeds)))
+        return counts
+
     def route_jobs(self, exact: Names | None = None) -> list[RouteJob]:
         """The route matrices expanded, in file order: charts x algorithms x seeds. With
         ``exact``, an exact planner's route is one job without a seed."""

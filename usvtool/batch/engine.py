@@ -31,7 +31,7 @@ from functools import partial
 from pathlib import Path
 
 from usvtool.batch import results_tables
-from usvtool.batch.jobs import PRIORITY, Job, ScenarioFiles, expand
+from usvtool.batch.jobs import PRIORITY, Job, ScenarioFiles, check_expansion, expand
 from usvtool.batch.progress import Bar, Lines
 from usvtool.batch.record import RECORD, damage
 from usvtool.batch.worker import TMP_PREFIX, Command, Outcome, execute, record_failure, with_memory
@@ -76,7 +76,9 @@ class BatchResult:
         return dict(self.figures)
 
 
-def _executor(options: BatchOptions):
+def _executor(options: BatchOptions, jobs: int):
+    """The Dask cluster, or a local pool of ``-j`` workers (None: the cores), no more than the
+    ``jobs`` (so that each job's share of the memory is the budget over the workers)."""
     if options.scheduler is not None:
         from usvtool.batch.cluster import DaskCluster
 
@@ -86,7 +88,7 @@ def _executor(options: BatchOptions):
         return DaskCluster(options.scheduler)
     from usvtool.batch.local import LocalPool
 
-    return LocalPool(options.workers or os.cpu_count() or 1, options.timeout)
+    return LocalPool(max(1, min(options.workers or os.cpu_count() or 1, jobs)), options.timeout)
 
 
 @contextmanager
@@ -284,9 +286,10 @@ def run_batch(pipeline_path, options: BatchOptions) -> BatchResult:
     cannot be made; failed jobs are in the result."""
     started = time.monotonic()
     pipeline = load(pipeline_path, options.names)
+    check_expansion(pipeline, options.names, options.max_memory)
     jobs = expand(pipeline, options.names, options.scenario_files)
     out = Path(options.out).resolve()
-    executor = _executor(options)
+    executor = _executor(options, len(jobs))
     try:
         with _locked(out):
             _refuse_links(out, jobs)

@@ -38,6 +38,7 @@ from usvtool.batch.commands import (
     simulate_command,
     with_companions,
 )
+from usvtool.budget import require
 from usvtool.digest import sha256
 from usvtool.errors import UsvError
 from usvtool.pipeline import Names, Pipeline
@@ -48,6 +49,9 @@ STAGES = {"grids": ("chart", "preprocess"), "routes": ("plan", "plan"),
           "runs": ("sim", "simulate"), "functions": ("plan", "functions")}  # fmt: skip
 #: The order in which ready jobs start: grids (routes wait for them), then the longest kinds.
 PRIORITY = {"grids": 0, "runs": 1, "routes": 2, "functions": 3}
+#: Bytes the batch holds per job: the job, its key's inputs, its command line, its place in the
+#: run's queues (docs/batch.md; a function run's job alone measured 1.0 kB, tracemalloc)
+JOB_BYTES = 3 << 10
 
 
 @dataclass(frozen=True)
@@ -114,6 +118,18 @@ def code_hash(kind: str) -> str:
 def _key(config: dict) -> str:
     text = json.dumps({"code": code_hash(config["kind"]), **config}, sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def check_expansion(pipeline: Pipeline, names: Names, budget: int | None = None) -> None:
+    """Refuse, before :func:`expand` lists them, jobs that would need more than ``budget``
+    bytes (None: the default budget), :data:`JOB_BYTES` each, in one line naming the matrix
+    with the most."""
+    counts = pipeline.job_counts(names)
+    total = sum(n for _, n in counts)
+    field, most = max(counts, key=lambda count: count[1], default=("", 0))
+    require(total * JOB_BYTES, f"{pipeline.path}: listing {total} jobs ({most} of them in "
+            f"{field})", f"lower the seeds, scenes or other lists of {field} (or split the "
+            "pipeline)", budget)  # fmt: skip
 
 
 def expand(pipeline: Pipeline, names: Names,
