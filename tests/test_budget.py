@@ -46,3 +46,37 @@ def test_the_default_budget_is_half_the_machines_memory():
     assert budget.default_budget() == int(budget.machine_memory() * 0.5)
     with pytest.raises(UsvError, match="budget of"):  # the default applies when none is given
         require(budget.machine_memory(), "x", "y")
+
+
+def limits(monkeypatch, as_limit, data_limit, vm_size=500 * MiB, vm_data=250 * MiB):
+    """Soft RLIMIT_AS and RLIMIT_DATA (None: unlimited), what the process maps, 24 GiB."""
+    soft = {budget.resource.RLIMIT_AS: as_limit, budget.resource.RLIMIT_DATA: data_limit}
+    monkeypatch.setattr(budget.resource, "getrlimit", lambda kind: (
+        budget.resource.RLIM_INFINITY if soft[kind] is None else soft[kind],
+        budget.resource.RLIM_INFINITY))  # fmt: skip
+    monkeypatch.setattr(budget, "_status_bytes", {"VmSize": vm_size, "VmData": vm_data}.get)
+    monkeypatch.setattr(budget, "machine_memory", lambda: 24 * GiB)
+
+
+@pytest.mark.parametrize("as_limit, data_limit, room", [
+    (None, None, None),  # no limit: half of 24 GiB
+    (4_096_000_000, None, 2_678_784_000),  # ulimit -v 4000000: (4096000000 - 500 MiB) x 3/4
+    (None, GiB, 608_698_368),  # (1 GiB - 250 MiB) x 3/4
+    (4_096_000_000, GiB, 608_698_368),  # the lesser
+    (400 * MiB, None, 0),  # already past the limit: no room
+])  # fmt: skip
+def test_the_default_budget_within_the_address_space_limits(monkeypatch, as_limit, data_limit,
+                                                            room):  # fmt: skip
+    limits(monkeypatch, as_limit, data_limit)
+    assert budget.room_budget() == room
+    assert budget.default_budget() == (12 * GiB if room is None else room)
+
+
+def test_a_memory_error_inside_its_guard_is_one_line():
+    with pytest.raises(UsvError) as caught:
+        with budget.allocating(9.64 * GiB, "running s.yaml (its rollouts)", "lower v_samples"):
+            raise MemoryError("Unable to allocate 6.71 GiB")
+    assert str(caught.value) == ("out of memory while running s.yaml (its rollouts) (about "
+                                 "9.64 GiB needed); lower v_samples")  # fmt: skip
+    with budget.allocating(GiB, "x", "y"):  # nothing raised: nothing said
+        pass
