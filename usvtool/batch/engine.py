@@ -26,7 +26,7 @@ import sys
 import time
 from collections import defaultdict
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import partial
 from pathlib import Path
 
@@ -76,9 +76,7 @@ class BatchResult:
         return dict(self.figures)
 
 
-def _executor(options: BatchOptions, jobs: int):
-    """The Dask cluster, or a local pool of ``-j`` workers (None: the cores), no more than the
-    ``jobs`` (so that each job's share of the memory is the budget over the workers)."""
+def _executor(options: BatchOptions):
     if options.scheduler is not None:
         from usvtool.batch.cluster import DaskCluster
 
@@ -88,7 +86,15 @@ def _executor(options: BatchOptions, jobs: int):
         return DaskCluster(options.scheduler)
     from usvtool.batch.local import LocalPool
 
-    return LocalPool(max(1, min(options.workers or os.cpu_count() or 1, jobs)), options.timeout)
+    return LocalPool(options.workers or os.cpu_count() or 1, options.timeout)
+
+
+def _capped(options: BatchOptions, jobs: int) -> BatchOptions:
+    """``options`` with local workers no more than the ``jobs`` (``-j``, None: the cores), so
+    that each job's share of the memory is the budget over the workers that can run."""
+    if options.scheduler is not None:
+        return options
+    return replace(options, workers=max(1, min(options.workers or os.cpu_count() or 1, jobs)))
 
 
 @contextmanager
@@ -289,7 +295,7 @@ def run_batch(pipeline_path, options: BatchOptions) -> BatchResult:
     check_expansion(pipeline, options.names, options.max_memory)
     jobs = expand(pipeline, options.names, options.scenario_files)
     out = Path(options.out).resolve()
-    executor = _executor(options, len(jobs))
+    executor = _executor(_capped(options, len(jobs)))
     try:
         with _locked(out):
             _refuse_links(out, jobs)
