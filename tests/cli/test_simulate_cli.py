@@ -65,6 +65,7 @@ def case(tmp_path):
     ))  # fmt: skip
     (tmp_path / "wind.tif").write_text("not a raster\n")
     (tmp_path / "bad-track.csv").write_text("t,x,y\n0,10,150\n20,ten,110\n")
+    (tmp_path / "long-line.csv").write_text("t,x,y\n0,10,150\n\"" + "9" * 200_000)  # one field
     out = tmp_path / "out"
     out.mkdir()
     (out / "trace.csv").write_bytes(OLD)
@@ -205,6 +206,8 @@ BAD = [  # (id, changes to the scenario, extra arguments, exit status, words of 
      "s.yaml: map names 'nowhere.tif', which is not a file"),
     ("bad-track-row", [edit("targets.2.track", "bad-track.csv")], [], 1,
      ("s.yaml: targets[2].track: ", "bad-track.csv: line 3: three numbers expected")),
+    ("track-line-too-long", [edit("targets.2.track", "long-line.csv")], [], 1,
+     ("s.yaml: targets[2].track: ", "long-line.csv: line 3: not a track's CSV (field larger")),
     ("duplicate-name", [edit("targets.1.name", "own")], [], 1,
      "s.yaml: targets[1].name 'own' is taken"),
     ("cli-unknown-controller", [], ["--controller", "apf"], 2, "'apf' is not one of"),

@@ -86,7 +86,13 @@ def read_track(path: Path, to_map=None) -> tuple[np.ndarray, np.ndarray, str]:
     ``to_map(lon, lat)`` converts, and is required)."""
     check_input_file(path)
     with open(path, newline="", encoding="utf-8") as f:
-        rows = list(csv.reader(f))
+        reader = csv.reader(f)
+        try:
+            rows = list(reader)
+        except csv.Error as exc:  # a field past the csv module's limit (128 KiB), a NUL
+            raise UsvError(f"{path}: line {reader.line_num}: not a track's CSV ({exc})") from None
+        except UnicodeDecodeError:
+            raise UsvError(f"{path}: not UTF-8 text: not a track's CSV") from None
     header = [h.strip().lower() for h in rows[0]] if rows else []
     columns = next((c for c in (["t", "x", "y"], ["t", "lon", "lat"]) if header[:3] == c), None)
     if columns is None:
