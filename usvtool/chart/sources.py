@@ -360,6 +360,8 @@ def _decode_with_opencv(
     try:
         data = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
     except cv2.error as exc:
+        if exc.code == cv2.Error.StsNoMem:  # its allocation refused: the caller's memory guard
+            raise MemoryError(_first_line(exc)) from None
         raise UsvError(f"{path}: OpenCV cannot decode this {driver} image "
                        f"({_first_line(exc)})") from None  # fmt: skip
     if data is None:
