@@ -102,6 +102,11 @@ def test_plan_on_a_large_grid_under_an_address_space_limit(tmp_path):
     r = run("plan", grid, "--start", 500_010, 3_699_990, "--goal", 500_900, 3_699_100,
             "-o", tmp_path / "r.geojson", address_space=3 << 29)  # fmt: skip
     assert_one_line(r, str(grid), "6000 x 6000 cells", "--cell-size", "--max-memory")
+    # allowed by a --max-memory beyond what the process can map: the planning's guard's line
+    r = run("plan", grid, "--start", 500_010, 3_699_990, "--goal", 500_900, 3_699_100, "-o",
+            tmp_path / "r.geojson", "--max-memory", "100G", address_space=3 << 29)  # fmt: skip
+    assert_one_line(r, f"out of memory while planning on 6000 x 6000 cells of {grid}",
+                    "(about 2.95 GiB needed); preprocess the chart with a larger --cell-size")
     assert not (tmp_path / "r.geojson").exists()
 
 

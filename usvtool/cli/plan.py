@@ -156,7 +156,7 @@ def plan(
     from usvtool.atomic import check_outputs, staged
     from usvtool.errors import UsvError
     from usvtool.grid import read_grid
-    from usvtool.plan.memory import check_grid
+    from usvtool.plan.memory import check_grid, planning
     from usvtool.plan.planner import PlanOptions, check_ends, plan_route
     from usvtool.route import write_path_geojson
 
@@ -173,7 +173,8 @@ def plan(
         algo=algo, pop=pop, iters=iters, seed=seed, waypoints=waypoints, encoding=encoding,
         params=params, turn_weight=turn_weight, attempts=attempts, timing=timing,
     )  # fmt: skip
-    result = plan_route(grid, start, goal, options)
+    with planning(grid_path, grid.width, grid.height):
+        result = plan_route(grid, start, goal, options)
     summary = {"output": output, "grid": grid_path, **result.summary()}
     with staged(output, summary_path) as (path_tmp, summary_tmp):  # the route renamed last
         write_path_geojson(path_tmp, result.route, grid)

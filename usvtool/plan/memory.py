@@ -12,7 +12,11 @@ search reached few of them, 2.2 times).
 
 from __future__ import annotations
 
-from usvtool.budget import MiB, require
+from contextlib import AbstractContextManager
+
+from usvtool.budget import MiB, allocating, require
+
+REMEDY = "preprocess the chart with a larger --cell-size"
 
 PROCESS = 272 * MiB  # Python, NumPy, SciPy, OpenCV, GDAL and numba's kernels
 CELL_BYTES = 80
@@ -26,5 +30,12 @@ def grid_need(width: int, height: int) -> int:
 def check_grid(path, width: int, height: int, budget: int | None = None) -> None:
     """Refuse planning on a grid that would need more than ``budget`` bytes (None: the default
     budget): :func:`grid_need`."""
-    require(grid_need(width, height), f"{path}: planning on {width} x {height} cells",
-            "preprocess the chart with a larger --cell-size", budget)  # fmt: skip
+    require(grid_need(width, height), f"{path}: planning on {width} x {height} cells", REMEDY,
+            budget)  # fmt: skip
+
+
+def planning(path, width: int, height: int) -> AbstractContextManager:
+    """The guard of the planning itself: a ``MemoryError`` past the estimate is one line naming
+    the grid, its cells and the remedy (:func:`usvtool.budget.allocating`)."""
+    return allocating(grid_need(width, height), f"planning on {width} x {height} cells of {path}",
+                      REMEDY)  # fmt: skip
