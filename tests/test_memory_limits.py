@@ -133,6 +133,19 @@ def test_batch_refuses_ten_million_jobs_before_listing_them(tmp_path):
     assert not (tmp_path / "out").exists()
 
 
+def test_batch_refuses_a_billion_seeds_before_listing_them(tmp_path):
+    """{first, count} seeds are listed when the pipeline is read: 36 bytes a seed (a tuple's
+    slot and an int), 33.5 GiB for 10^9, refused there rather than failing in the listing."""
+    pipeline = tmp_path / "p.yaml"
+    pipeline.write_text(yaml.safe_dump({"functions": {
+        "functions": ["F1"], "algorithms": ["pso"], "seeds": {"first": 0, "count": 10**9},
+        "pop": 5, "iters": 5, "dim": 2}}))  # fmt: skip
+    r = run("batch", pipeline, "-o", tmp_path / "out", address_space=3 << 29)
+    assert_one_line(r, f"{pipeline}: functions.seeds.count: listing 1000000000 seeds needs about "
+                    "33.5 GiB", "give a smaller functions.seeds.count")  # fmt: skip
+    assert not (tmp_path / "out").exists()
+
+
 def test_batch_workers_and_their_memory_follow_the_jobs(tmp_path):
     pipeline = tmp_path / "p.yaml"  # 2 jobs: at -j 50, 1/50 of 1 GiB (21 MiB) refused both
     pipeline.write_text(yaml.safe_dump({"simulation": {

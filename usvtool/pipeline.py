@@ -29,9 +29,14 @@ from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from usvtool.budget import require
 from usvtool.errors import UsvError
 from usvtool.yamlfile import read_yaml
 from usvtool.yamlfile import show as _show
+
+#: Memory of one seed of a ``{first, count}`` list, which is listed when the pipeline is read:
+#: a tuple's slot and an int (8 + 28 bytes; CPython's ``sys.getsizeof(10**6)``).
+SEED_BYTES = 36
 
 #: The pipeline of ``make report``.
 BUNDLED = Path(__file__).resolve().parent.parent / "pipelines" / "report.yaml"
@@ -350,6 +355,8 @@ class _Reader:
             self.mapping(value, field, {"first", "count"}, {"first", "count"})
             first = self.integer(value["first"], f"{field}.first", 0)
             count = self.integer(value["count"], f"{field}.count", 1)
+            require(count * SEED_BYTES, f"{self.path}: {field}.count: listing {count} seeds",
+                    f"give a smaller {field}.count")  # fmt: skip
             return tuple(range(first, first + count))
         if not isinstance(value, list) or not value:
             self.fail(field, f"expected a list of seeds or {{first: F, count: N}}, got "
