@@ -212,12 +212,10 @@ def resolve(
     cv2.bitwise_or(parts, piers, dst=parts)
     # an opening rounds corners off: grow back by half a stroke, inside the ink
     hazard |= _grown(parts, filled, w)
-    if mode == "auto+bridges":  # a bridge's span along a bank stays with the bridge
-        along = _grown(along, filled, w) & ~hazard
-        lines, bridges = _crossings(hazard | along, land, wet, w, dark)
-        hazard |= along & bridges
-    else:  # strokes along a bank are clutter, and no part of a crossing with a jetty nearby
-        lines, _ = _crossings(hazard, land, wet, w, None)
+    along = _grown(along, filled, w) & ~hazard
+    lines, bridges = _crossings(hazard | along, land, wet, w,
+                                dark if mode == "auto+bridges" else None)  # fmt: skip
+    hazard |= along & bridges  # a bridge's span along a bank is the bridge's
     if lines.any():
         hazard &= ~lines
         # a line's ends at the banks are nearer land than water: over the water all the same
