@@ -17,6 +17,7 @@ import warnings
 from pathlib import Path
 from typing import NamedTuple
 
+import cv2
 import numpy as np
 import pytest
 import rasterio
@@ -140,3 +141,21 @@ def test_labelled_point_has_the_expected_cell(grid_of, point):
     assert 0 <= row < grid.height and 0 <= col < grid.width
     value = int(grid.cells[row, col])
     assert value == EXPECT[point.expect], f"{point.what}: cell {value}, want {point.expect}"
+
+
+#: Points far apart in one water body of a shared chart that its grid must join (lon, lat),
+#: with the cell size: Basswood Lake's main body, which the boundary's crosses at its banks cut
+#: in two (2 153 890 + 250 066 cells) while strokes along a bank were no crossing candidates.
+#: Each point lies 400-570 m from any land or ink (picked as the deepest cells of the two parts).
+JOINED = {"14988_1.KAP": (4.3, ((-91.71922, 48.05115), (-91.79101, 48.08288)))}
+
+
+@pytest.mark.parametrize("chart", JOINED)
+def test_a_water_body_stays_one_body(charts, chart):
+    cell_size, points = JOINED[chart]
+    grid = preprocess(chart_path(charts, chart), PreprocessOptions(cell_size=cell_size)).grid
+    _, labels = cv2.connectedComponents((grid.cells == NAVIGABLE).astype(np.uint8),
+                                        connectivity=8)  # fmt: skip
+    to_map = transformer("EPSG:4326", grid.crs)
+    bodies = {int(labels[grid.cell_of(*to_map.transform(lon, lat))]) for lon, lat in points}
+    assert len(bodies) == 1 and 0 not in bodies, bodies
