@@ -285,14 +285,15 @@ def test_a_job_file_changed_since_its_run_is_refused_naming_it_and_its_job(
         batch, tmp_path, kind, name):  # fmt: skip
     table = copy_of(batch, tmp_path)
     folder = sorted((table.parent / kind).iterdir())[0]
-    with open(folder / name, "ab") as f:
-        f.write(b"\n")
+    size = (folder / name).stat().st_size
+    with open(folder / name, "r+b") as f:  # one byte changed, the size kept: the SHA-256 tells
+        f.write(b"\x00" if f.read(1) != b"\x00" else b"\x01")
     out = tmp_path / "report"
     line = error_line(usvtool("report", table, "-o", out, "--no-pdf"))
-    assert line == (f"Error: {folder / name}: changed since job {folder.name} ran (its SHA-256 "
-                    "is not the one its job.json records): run the batch again")
+    assert (folder / name).stat().st_size == size
+    assert line == (f"Error: {folder / name}: its SHA-256 is not the one job.json records (job "
+                    f"{folder.name}): run the batch again")
     assert not out.exists()
     (folder / name).unlink()
     line = error_line(usvtool("report", table, "-o", out, "--no-pdf", "--allow-missing"))
-    assert line == (f"Error: {folder / name}: gone since job {folder.name} ran (its job.json "
-                    "lists it): run the batch again")
+    assert line == f"Error: {folder / name}: missing (job {folder.name}): run the batch again"

@@ -33,9 +33,9 @@ from pathlib import Path
 from usvtool.batch import results_tables
 from usvtool.batch.jobs import PRIORITY, Job, ScenarioFiles, check_expansion, expand
 from usvtool.batch.progress import Bar, Lines
-from usvtool.batch.record import RECORD, damage
 from usvtool.batch.worker import TMP_PREFIX, Command, Outcome, execute, record_failure, with_memory
 from usvtool.budget import default_budget
+from usvtool.digest import RECORD, fault
 from usvtool.errors import UsvError
 from usvtool.pipeline import Names, load
 
@@ -166,7 +166,7 @@ def _clear(jobs: list[Job], out: Path) -> list[tuple[Job, str]]:
     for job in jobs:
         d = out / job.kind / job.key
         state = _state(job, out)
-        problem = damage(d, job.key) if state else None
+        problem = fault(d, job.key) if state else None
         if d.is_symlink():
             problem = f"{d}: a link, not the folder its job wrote (the link removed)"
         if state is False or problem is not None:
@@ -181,7 +181,7 @@ def _complete(job: Job, out: Path) -> Outcome | None:
     """The outcome of a job whose worker died once its result was complete and in place (the
     files its ``job.json`` records): done (None when it is not)."""
     d = out / job.kind / job.key
-    if not _state(job, out) or damage(d, job.key) is not None:
+    if not _state(job, out) or fault(d, job.key) is not None:
         return None
     return Outcome(None, json.loads((d / RECORD).read_text(encoding="utf-8"))["wall_time_s"])
 

@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from usvtool.digest import RECORD
 from usvtool.errors import UsvError
 from usvtool.report import values
 from usvtool.results import Row, file_name, job_dir, read_results, timings_path
@@ -40,8 +41,6 @@ def method_order(name: str, order: Sequence[str] = ()) -> tuple:
     return (place, base, plus + variant)
 
 
-#: A job folder's record: what ran, and its files' SHA-256 (usvtool.digest.recorded).
-RECORD = "job.json"
 #: The row that says how a job ended: a route's collision check, a run's arrival.
 ENDING = {"routes": "collision_free", "runs": "arrived"}
 

@@ -1,15 +1,15 @@
 """The job folders the report reads, checked against their records before anything is built.
 
 Every job of the tables has its folder beside its table (``<kind>/<key>/``, its ``job.json``
-listing each of its files with the SHA-256 the batch recorded: :func:`usvtool.digest.recorded`),
-as has each route's grid job (``grids/<key>/``). :func:`check` reads each file of those folders
-once, before the sections read any, and refuses in one line:
+listing each of its files with the size and SHA-256 the batch recorded), as has each route's
+grid job (``grids/<key>/``). :func:`check` reads each file of those folders once, before the
+sections read any, and refuses in one line (:func:`usvtool.digest.fault`, the batch's own
+check, and files the record does not list, as the batch lists every file of the folder):
 
-- a file changed since its job ran (its SHA-256 is not the recorded one), gone from its
-  folder, or one its record does not list (the batch lists every file of the folder), naming
-  the file and the job;
-- a folder without its record, a record that lists no SHA-256 (an older usvtool's batch) or
-  is another job's;
+- a file changed since its job ran (another size or SHA-256), gone from its folder, or one its
+  record does not list, naming the file and the job;
+- a folder without its record, a record that does not parse, lists no files, is another job's
+  or names a path outside the folder;
 - folders that are missing (a table copied without its batch), naming up to :data:`NAMED` of
   them and how many, unless the report is told to go on without them (``allow_missing``: the
   methods section lists them). A folder that is there is checked either way: no file of it is
@@ -18,11 +18,11 @@ once, before the sections read any, and refuses in one line:
 
 from __future__ import annotations
 
-from pathlib import Path, PurePosixPath
+from pathlib import Path
 
-from usvtool.digest import recorded, sha256
+from usvtool.digest import fault
 from usvtool.errors import UsvError
-from usvtool.report.data import RECORD, Results, read_record
+from usvtool.report.data import Results
 
 #: The missing folders the refusal names (then how many more).
 NAMED = 3
@@ -62,38 +62,8 @@ def refusal(missing: list[Path], total: int) -> str:
 
 
 def _check_folder(folder: Path, key: str) -> None:
-    """Refuse a file of the job ``key``'s folder that is not the one its record lists."""
-    if not (folder / RECORD).is_file():
-        raise UsvError(f"{folder / RECORD}: missing (job {key}): the folder's files cannot be "
-                       "checked; run the batch again")  # fmt: skip
-    record = read_record(folder)
-    digests = recorded(record)
-    if digests is None or record.get("key") != key:
-        what = "records no SHA-256 of its files" if digests is None else "is not its record"
-        raise UsvError(f"{folder / RECORD}: {what} (job {key}): run the batch again")
-    for name, digest in digests.items():
-        _check_file(folder, name, digest, key)
-    unlisted = sorted(_files(folder) - digests.keys())
-    if unlisted:
-        raise UsvError(f"{folder / unlisted[0]}: not a file job {key} wrote (its job.json does "
-                       "not list it): remove it, or run the batch again")  # fmt: skip
-
-
-def _files(folder: Path) -> set[str]:
-    """The files of a job folder but its record, by path relative to it (as the batch lists
-    them: :mod:`usvtool.batch.record`)."""
-    return {p.relative_to(folder).as_posix() for p in folder.rglob("*")
-            if p.is_file() and p.name != RECORD}  # fmt: skip
-
-
-def _check_file(folder: Path, name: str, digest: str, key: str) -> None:
-    parts = PurePosixPath(name).parts
-    if not parts or PurePosixPath(name).is_absolute() or ".." in parts:
-        raise UsvError(f"{folder / RECORD}: lists {name!r}, not a file of its folder (job {key})")
-    path = folder.joinpath(*parts)
-    if not path.is_file():
-        raise UsvError(f"{path}: gone since job {key} ran (its job.json lists it): run the batch "
-                       "again")  # fmt: skip
-    if sha256(path) != digest:
-        raise UsvError(f"{path}: changed since job {key} ran (its SHA-256 is not the one its "
-                       "job.json records): run the batch again")  # fmt: skip
+    """Refuse the folder of job ``key`` when it is not what the job wrote, or holds a file its
+    record does not list (:func:`usvtool.digest.fault`)."""
+    problem = fault(folder, key, unlisted=True)
+    if problem is not None:
+        raise UsvError(f"{problem} (job {key}): run the batch again")
