@@ -84,6 +84,9 @@ def test_a_changed_byte_of_the_same_size_is_found_by_its_sha256(done, inline_bat
     (lambda p: p.unlink(), "missing"),
     (lambda p: p.write_text(json.dumps({**json.loads(p.read_text()), "key": "0" * 16})),
      "not the record of job"),
+    (lambda p: p.write_text(json.dumps({**json.loads(p.read_text()), "files": {
+        "../../metrics.csv": {"size": 1, "sha256": "00"}}})),
+     "lists '../../metrics.csv', not a file of its folder"),  # never read outside the folder
 ])  # fmt: skip
 def test_a_job_json_cut_short_or_gone_is_named_and_run_again(done, inline_batch, damage, reason):
     pipeline, out, run, metrics = done
