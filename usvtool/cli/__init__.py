@@ -32,6 +32,7 @@ SUBCOMMANDS = {
     "batch": ("usvtool.cli.batch", "Run a pipeline's jobs in a local pool, resumable."),
     "compare": ("usvtool.cli.compare", "Regression report: a results table against a baseline."),
     "ais": ("usvtool.cli.ais", "Real traffic: AIS into tracks, encounters, scenarios."),
+    "plugins": ("usvtool.cli.plugins", "Every method, built in or plugged in: its parameters."),
 }
 
 
@@ -94,11 +95,16 @@ def cli(ctx: click.Context, verbose: int, quiet: int) -> None:
 
     Every command prints one JSON summary on stdout; messages go to stderr.
     """
+    _log_to_stderr(max(logging.DEBUG, logging.WARNING - 10 * (verbose - quiet)))
+    ctx.obj = {"verbose": verbose}
+
+
+def _log_to_stderr(level: int) -> None:
+    """The ``usvtool`` logger's records at ``level`` and above as ``usvtool: message`` lines."""
     logger = logging.getLogger("usvtool")
     logger.handlers[:] = [_StderrHandler()]
-    logger.setLevel(max(logging.DEBUG, logging.WARNING - 10 * (verbose - quiet)))
+    logger.setLevel(level)
     logger.propagate = False
-    ctx.obj = {"verbose": verbose}
 
 
 class _StderrHandler(logging.Handler):
@@ -107,6 +113,11 @@ class _StderrHandler(logging.Handler):
 
     def emit(self, record: logging.LogRecord) -> None:
         click.echo(f"usvtool: {record.getMessage()}", err=True)
+
+
+# from the start: click imports a subcommand's module (whose registries may name a plugin they
+# cannot use) before the group's options set the level
+_log_to_stderr(logging.WARNING)
 
 
 def main() -> None:

@@ -2,8 +2,9 @@
 shows them (the papers' algorithms, each variant after the algorithm it varies).
 
 Adding one is its module (an :class:`Optimizer` subclass with ``name``, ``defaults``, ``ranges``
-and ``_run``) and its entry in the tuple below; :func:`register` adds one at run time
-(docs/extending.md).
+and ``_run``) and its entry in the tuple below; :func:`register` adds one at run time, and an
+installed distribution adds one under the entry-point group ``usvtool.planners``
+(:class:`usvtool.registry.Registry`; docs/extending.md).
 """
 
 from __future__ import annotations
@@ -20,26 +21,16 @@ from usvtool.plan.optimizers.ssa import SSA
 from usvtool.plan.optimizers.ssa_redraw import SSARedraw
 from usvtool.plan.optimizers.woa import WOA
 from usvtool.plan.optimizers.wso import WSO
+from usvtool.registry import Registry
 
-OPTIMIZERS: dict[str, type[Optimizer]] = {}
-
-
-def register(cls: type[Optimizer]) -> type[Optimizer]:
-    """Add ``cls`` to :data:`OPTIMIZERS` under its ``name`` (which must be new, and free of
-    ``+``, the planners' variant suffixes); returns ``cls``, so it also serves as a class
-    decorator."""
-    if not cls.name or "+" in cls.name:
-        raise ValueError(f"optimizer name {cls.name!r}: empty or with a '+'")
-    if cls.name in OPTIMIZERS:
-        raise ValueError(f"optimizer {cls.name!r} is already registered")
-    OPTIMIZERS[cls.name] = cls
-    return cls
-
-
-def unregister(name: str) -> None:
-    """Remove the optimizer registered as ``name`` (KeyError when there is none)."""
-    del OPTIMIZERS[name]
-
+#: Every optimizer: the built-ins below, then the ``usvtool.planners`` plugins (docs/extending.md).
+OPTIMIZERS = Registry("optimizer", Optimizer, "usvtool.planners",
+                      lambda cls: "has a '+' (the planners' variant suffix)" if "+" in cls.name
+                      else None)  # fmt: skip
+#: Add an optimizer (a class decorator too); ``ValueError`` for a taken or bad name.
+register = OPTIMIZERS.register
+#: Remove the optimizer registered under a name (``KeyError`` when there is none).
+unregister = OPTIMIZERS.unregister
 
 for _cls in (WSO, IWSO, SSA, SSARedraw, ISSA, PSO, PSOISSA, GWO, WOA, MRFO, BOA):
     register(_cls)

@@ -1,8 +1,10 @@
-"""The DWA controllers, by name."""
+"""The DWA controllers, by name: :data:`CONTROLLERS`, the built-ins and the plugins installed
+distributions declare (:class:`usvtool.registry.Registry`)."""
 
 from __future__ import annotations
 
 from usvtool.errors import UsvError
+from usvtool.registry import Registry
 from usvtool.sim.controllers.base import Controller, Decision, Encounter, Own, Targets, World
 from usvtool.sim.controllers.ccdwa import CCDWA
 from usvtool.sim.controllers.dwa import DWA
@@ -10,23 +12,14 @@ from usvtool.sim.controllers.gdwa import GDWA
 from usvtool.sim.controllers.udwa import UDWA
 from usvtool.sim.controllers.udwa_plus import UDWAPlus
 
-CONTROLLERS: dict[str, type[Controller]] = {
-    cls.name: cls for cls in (DWA, GDWA, CCDWA, UDWA, UDWAPlus)
-}
-
-
-def register(cls: type[Controller]) -> type[Controller]:
-    """Add ``cls`` to :data:`CONTROLLERS` under its ``name``, which must be new; returns
-    ``cls``, so it also serves as a class decorator (docs/extending.md)."""
-    if not cls.name or cls.name in CONTROLLERS:
-        raise ValueError(f"controller name {cls.name!r}: empty or already registered")
-    CONTROLLERS[cls.name] = cls
-    return cls
-
-
-def unregister(name: str) -> None:
-    """Remove the controller registered as ``name`` (KeyError when there is none)."""
-    del CONTROLLERS[name]
+#: Every controller: the built-ins, then the ``usvtool.controllers`` plugins (docs/extending.md).
+CONTROLLERS = Registry("controller", Controller, "usvtool.controllers")
+#: Add a controller (a class decorator too); ``ValueError`` for a taken or bad name.
+register = CONTROLLERS.register
+#: Remove the controller registered under a name (``KeyError`` when there is none).
+unregister = CONTROLLERS.unregister
+for _cls in (DWA, GDWA, CCDWA, UDWA, UDWAPlus):
+    register(_cls)
 
 
 def make_controller(name: str, **params) -> Controller:

@@ -17,6 +17,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from usvtool.errors import UsvError
+from usvtool.registry import Registry
 from usvtool.sim.families.ais import Ais
 from usvtool.sim.families.base import Draw, Family, Option, Scene, Where
 from usvtool.sim.families.emergency import Emergency
@@ -25,24 +26,14 @@ from usvtool.sim.families.iwso import Iwso
 from usvtool.sim.families.scenefile import scene_files, scene_text, write_scene
 from usvtool.sim.families.wind import Wind
 
-FAMILIES: dict[str, type[Family]] = {}
-
-
-def register(cls: type[Family]) -> type[Family]:
-    """Add ``cls`` to :data:`FAMILIES` under its ``name`` (new, a pipeline name: no ``/``);
-    returns ``cls``, so it also serves as a class decorator."""
-    if not cls.name or "/" in cls.name or not cls.kinds:
-        raise ValueError(f"family {cls.name!r}: needs a name without '/' and kinds")
-    if cls.name in FAMILIES:
-        raise ValueError(f"family {cls.name!r} is already registered")
-    FAMILIES[cls.name] = cls
-    return cls
-
-
-def unregister(name: str) -> None:
-    """Remove the family registered as ``name`` (KeyError when there is none)."""
-    del FAMILIES[name]
-
+#: Every scene family: the built-ins below, then the ``usvtool.families`` plugins.
+FAMILIES = Registry("family", Family, "usvtool.families",
+                    lambda cls: "has a '/' (a pipeline name)" if "/" in cls.name
+                    else None if cls.kinds else "no kinds")  # fmt: skip
+#: Add a family (a class decorator too); ``ValueError`` for a taken or bad name.
+register = FAMILIES.register
+#: Remove the family registered under a name (``KeyError`` when there is none).
+unregister = FAMILIES.unregister
 
 for _cls in (Emergency, Iwso, Imazu, Wind, Ais):
     register(_cls)

@@ -1,0 +1,138 @@
+"""Plugins by entry points (usvtool/registry.py): a distribution installed beside usvtool (here a
+``.dist-info`` folder and its module on PYTHONPATH, which is what ``pip install`` leaves) declares
+a controller and an optimizer under ``usvtool.controllers`` and ``usvtool.planners``; both run
+through the command line as built-in ones do, and each plugin that cannot be used (an import
+that fails, a class of the wrong kind, a name taken) is named in one line while the rest works."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from usvtool.registry import Registry
+
+ROOT = Path(__file__).resolve().parent.parent
+SCENARIO = ROOT / "charts" / "scenarios" / "emergency-head-on.yaml"
+GRID = ROOT / "charts" / "grid20.tif"
+
+MODULE = '''
+from usvtool.plan.optimizers.pso import PSO
+from usvtool.sim.controllers.dwa import DWA
+
+
+class SlowDWA(DWA):
+    """DWA under another name, its parameters DWA's."""
+    name = "slow-dwa"
+
+
+class WidePSO(PSO):
+    name = "wide-pso"
+
+
+class NotAController:
+    name = "plain"
+
+
+class Taken(DWA):
+    name = "dwa"
+'''
+ENTRY_POINTS = """[usvtool.controllers]
+slow-dwa = usvplug:SlowDWA
+broken = usvplug.missing:Nothing
+plain = usvplug:NotAController
+taken = usvplug:Taken
+
+[usvtool.planners]
+wide-pso = usvplug:WidePSO
+"""
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory) -> Path:
+    """A folder holding the distribution ``usvplug`` 1.2 as pip installs one."""
+    site = tmp_path_factory.mktemp("site")
+    (site / "usvplug").mkdir()
+    (site / "usvplug" / "__init__.py").write_text(MODULE)
+    info = site / "usvplug-1.2.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: usvplug\nVersion: 1.2\n")
+    (info / "entry_points.txt").write_text(ENTRY_POINTS)
+    return site
+
+
+def usvtool(site: Path, *args) -> subprocess.CompletedProcess:
+    env = {**os.environ, "PYTHONPATH": str(site)}
+    return subprocess.run([sys.executable, "-m", "usvtool.cli", *map(str, args)], env=env,
+                          capture_output=True, text=True)  # fmt: skip
+
+
+def test_a_plugin_controller_runs_and_each_bad_plugin_is_one_line(site, tmp_path):
+    r = usvtool(site, "simulate", SCENARIO, "--controller", "slow-dwa", "-o", tmp_path / "t.csv")
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["controller"] == "slow-dwa"
+    assert (tmp_path / "t.csv").read_text().startswith("t,ship,x,y")
+    where = "(usvplug 1.2, usvtool.controllers)"
+    problems = [line for line in r.stderr.splitlines() if "plugin" in line]
+    assert len(problems) == 3 and all(where in line for line in problems), r.stderr
+    broken, plain, taken = problems  # sorted by their entry points' names
+    assert broken.startswith("usvtool: plugin broken = usvplug.missing:Nothing ")
+    assert broken.endswith("cannot be imported: ModuleNotFoundError: No module named "
+                           "'usvplug.missing'")  # fmt: skip
+    assert plain.startswith("usvtool: plugin plain = usvplug:NotAController ")
+    assert plain.endswith("is not a subclass of Controller")
+    assert taken.endswith("controller 'dwa': already registered (by usvtool)")
+
+
+def test_a_plugin_optimizer_plans_like_a_built_in_one(site, tmp_path):
+    args = ("plan", GRID, "--start", 0.5, 0.5, "--goal", 18.5, 18.5, "--pop", 10, "--iters", 20,
+            "--seed", 3)  # fmt: skip
+    plugin = usvtool(site, *args, "--algo", "wide-pso", "-o", tmp_path / "a.geojson")
+    built_in = usvtool(site, *args, "--algo", "pso", "-o", tmp_path / "b.geojson")
+    assert plugin.returncode in (0, 3) and built_in.returncode == plugin.returncode, plugin.stderr
+    assert json.loads(plugin.stdout)["algorithm"] == "wide-pso"
+    # the same equations under another name: the same route, bit for bit
+    a, b = (json.loads((tmp_path / f"{n}.geojson").read_text())["features"] for n in "ab")
+    assert [f["geometry"] for f in a] == [f["geometry"] for f in b]
+
+
+def test_the_registry_checks_kind_name_and_origin():
+    class Base:
+        pass
+
+    class One(Base):
+        name = "one"
+
+    registry = Registry("thing", Base, "usvtool.no-such-group",
+                        lambda cls: "has a '+'" if "+" in cls.name else None)  # fmt: skip
+    registry.register(One)
+    assert list(registry) == ["one"] and registry["one"] is One
+    assert registry.origin("one")[0] == "usvtool" and registry.problems == []
+    for cls, why in [(type("Two", (Base,), {"name": "one"}), "thing 'one': already registered"),
+                     (type("Three", (Base,), {"name": "a+b"}), "thing 'a+b': has a '+'"),
+                     (type("Four", (Base,), {}), "thing None: no name"),
+                     (type("Five", (), {"name": "five"}), "is not a subclass of Base")]:
+        with pytest.raises(ValueError, match=why.replace("+", r"\+")):
+            registry.register(cls)
+    registry.unregister("one")
+    assert len(registry) == 0
+
+
+def test_plugins_lists_every_method_with_its_origin_and_parameters(site):
+    r = usvtool(site, "plugins")
+    assert r.returncode == 0, r.stderr
+    listed = json.loads(r.stdout)
+    methods = {m["name"]: m for m in listed["methods"]}
+    assert methods["slow-dwa"] == {**methods["dwa"], "name": "slow-dwa", "distribution":
+                                   "usvplug", "version": "1.2"}  # fmt: skip
+    assert methods["wide-pso"]["kind"] == "optimizer" and methods["wide-pso"]["version"] == "1.2"
+    assert methods["pso"]["parameters"]["w_start"] == 0.9 and methods["pso"]["distribution"] == \
+        "usvtool"  # fmt: skip
+    assert {m["kind"] for m in listed["methods"]} == {"optimizer", "exact planner", "controller",
+                                                      "scene family"}  # fmt: skip
+    assert methods["imazu"]["kind"] == "scene family" and "astar" in methods
+    assert len(listed["problems"]) == 3 and methods["dwa"]["distribution"] == "usvtool"
