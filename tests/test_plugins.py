@@ -136,3 +136,26 @@ def test_plugins_lists_every_method_with_its_origin_and_parameters(site):
                                                       "scene family"}  # fmt: skip
     assert methods["imazu"]["kind"] == "scene family" and "astar" in methods
     assert len(listed["problems"]) == 3 and methods["dwa"]["distribution"] == "usvtool"
+
+
+def test_a_plugins_batch_jobs_run_in_workers_and_again_once_it_is_upgraded(tmp_path_factory):
+    site = tmp_path_factory.mktemp("upgraded")
+    (site / "usvplug").mkdir()
+    (site / "usvplug" / "__init__.py").write_text(MODULE)
+    info = site / "usvplug-1.2.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: usvplug\nVersion: 1.2\n")
+    (info / "entry_points.txt").write_text("[usvtool.controllers]\nslow-dwa = usvplug:SlowDWA\n")
+    pipeline = site / "p.yaml"
+    pipeline.write_text(f"simulation: {{scenarios: ['{SCENARIO}'], controllers: [slow-dwa, dwa], "
+                        "seeds: [1]}\n")  # fmt: skip
+    out = site / "out"
+    first = usvtool(site, "batch", pipeline, "-j", 2, "-o", out)
+    assert first.returncode == 0, first.stderr
+    assert (json.loads(first.stdout)["done"], json.loads(first.stdout)["failed"]) == (2, 0)
+    rows = (out / "metrics.csv").read_text()
+    assert ",slow-dwa," in rows and ",dwa," in rows
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: usvplug\nVersion: 1.3\n")
+    info.rename(site / "usvplug-1.3.dist-info")
+    again = json.loads(usvtool(site, "batch", pipeline, "-j", 2, "-o", out).stdout)
+    assert (again["done"], again["skipped"]) == (1, 1)  # the plugin's run again, dwa's kept

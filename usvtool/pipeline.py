@@ -101,7 +101,8 @@ class Names:
     optimizers, exact planners (deterministic: their routes take no seed), controllers and
     benchmark functions; ``files``, the file options of the commands a pipeline gives
     options to (``preprocess``, ``plan``), as the commands declare them; ``families``, the
-    scene families by name."""
+    scene families by name; ``plugins``, the distribution and version (``"usvplug 1.2"``) of
+    each method an installed plugin gives (usvtool.registry), which the batch's keys hold."""
 
     optimizers: Collection[str]
     exact: Collection[str]
@@ -109,6 +110,7 @@ class Names:
     functions: Collection[str]
     files: Mapping[str, FileOptions] = field(default_factory=dict)
     families: Mapping[str, FamilySpec] = field(default_factory=dict)
+    plugins: Mapping[str, str] = field(default_factory=dict)
 
     def is_exact(self, algorithm: str) -> bool:
         """``anyangle``, ``astar+s``: an exact planner, with or without shortening."""

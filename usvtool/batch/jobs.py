@@ -115,8 +115,13 @@ def code_hash(kind: str) -> str:
     return digest.hexdigest()
 
 
-def _key(config: dict) -> str:
-    text = json.dumps({"code": code_hash(config["kind"]), **config}, sort_keys=True)
+def _key(config: dict, names: Names | None = None, *methods: str) -> str:
+    """A job's key: its configuration and its stage's code; with the distribution and version
+    of each of ``methods`` a plugin gives (``names.plugins``), so that an upgraded plugin's
+    jobs run again (a built-in's key holds none: it is as it was before plugins)."""
+    plugins = {m: names.plugins[m] for m in methods if names and m in names.plugins}
+    text = json.dumps({"code": code_hash(config["kind"]), **config,
+                       **({"plugins": plugins} if plugins else {})}, sort_keys=True)  # fmt: skip
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
@@ -159,7 +164,8 @@ def expand(pipeline: Pipeline, names: Names,
     file_sha256 = cache(sha256)  # a family's files, hashed once for all its jobs
     for r in pipeline.route_jobs(names):
         grid = grid_keys[r.chart]
-        key = _key({"kind": "routes", "grid": grid, "args": route_args(r, content)})
+        key = _key({"kind": "routes", "grid": grid, "args": route_args(r, content)}, names,
+                   r.algorithm.split("+")[0])  # fmt: skip
         info = {"matrix": r.matrix, "grid": grid, "frame": r.ends.frame,
                 "start": list(r.ends.start), "goal": list(r.ends.goal)}  # fmt: skip
         _claim(pipeline, owners, ("routes", r.case, r.algorithm, r.seed), key,
@@ -172,7 +178,7 @@ def expand(pipeline: Pipeline, names: Names,
         if scenario not in scenarios:
             scenarios[scenario] = _scenario_content(path, scenario_files, content)
         key = _key({"kind": "runs", "scenario": scenarios[scenario], "controller": controller,
-                    "seed": seed})  # fmt: skip
+                    "seed": seed}, names, controller)  # fmt: skip
         jobs.setdefault(key, Job("runs", key, Path(scenario).stem, controller, seed,
                                  simulate_command(path, controller, seed),
                                  info={"scenario": str(path)}))  # fmt: skip
@@ -181,7 +187,8 @@ def expand(pipeline: Pipeline, names: Names,
                  "options": {k: str(v) if isinstance(v, Path) else v for k, v in j.options}}
         read = {k: content(v) if isinstance(v, Path) else v for k, v in j.options}
         key = _key({"kind": "runs", "scene": {**scene, "options": read},
-                    "controller": j.controller, "seed": j.seed})  # fmt: skip
+                    "controller": j.controller, "seed": j.seed}, names, j.controller,
+                   j.family)  # fmt: skip
         _claim(pipeline, owners, ("runs", j.case, j.controller, j.seed), key,
                f"families.{j.entry}")  # fmt: skip
         # the files' own SHA-256 in job.json, for a reader to check it reads what the run did
@@ -193,7 +200,7 @@ def expand(pipeline: Pipeline, names: Names,
     for function, algorithm, seed in pipeline.function_jobs():
         sizes = {"pop": f.pop, "iters": f.iters, "dim": f.dim}
         key = _key({"kind": "functions", "function": function, "algorithm": algorithm,
-                    "seed": seed, **sizes})  # fmt: skip
+                    "seed": seed, **sizes}, names, algorithm)  # fmt: skip
         jobs.setdefault(key, Job("functions", key, function, algorithm, seed,
                                  functions_command(function, algorithm, seed, sizes),
                                  info=sizes))  # fmt: skip

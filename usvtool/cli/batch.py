@@ -61,15 +61,18 @@ def stage_names() -> Names:
     from usvtool.plan.benchmark_functions import FUNCTIONS
     from usvtool.plan.optimizers import OPTIMIZERS
     from usvtool.plan.planners import EXACT
+    from usvtool.registry import BUILT_IN
     from usvtool.sim.controllers import CONTROLLERS
     from usvtool.sim.families import FAMILIES
 
     files = {"preprocess": file_options(preprocess), "plan": file_options(plan)}
+    plugins = {name: " ".join(registry.origin(name)) for registry in (OPTIMIZERS, CONTROLLERS,
+               FAMILIES) for name in registry if registry.origin(name)[0] != BUILT_IN}  # fmt: skip
     families = {name: FamilySpec(cls.kinds, cls.seeded, cls().check_options,
                                  frozenset(k for k, o in cls.options.items() if o.file))
                 for name, cls in FAMILIES.items()}  # fmt: skip
     return Names(tuple(OPTIMIZERS), tuple(EXACT), tuple(CONTROLLERS), tuple(FUNCTIONS), files,
-                 families)  # fmt: skip
+                 families, plugins)  # fmt: skip
 
 
 def scenario_files(path: Path) -> list[Path]:
