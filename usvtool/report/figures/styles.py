@@ -4,11 +4,11 @@ A method's :class:`Style` (colour, line style, marker, family, label) comes from
 never from its position in a figure, so ``anyangle`` looks the same on every chart. The colours
 are colour-blind safe: Paul Tol's *muted* and *vibrant* schemes for the planners and the
 Okabe-Ito palette for the controllers and ships (Tol, "Colour Schemes", SRON/EPS/TN/09-002,
-2021; Okabe and Ito, "Color Universal Design", 2008). The 14 planning methods are told apart by
+2021; Okabe and Ito, "Color Universal Design", 2008). The 15 planning methods are told apart by
 family first, in line style and marker (grey print keeps the family), then by colour:
 
 - the papers' optimizers: solid line, circles;
-- our variants of IWSO: dashed, squares;
+- our variants (of IWSO, and SSA's redraw): dashed, squares;
 - the exact planners: dash-dot, diamonds.
 
 A method not in the registry (a user's new optimizer) gets a style derived from its name's
@@ -80,6 +80,7 @@ PLANNERS = {
     "boa": ("paper optimizer", "#000000"),
     "iwso+s": ("our variant", "#EE7733"),
     "iwso+g": ("our variant", "#EE3377"),
+    "ssa-redraw": ("our variant", "#009988"),
     "anyangle": ("exact planner", "#CC3311"),
     "astar": ("exact planner", "#0077BB"),
 }
