@@ -46,9 +46,6 @@ class StraightToGoal(Controller):
 
     name = "straight"
 
-    def critics(self):
-        return []
-
     def decide(self, own, targets, encounter=None) -> Decision:
         w, vessel = self.world, self.world.vessel
         bearing = math.atan2(w.goal[1] - own.y, w.goal[0] - own.x)

@@ -2,8 +2,9 @@
 
 :data:`PROCESS` plus three parts:
 
-- the controller's rollouts: (v_samples + 1) x (omega_samples + 2) samples (the window's grid,
-  the current speed and yaw rate and straight on), each :data:`POINT_BYTES` per horizon step
+- a DWA controller's rollouts (its ``memory_parts``; a controller of another make states its
+  own, none by default): (v_samples + 1) x (omega_samples + 2) samples (the window's grid, the
+  current speed and yaw rate and straight on), each :data:`POINT_BYTES` per horizon step
   (its positions: the compiled checks keep no other (horizon, samples) array,
   :mod:`usvtool.sim.rollout_kernels`) and :data:`SAMPLE_BYTES` (its speed, yaw rate, contact
   time, clearance, the critics' rewards, the kernels' per-sample tables); the number of targets
@@ -69,13 +70,8 @@ def run_parts(controller, steps: int, ships: int, map_size: tuple[int, int] | No
     ship and the targets) under ``controller``, on a map of ``map_size`` (width, height) cells
     or none, replaying ``tracks`` (rows, bytes: :func:`track_sizes`) (:func:`run_need` adds them
     up)."""
-    params = controller.params
-    n_v, n_omega = int(params["v_samples"]) + 1, int(params["omega_samples"]) + 2
-    horizon = controller.times.size
     parts = [
-        (n_v * n_omega * (horizon * POINT_BYTES + SAMPLE_BYTES),
-         f"its rollouts: {n_v} x {n_omega} samples x {horizon} horizon steps",
-         "lower v_samples and omega_samples (--param) or the horizon"),
+        *controller.memory_parts(),
         (steps * (STEP_BYTES + ships * SHIP_STEP_BYTES),
          f"its trace: {steps} steps x {ships} ships", "shorten sim.duration or lengthen sim.dt"),
     ]  # fmt: skip

@@ -269,7 +269,7 @@ _CONTACTS = nt.Tuple((_F[::1], _B[::1], _F[::1], _B[::1]))
       **_OPTIONS)  # fmt: skip
 def contacts(x, y, radius, u, times, x0, y0, pos, vel, length, padded, width, left, top, scale,
              cell, own_length, every, along, across, trigger, cap):  # fmt: skip
-    """The checks of :meth:`usvtool.sim.controllers.base.Controller.rollouts`, per sample:
+    """The checks of :meth:`usvtool.sim.controllers.base.DynamicWindow.rollouts`, per sample:
     ``(contact, static_first, clearance, intrudes)``.
 
     - the grid (``padded`` and ``width``: :attr:`usvtool.clearance.Clearance.padded`, an empty

@@ -33,6 +33,7 @@ their lengths, ``map``, ``route``, ``tracks``, ``wind_field``).
 from __future__ import annotations
 
 import contextlib
+import logging
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -45,9 +46,18 @@ from usvtool.errors import UsvError
 from usvtool.sim import memory, tracking, verdicts
 from usvtool.sim import targets as target_motion
 from usvtool.sim import vessel as vessel_model
-from usvtool.sim.controllers import Encounter, Own, Targets, World, make_controller
+from usvtool.sim.controllers import (
+    ControllerFailed,
+    Encounter,
+    Own,
+    Targets,
+    World,
+    make_controller,
+)
 from usvtool.sim.scenario import Scenario
 from usvtool.trace import Trace
+
+log = logging.getLogger("usvtool")
 
 
 @dataclass(frozen=True)
@@ -102,61 +112,112 @@ def simulate(scenario: Scenario, options: SimOptions | None = None) -> SimResult
 def _run(scenario: Scenario, opts: SimOptions, controller, n_steps: int,
          setup: _Setup) -> SimResult:  # fmt: skip
     """The run of :func:`simulate` once its memory is checked and its files read."""
-    sim = scenario.sim
-    times = sim.dt * np.arange(n_steps + 1)
-    rng = np.random.default_rng(opts.seed)
-    # one step beyond the end, for the targets' velocities at the last step
-    times_ahead = sim.dt * np.arange(n_steps + 2)
-    tracks = [target_motion.positions(c, times_ahead, rng) for c in setup.courses]
-    ahead = np.stack(tracks, axis=1) if tracks else np.zeros((len(times_ahead), 0, 2))
-    k = ahead.shape[1]
-    motion = _Motion.of(ahead, sim.dt)
-    lengths = np.array([t.length for t in scenario.targets], float)
-    vessel = setup.vessel
-    world = World(vessel, setup.goal, setup.clearance, setup.route, setup.weather, sim.dt,
-                  sim.goal_tolerance)  # fmt: skip
-    controller.reset(world)
+    voyage = Voyage(scenario, setup, n_steps, opts.seed)
+    controller.reset(voyage.world)
+    decide_time, failed = 0.0, None
+    try:
+        while not voyage.over:
+            own, targets, encounter = voyage.observe()
+            t0 = time.perf_counter()
+            try:
+                decision = controller.decide(own, targets, encounter)
+            except ControllerFailed as exc:
+                failed = f"step {voyage.step} (t = {voyage.time:g} s): {exc}"
+                voyage.events.append({"t": round(voyage.time, 3), "kind": "controller-failed",
+                                      "why": str(exc)})  # fmt: skip
+                log.warning("%s: controller failed at %s", scenario.path, failed)
+                break
+            decide_time += time.perf_counter() - t0
+            voyage.advance(decision.v, decision.omega, decision.events)
+    finally:
+        controller.close()
+    return _result(scenario, setup, opts, controller, voyage, failed,
+                   decide_time / max(voyage.step, 1))  # fmt: skip
 
-    x, y = setup.start
-    psi = float(angles.compass_to_math(scenario.own.heading))
-    v = float(np.clip(scenario.own.speed, vessel.min_speed, vessel.max_speed))
-    omega, made_good = 0.0, v
-    tracker = tracking.EncounterTracker(k, risk_distance=tracking.onset_distance(vessel.length))
-    heading = angles.math_to_compass(psi)  # the own ship's in the trace's and tracker's unit
-    own_states = [(x, y, heading, made_good, omega)]
-    controller_events: list[dict] = []
-    collision, arrived, decide_time, steps = None, False, 0.0, 0
-    for i in range(n_steps):
-        tracker.update(times[i], (x, y), heading, made_good, ahead[i], motion.heading[i],
-                       motion.speed[i])  # fmt: skip
-        urgent = tracker.most_urgent()
+
+class Voyage:
+    """One run of a scenario, step by step, whoever steers: :meth:`observe` gives what a
+    controller sees at the current step (the own ship, the targets, the encounter of the most
+    urgent latched target), :meth:`advance` moves the own ship one step of ``sim.dt`` under a
+    velocity pair and ends the voyage on arrival, a collision or at ``n_steps``
+    (:attr:`over`). :func:`simulate` drives it with a controller; :mod:`usvtool.gym` with an
+    agent's actions."""
+
+    def __init__(self, scenario: Scenario, setup: _Setup, n_steps: int, seed: int):
+        sim = self.sim = scenario.sim
+        self.scenario, self.setup, self.n_steps = scenario, setup, n_steps
+        self.times = sim.dt * np.arange(n_steps + 1)
+        rng = np.random.default_rng(seed)
+        # one step beyond the end, for the targets' velocities at the last step
+        times_ahead = sim.dt * np.arange(n_steps + 2)
+        tracks = [target_motion.positions(c, times_ahead, rng) for c in setup.courses]
+        self.ahead = np.stack(tracks, axis=1) if tracks else np.zeros((len(times_ahead), 0, 2))
+        self.motion = _Motion.of(self.ahead, sim.dt)
+        self.lengths = np.array([t.length for t in scenario.targets], float)
+        vessel = self.vessel = setup.vessel
+        self.world = World(vessel, setup.goal, setup.clearance, setup.route, setup.weather,
+                           sim.dt, sim.goal_tolerance)  # fmt: skip
+        self.x, self.y = setup.start
+        self.psi = float(angles.compass_to_math(scenario.own.heading))
+        self.v = float(np.clip(scenario.own.speed, vessel.min_speed, vessel.max_speed))
+        self.omega, made_good = 0.0, self.v
+        self.tracker = tracking.EncounterTracker(
+            self.ahead.shape[1], risk_distance=tracking.onset_distance(vessel.length)
+        )
+        self.heading = angles.math_to_compass(self.psi)  # the trace's and tracker's unit
+        self.made_good = made_good
+        self.states = [(self.x, self.y, self.heading, made_good, self.omega)]
+        #: the controller's events and the run's (a collision), with their times
+        self.events: list[dict] = []
+        self.collision: int | None = None
+        self.arrived = False
+        #: the steps taken
+        self.step = 0
+
+    @property
+    def time(self) -> float:
+        """The current step's time (s)."""
+        return float(self.times[self.step])
+
+    @property
+    def over(self) -> bool:
+        """Arrived, collided or out of time."""
+        return self.arrived or self.collision is not None or self.step >= self.n_steps
+
+    def observe(self) -> tuple[Own, Targets, Encounter | None]:
+        """What a controller sees now (the tracker updated with the current step: call once a
+        step, before :meth:`advance`)."""
+        i, motion = self.step, self.motion
+        self.tracker.update(self.times[i], (self.x, self.y), self.heading, self.made_good,
+                            self.ahead[i], motion.heading[i], motion.speed[i])  # fmt: skip
+        urgent = self.tracker.most_urgent()
         encounter = None if urgent is None else Encounter(
-            CLASS_NAMES[tracker.latched[urgent]], urgent
+            CLASS_NAMES[self.tracker.latched[urgent]], urgent
         )  # fmt: skip
-        t0 = time.perf_counter()
-        decision = controller.decide(Own(x, y, psi, v, omega), Targets(ahead[i], motion.vel[i],
-                                     lengths), encounter)  # fmt: skip
-        decide_time += time.perf_counter() - t0
-        controller_events += [{"t": round(float(times[i]), 3), **e} for e in decision.events]
-        v, omega = decision.v, decision.omega
+        own = Own(self.x, self.y, self.psi, self.v, self.omega)
+        return own, Targets(self.ahead[i], motion.vel[i], self.lengths), encounter
+
+    def advance(self, v: float, omega: float, events: list[dict] = ()) -> None:
+        """Move the own ship one step at ``v`` through the water and yaw rate ``omega``, at
+        the speed she makes good in the weather; log the step's ``events``."""
+        t, setup, sim = round(self.time, 3), self.setup, self.sim
+        self.events += [{"t": t, **e} for e in events]
+        self.v, self.omega, psi = v, omega, self.psi
         made_good = v if setup.weather is None else float(
-            setup.weather.attainable_speed(v, psi, x, y, vessel.deadweight)
+            setup.weather.attainable_speed(v, psi, self.x, self.y, self.vessel.deadweight)
         )  # fmt: skip
-        x, y, psi = vessel_model.step_one(x, y, psi, made_good, omega, sim.dt)
-        heading = angles.math_to_compass(psi)
-        own_states.append((x, y, heading, made_good, omega))
-        steps = i + 1
-        collision = _collision(setup, (x, y), ahead[steps], vessel.length, lengths)
-        if collision is not None:
-            controller_events.append({"t": round(float(times[steps]), 3), "kind": "collision",
-                                      "with": _name(scenario, collision)})  # fmt: skip
-            break
-        if np.hypot(x - setup.goal[0], y - setup.goal[1]) <= sim.goal_tolerance:
-            arrived = True
-            break
-    return _result(scenario, setup, opts, controller, times[: steps + 1], np.array(own_states),
-                   ahead, motion, lengths, controller_events, collision, arrived,
-                   decide_time / max(steps, 1))  # fmt: skip
+        self.x, self.y, self.psi = vessel_model.step_one(self.x, self.y, psi, made_good, omega,
+                                                         sim.dt)  # fmt: skip
+        self.heading, self.made_good = angles.math_to_compass(self.psi), made_good
+        self.states.append((self.x, self.y, self.heading, made_good, omega))
+        self.step += 1
+        self.collision = _collision(setup, (self.x, self.y), self.ahead[self.step],
+                                    self.vessel.length, self.lengths)  # fmt: skip
+        if self.collision is not None:
+            self.events.append({"t": round(self.time, 3), "kind": "collision",
+                                "with": _name(self.scenario, self.collision)})  # fmt: skip
+        elif np.hypot(self.x - setup.goal[0], self.y - setup.goal[1]) <= sim.goal_tolerance:
+            self.arrived = True
 
 
 @dataclass(frozen=True)
@@ -307,10 +368,13 @@ def _name(scenario: Scenario, index: int) -> str:
     return "map" if index == -1 else scenario.targets[index].name
 
 
-def _result(scenario, setup, opts, controller, times, own, ahead, motion, lengths,
-            controller_events, collision, arrived, step_time) -> SimResult:  # fmt: skip
+def _result(scenario, setup, opts, controller, voyage: Voyage, failed: str | None,
+            step_time: float) -> SimResult:  # fmt: skip
     """The trace (the targets' yaw rates from their courses), the COLREGs evaluation and the
-    figures."""
+    figures; ``failed``: why the controller failed, None when it did not."""
+    times, own = voyage.times[: voyage.step + 1], np.array(voyage.states)
+    ahead, motion, lengths = voyage.ahead, voyage.motion, voyage.lengths
+    controller_events, collision, arrived = voyage.events, voyage.collision, voyage.arrived
     n, dt = len(times), scenario.sim.dt
     course = np.unwrap(motion.course[:n], axis=0)
     turn = np.diff(course, axis=0, append=course[-1:]) / dt
@@ -332,6 +396,7 @@ def _result(scenario, setup, opts, controller, times, own, ahead, motion, length
         "seed": opts.seed,
         "arrived": bool(arrived),
         "collision": None if collision is None else _name(scenario, collision),
+        "controller_failed": failed,
         "time_s": round(float(times[-1]), 3),
         "path_length_m": round(float(measures.path_length(track)), 3),
         "turns": int(measures.turns(sampled)),
@@ -357,6 +422,7 @@ def _result(scenario, setup, opts, controller, times, own, ahead, motion, length
             "seed": opts.seed,
             "arrived": figures["arrived"],
             "collision": figures["collision"],
+            "controller_failed": failed,
             "time_s": figures["time_s"],
             "dt": float(dt),
             "goal": [float(v) for v in setup.goal],

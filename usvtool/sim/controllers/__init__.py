@@ -5,7 +5,16 @@ from __future__ import annotations
 
 from usvtool.errors import UsvError
 from usvtool.registry import Registry
-from usvtool.sim.controllers.base import Controller, Decision, Encounter, Own, Targets, World
+from usvtool.sim.controllers.base import (
+    Controller,
+    ControllerFailed,
+    Decision,
+    DynamicWindow,
+    Encounter,
+    Own,
+    Targets,
+    World,
+)
 from usvtool.sim.controllers.ccdwa import CCDWA
 from usvtool.sim.controllers.dwa import DWA
 from usvtool.sim.controllers.gdwa import GDWA
@@ -33,6 +42,6 @@ def make_controller(name: str, **params) -> Controller:
 
 
 __all__ = [
-    "CONTROLLERS", "Controller", "Decision", "Encounter", "Own", "Targets", "World",
-    "make_controller", "register", "unregister",
+    "CONTROLLERS", "Controller", "ControllerFailed", "Decision", "DynamicWindow", "Encounter",
+    "Own", "Targets", "World", "make_controller", "register", "unregister",
 ]  # fmt: skip

@@ -71,6 +71,11 @@ from usvtool.sim.controllers.windows import WINDOWS
 DOMAIN_EVERY = 0.5
 
 
+class ControllerFailed(UsvError):
+    """A controller could not decide (a process that crashed, replied late, garbage or out of
+    the vessel's limits): the run ends there as ``controller failed``, a failure."""
+
+
 @dataclass(frozen=True)
 class World:
     """What a controller knows for a whole run."""
@@ -162,6 +167,50 @@ class Rollouts:
 
 
 class Controller(ABC):
+    """What the simulator asks of a controller, whatever it is made of: :meth:`reset` at the
+    start of a run with its :class:`World`, then each control period :meth:`decide` with the own
+    ship's state, the targets as she sees them and the encounter that sets the side rule, for a
+    :class:`Decision` within the vessel's limits (the simulator applies it as given); and
+    :meth:`close` when the run ends, however it ends.
+
+    ``name``: unique in :data:`usvtool.sim.controllers.CONTROLLERS`; ``common`` and
+    ``defaults``: its parameters (keyword arguments) and their defaults, the type of each
+    default the type a value must have (:func:`usvtool.sim.scenario.controller_params`); an
+    unknown one is refused here.
+    """
+
+    name: str = ""
+    common: dict = {}
+    defaults: dict = {}
+
+    def __init__(self, **params):
+        options = {**self.common, **self.defaults}
+        unknown = set(params) - set(options)
+        if unknown:
+            known = ", ".join(sorted(options)) or "none"
+            raise UsvError(f"{self.name}: unknown parameter(s) {sorted(unknown)} (known: {known})")
+        self.params = {**options, **params}
+        self.world: World | None = None
+
+    def reset(self, world: World) -> None:
+        """Start a run in ``world``."""
+        self.world = world
+
+    @abstractmethod
+    def decide(self, own: Own, targets: Targets, encounter: Encounter | None = None) -> Decision:
+        """The velocity pair for the next control period."""
+
+    def close(self) -> None:  # noqa: B027 (a hook: most controllers hold nothing to let go)
+        """The run has ended (arrived, collided, failed or out of time): let go of what
+        :meth:`reset` took (a process, a file)."""
+
+    def memory_parts(self) -> list[tuple[int, str, str]]:
+        """(bytes, what, remedy) of what one decision holds at once beyond the run's trace
+        (:func:`usvtool.sim.memory.run_parts`); none by default."""
+        return []
+
+
+class DynamicWindow(Controller):
     """A DWA controller: a trajectory generator, critics with scales, a side rule, the fallback.
 
     Parameters common to all (keyword arguments, each controller adding its own ``defaults``):
@@ -176,7 +225,6 @@ class Controller(ABC):
     (:meth:`critics`) and whether its side rule removes the other side (``removes_side``).
     """
 
-    name: str = ""
     common: dict = {
         "horizon": 10.0,
         "step": 0.2,
@@ -190,16 +238,10 @@ class Controller(ABC):
         "window": "period",
         "safe_priority": False,
     }
-    defaults: dict = {}
     removes_side = False  # CCDWA removes the other side; the others prefer
 
     def __init__(self, **params):
-        options = {**self.common, **self.defaults}
-        unknown = set(params) - set(options)
-        if unknown:
-            known = ", ".join(sorted(options))
-            raise UsvError(f"{self.name}: unknown parameter(s) {sorted(unknown)} (known: {known})")
-        self.params = {**options, **params}
+        super().__init__(**params)
         p = self.params
         for key in ("horizon", "step", "dist_max"):
             if not p[key] > 0:
@@ -222,7 +264,6 @@ class Controller(ABC):
         self.objective = self.critics()
         self.side_rule = SideRule(p["sides"], self.removes_side, p["priority"],
                                   p["safe_priority"], p["dist_max"])  # fmt: skip
-        self.world: World | None = None
 
     @abstractmethod
     def critics(self) -> list[Critic]:
@@ -233,8 +274,8 @@ class Controller(ABC):
         than in the run's first step)."""
         from usvtool.sim import rollout_kernels
 
+        super().reset(world)
         self.kernels = rollout_kernels
-        self.world = world
         self.generator = WINDOWS[self.params["window"]](world, self.times)
         for critic in self.objective:
             critic.reset(world)
@@ -252,6 +293,18 @@ class Controller(ABC):
         #: the checks' constants of the run (rollout_kernels.contacts)
         self._checks = (*field, length, every, float(along), float(across),
                         along * along * (1 + 1e-9), float(p["dist_max"]))  # fmt: skip
+
+    def memory_parts(self) -> list[tuple[int, str, str]]:
+        """Its rollouts: (v_samples + 1) x (omega_samples + 2) samples (the window's grid, with
+        the generator's extra pairs) over the horizon (:mod:`usvtool.sim.memory`)."""
+        from usvtool.sim.memory import POINT_BYTES, SAMPLE_BYTES
+
+        n_v = int(self.params["v_samples"]) + 1
+        n_omega = int(self.params["omega_samples"]) + 2
+        horizon = self.times.size
+        return [(n_v * n_omega * (horizon * POINT_BYTES + SAMPLE_BYTES),
+                 f"its rollouts: {n_v} x {n_omega} samples x {horizon} horizon steps",
+                 "lower v_samples and omega_samples (--param) or the horizon")]  # fmt: skip
 
     # -- the core --------------------------------------------------------------------------
 

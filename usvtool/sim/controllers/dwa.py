@@ -10,11 +10,11 @@ one-period window, no side rule.
 
 from __future__ import annotations
 
-from usvtool.sim.controllers.base import Controller
+from usvtool.sim.controllers.base import DynamicWindow
 from usvtool.sim.controllers.critics import Critic, Distance, GoalHeading, Velocity
 
 
-class DWA(Controller):
+class DWA(DynamicWindow):
     name = "dwa"
     defaults = {"w_velocity": 0.3, "w_heading": 0.06, "w_distance": 0.4}
 

@@ -30,7 +30,7 @@ with ``priority`` 0.5.
 from __future__ import annotations
 
 from usvtool.errors import UsvError
-from usvtool.sim.controllers.base import Controller
+from usvtool.sim.controllers.base import DynamicWindow
 from usvtool.sim.controllers.critics import (
     Critic,
     Distance,
@@ -41,7 +41,7 @@ from usvtool.sim.controllers.critics import (
 )
 
 
-class GDWA(Controller):
+class GDWA(DynamicWindow):
     name = "gdwa"
     defaults = {
         "w_velocity": 0.3,
