@@ -1,6 +1,7 @@
-"""Claims and published tables (usvtool/report/sections/claims.py, published.py) on hand-made
-results tables: the five verdicts, ties, failures as the worst, pairing by scene, Holm across
-the table, preconditions, absolute claims with their interval, and the optimisation rate."""
+"""Claims and published tables (usvtool/report/judging.py, sections/claims.py, published.py)
+on hand-made results tables: the five verdicts, ties, failures as the worst, pairing by scene,
+Holm across the table, preconditions, absolute claims with their interval, and the optimisation
+rate."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ from dataclasses import replace
 import pytest
 from scipy.stats import beta
 
+from usvtool.report import judging
 from usvtool.report.data import ENDING, load, statistic
 from usvtool.report.papers import CLAIMS, TABLES, UDWA_TABLE_1, Claim, Precondition, Quote
 from usvtool.report.sections import claims, published
@@ -46,8 +48,8 @@ SEPARATED = (_routes("env1", "iwso", [700, 701, 702, 703, 704, 705])
 
 
 def test_holds_when_better_with_corrected_p_below_alpha(tmp_path):
-    v = claims.judge(_results(tmp_path, SEPARATED), _claim())
-    assert v.verdict == claims.HOLDS
+    v = judging.judge(_results(tmp_path, SEPARATED), _claim())
+    assert v.verdict == judging.HOLDS
     (t,) = v.tests
     assert t.comparison.test == "Mann-Whitney U" and t.p == pytest.approx(2 / 924)
     assert t.comparison.effect == 1.0 and t.sides[0].median == 702.5
@@ -55,12 +57,12 @@ def test_holds_when_better_with_corrected_p_below_alpha(tmp_path):
 
 
 def test_does_not_hold_when_significantly_worse(tmp_path):
-    v = claims.judge(_results(tmp_path, SEPARATED), _claim(better="higher"))
-    assert v.verdict == claims.FAILS and v.tests[0].outcome == "worse"
+    v = judging.judge(_results(tmp_path, SEPARATED), _claim(better="higher"))
+    assert v.verdict == judging.FAILS and v.tests[0].outcome == "worse"
     # against two rivals, the headline shows the loss that decides
     rows = SEPARATED + _routes("env1", "ssa", [600, 601, 602, 603, 604, 605])
-    v = claims.judge(_results(tmp_path, rows), _claim(rivals=("wso", "ssa")))
-    assert v.verdict == claims.FAILS
+    v = judging.judge(_results(tmp_path, rows), _claim(rivals=("wso", "ssa")))
+    assert v.verdict == judging.FAILS
     assert claims.headline(v) == "1/2 better; worse env1/ssa δ -1.00 [-1.00, -1.00]"
 
 
@@ -69,18 +71,18 @@ def test_inconclusive_when_neither_and_on_ties(tmp_path):
     rows = (_routes("env1", "iwso", [700, 720, 800]) + _routes("env1", "wso", [730, 740])
             + _routes("env2", "iwso", [500, 500]) + _routes("env2", "wso", [500, 500]))
     results = _results(tmp_path, rows)
-    v = claims.judge(results, _claim())
-    assert v.verdict == claims.INCONCLUSIVE and v.tests[0].p == pytest.approx(0.8)
-    tie = claims.judge(results, _claim(cases=("env2",)))
-    assert tie.verdict == claims.INCONCLUSIVE and tie.tests[0].comparison.p is None
+    v = judging.judge(results, _claim())
+    assert v.verdict == judging.INCONCLUSIVE and v.tests[0].p == pytest.approx(0.8)
+    tie = judging.judge(results, _claim(cases=("env2",)))
+    assert tie.verdict == judging.INCONCLUSIVE and tie.tests[0].comparison.p is None
 
 
 def test_missing_runs_are_not_tested_but_a_significant_loss_elsewhere_fails(tmp_path):
     results = _results(tmp_path, SEPARATED)
-    v = claims.judge(results, _claim(cases=("env1", "env3")))
-    assert v.verdict == claims.UNTESTED and "env3" in v.reason
-    assert claims.judge(results, _claim(cases=("env3", "env1"),
-                                        better="higher")).verdict == claims.FAILS
+    v = judging.judge(results, _claim(cases=("env1", "env3")))
+    assert v.verdict == judging.UNTESTED and "env3" in v.reason
+    assert judging.judge(results, _claim(cases=("env3", "env1"),
+                                        better="higher")).verdict == judging.FAILS
 
 
 def test_holm_across_the_table(tmp_path):
@@ -88,24 +90,25 @@ def test_holm_across_the_table(tmp_path):
     rows = [r for case in ("env1", "env2") for r in
             _routes(case, "iwso", [1, 2, 3, 4]) + _routes(case, "wso", [5, 6, 7, 8])]
     results = _results(tmp_path, rows)
-    assert claims.judge(results, _claim()).verdict == claims.HOLDS
-    v = claims.judge(results, _claim(cases=("env1", "env2")))
+    assert judging.judge(results, _claim()).verdict == judging.HOLDS
+    v = judging.judge(results, _claim(cases=("env1", "env2")))
     assert [t.p for t in v.tests] == pytest.approx([4 / 70, 4 / 70])
-    assert v.verdict == claims.INCONCLUSIVE
+    assert v.verdict == judging.INCONCLUSIVE
     # two claims of one case each in one table: the same family
-    one, two = claims.judge_all(results, [(_claim(), False), (_claim(cases=("env2",)), False)])
+    one, two = judging.judge_family(results, [_claim(), _claim(cases=("env2",))])
     assert one.tests[0].p == two.tests[0].p == pytest.approx(4 / 70)
-    # a variant's test is a family of its own
-    one, two = claims.judge_all(results, [(_claim(), False), (_claim(cases=("env2",)), True)])
-    assert one.verdict == two.verdict == claims.HOLDS
+    # a family of one claim each: uncorrected
+    (one,), (two,) = (judging.judge_family(results, [c])
+                      for c in (_claim(), _claim(cases=("env2",))))  # fmt: skip
+    assert one.verdict == two.verdict == judging.HOLDS
 
 
 def test_a_colliding_route_is_the_worst_never_a_success(tmp_path):
     crashed = [(f"env1-iwso-{i}", "routes", "env1", "iwso", i, "collision_free", "False")
                for i in range(6)]  # fmt: skip
-    v = claims.judge(_results(tmp_path, SEPARATED + crashed), _claim())
+    v = judging.judge(_results(tmp_path, SEPARATED + crashed), _claim())
     # the colliding iwso routes are shorter, but count as the longest
-    assert v.verdict == claims.FAILS
+    assert v.verdict == judging.FAILS
     a, b = v.tests[0].sides
     assert a.failed == 6 and a.median == float("inf") and a.figure == 702.5 and a.clean is None
 
@@ -116,7 +119,7 @@ def test_penalised_fitness_beside_the_collision_free_figure(tmp_path):
             + _routes("env1", "wso", [20, 21, 22], "fitness")
             + [("env1-iwso-2", "routes", "env1", "iwso", 2, "collision_free", "False")])
     claim = _claim(metric="fitness", statistic="mean")
-    (t,) = claims.judge(_results(tmp_path, rows), claim).tests
+    (t,) = judging.judge(_results(tmp_path, rows), claim).tests
     a, b = t.sides
     assert a.figure == pytest.approx(37.0) and a.clean == pytest.approx(10.5) and b.figure == 21
     assert claims.change(a.figure, b.figure, "lower") == pytest.approx(100 * (21 - 37) / 21)
@@ -128,7 +131,7 @@ def test_spread_claims_compare_deviations_from_the_median(tmp_path):
     # 2.5-12.5): deviations 0.5, 0.5, 1.5, 1.5, 2.5, 2.5 vs 2.5, 2.5, 7.5, 7.5, 12.5, 12.5
     rows = (_routes("env1", "iwso", [10, 11, 12, 13, 14, 15], "fitness")
             + _routes("env1", "wso", [0, 5, 10, 15, 20, 25], "fitness"))
-    v = claims.judge(_results(tmp_path, rows), _claim(metric="fitness", statistic="variance"))
+    v = judging.judge(_results(tmp_path, rows), _claim(metric="fitness", statistic="variance"))
     c = v.tests[0].comparison
     # pairs: iwso's 2.5s tie wso's two 2.5s (4 ties of 36); all else lower: (32 - 0) / 36
     assert c.effect == pytest.approx(32 / 36)
@@ -150,14 +153,14 @@ def test_runs_pair_by_scene(tmp_path):
     claim = _claim(kind="runs", metric="closest_distance_m", better="higher", method="udwa",
                    rivals=("ccdwa",), cases=("emergency/head-on",))  # fmt: skip
     results = _results(tmp_path, rows)
-    v = claims.judge(results, claim)
+    v = judging.judge(results, claim)
     (t,) = v.tests
     assert t.comparison.test == "Wilcoxon signed-rank" and t.p == pytest.approx(2 / 64)
     assert t.comparison.effect == 1.0 and (t.sides[0].n, t.sides[1].n) == (6, 6)
-    assert v.verdict == claims.HOLDS
+    assert v.verdict == judging.HOLDS
     # a scene where udwa did not arrive is its worst, not its 1 m gain
     stopped = [("udwa-0", "runs", "emergency/head-on/s000", "udwa", 1, "arrived", "False")]
-    (t,) = claims.judge(_results(tmp_path, rows + stopped), claim).tests
+    (t,) = judging.judge(_results(tmp_path, rows + stopped), claim).tests
     # differences +1 x 5 and -inf: ranks 3 (the five tied +1) and 6: r = (15 - 6) / 21
     assert t.comparison.effect == pytest.approx(9 / 21) and t.sides[0].failed == 1
 
@@ -169,7 +172,7 @@ def test_a_job_that_does_not_say_how_it_ended_is_no_evidence(tmp_path):
     rows = [r for r in SEPARATED if r[0] not in unsaid]
     rows += [(*r[:5], "collision_free", "True") for r in SEPARATED if r[0] not in unsaid]
     rows += [r for r in SEPARATED if r[0] in unsaid]
-    (t,) = claims.judge(_results(tmp_path / "a", rows, settle=False), _claim()).tests
+    (t,) = judging.judge(_results(tmp_path / "a", rows, settle=False), _claim()).tests
     assert t.sides[0].n == 4 and t.sides[1].n == 6
     assert t.comparison.p == pytest.approx(2 / 210)
     # runs: a run without its arrived row is neither paired nor counted as meeting a target
@@ -177,10 +180,10 @@ def test_a_job_that_does_not_say_how_it_ended_is_no_evidence(tmp_path):
             ("u0", "runs", "iwso/head-on/s000", "gdwa", 1, "compliant", "1")]
     absolute = next(c for c in CLAIMS if c.id == "gdwa-colregs")
     results = _results(tmp_path / "b", runs, settle=False)
-    (tally, *_) = claims.judge(results, absolute).tallies
+    (tally, *_) = judging.judge(results, absolute).tallies
     assert (tally.n, tally.met) == (1, 0)
     results = _results(tmp_path / "c", runs)
-    (tally, *_) = claims.judge(results, absolute).tallies
+    (tally, *_) = judging.judge(results, absolute).tallies
     assert (tally.n, tally.met) == (1, 1)
 
 
@@ -190,19 +193,19 @@ def test_a_turn_claim_whose_routes_cannot_turn_enough_is_not_testable(tmp_path):
     claim = _claim(metric="turns", table="iwso-dwa-table-2",
                    preconditions=(Precondition("turns-reachable", "needs more waypoints"),))
     results = _results(tmp_path, rows)
-    v = claims.judge(results, claim)  # no summary.json: cannot be checked
-    assert v.verdict == claims.UNTESTABLE and "missing" in v.reason
+    v = judging.judge(results, claim)  # no summary.json: cannot be checked
+    assert v.verdict == judging.UNTESTABLE and "missing" in v.reason
     for j in results.jobs:
         j.dir.mkdir(parents=True)
         (j.dir / "summary.json").write_text(json.dumps({"points": 5}))
-    v = claims.judge(results, claim)
+    v = judging.judge(results, claim)
     # Table 2: IWSO 5, WSO 7 turns in env1; 5 points turn at most 3 times
-    assert v.verdict == claims.UNTESTABLE and v.tests == ()
+    assert v.verdict == judging.UNTESTABLE and v.tests == ()
     assert v.reason == "our routes turn at most 3 times (5 points), the paper's up to 7"
     assert v.why == "needs more waypoints"
     for j in results.jobs:
         (j.dir / "summary.json").write_text(json.dumps({"points": 22}))
-    assert claims.judge(results, claim).verdict == claims.INCONCLUSIVE  # all tied at 3
+    assert judging.judge(results, claim).verdict == judging.INCONCLUSIVE  # all tied at 3
 
 
 def test_the_turn_claim_is_judged_on_the_routes_of_its_labelled_matrix(tmp_path):
@@ -218,15 +221,15 @@ def test_the_turn_claim_is_judged_on_the_routes_of_its_labelled_matrix(tmp_path)
     for j in results.jobs:
         j.dir.mkdir(parents=True)
         (j.dir / "summary.json").write_text(json.dumps({"points": 13 if "w11" in j.case else 5}))
-    v = claims.judge(results, claim)
+    v = judging.judge(results, claim)
     # the 3-waypoint routes of env1 (5 points) neither block the claim nor make it hold
     assert [t.case for t in v.tests] == ["env1-w11", "env2-w11"]
-    assert v.verdict == claims.FAILS  # iwso turns more, in both
+    assert v.verdict == judging.FAILS  # iwso turns more, in both
     for j in results.jobs:
         if j.case == "env2-w11":
             (j.dir / "summary.json").write_text(json.dumps({"points": 12}))
-    v = claims.judge(results, claim)  # 12 points: 10 turns at most, Table 2's WSO 11 on env2
-    assert v.verdict == claims.UNTESTABLE
+    v = judging.judge(results, claim)  # 12 points: 10 turns at most, Table 2's WSO 11 on env2
+    assert v.verdict == judging.UNTESTABLE
     assert v.reason == "our routes turn at most 10 times (12 points), the paper's up to 11"
 
 
@@ -246,21 +249,21 @@ def test_absolute_claims_count_every_run_with_a_clopper_pearson_interval(tmp_pat
     results = _results(tmp_path, rows)
     compliant = _claim(kind="runs", metric="compliant", statistic="every", better="higher",
                        method="gdwa", rivals=(), target="judged", cases=("iwso/head-on",))
-    v = claims.judge(results, compliant)
+    v = judging.judge(results, compliant)
     (t,) = v.tallies
-    assert v.verdict == claims.FAILS and (t.met, t.n) == (3, 6)
+    assert v.verdict == judging.FAILS and (t.met, t.n) == (3, 6)
     # Clopper-Pearson by its beta quantiles
     assert t.low == pytest.approx(beta.ppf(0.025, 3, 4)) and t.high == pytest.approx(
         beta.ppf(0.975, 4, 3))
     assert t.note == ("1 collided, 1 judged no encounter, 1 compliant only through an excused "
                       "Rule 2 departure")
     collision = replace(compliant, metric="collision", better="lower", target=0.0)
-    (t,) = claims.judge(results, collision).tallies
+    (t,) = judging.judge(results, collision).tallies
     assert (t.met, t.n) == (5, 6)
-    held = claims.judge(_results(tmp_path, _gdwa(0, 2, 2) + _gdwa(1, 1, 1)), compliant)
-    assert held.verdict == claims.HOLDS and held.tallies[0].high == 1.0
-    assert claims.judge(results, replace(compliant, cases=("iwso/static",))).verdict == (
-        claims.UNTESTED)
+    held = judging.judge(_results(tmp_path, _gdwa(0, 2, 2) + _gdwa(1, 1, 1)), compliant)
+    assert held.verdict == judging.HOLDS and held.tallies[0].high == 1.0
+    assert judging.judge(results, replace(compliant, cases=("iwso/static",))).verdict == (
+        judging.UNTESTED)
 
 
 def test_statistics_as_the_papers_state_them(tmp_path):
@@ -314,10 +317,10 @@ def test_the_section_counts_five_verdicts_and_judges_variants_apart(tmp_path):
     rows = (SEPARATED + _routes("env1", "iwso+g", [600, 601, 602])
             + _routes("env2", "iwso", [1, 2]) + _routes("env2", "wso", [3, 4]))
     results = _results(tmp_path, rows)
-    judged = {v.claim.id: v for v in claims.verdicts(results)}
-    assert claims.verdicts(results) is claims.verdicts(results)  # computed once
+    judged = {v.claim.id: v for v in judging.paper_verdicts(results)}
+    assert judging.paper_verdicts(results) is judging.paper_verdicts(results)  # computed once
     assert "iwso-shorter (iwso+g)" in judged and judged["iwso-shorter (iwso+g)"].variant
-    assert judged["iwso-fewer-turns"].verdict == claims.UNTESTED  # no turns at all
+    assert judged["iwso-fewer-turns"].verdict == judging.UNTESTED  # no turns at all
     s = claims.section(results)
     main, cases = s.tables()
     assert main.id == "claims-table" and cases.placement == "appendix"
@@ -329,7 +332,7 @@ def test_the_section_counts_five_verdicts_and_judges_variants_apart(tmp_path):
     # medians (IQR: 701.25 to 703.75) and the runs of each case
     assert row[2].text == "env1: 702 (2.5) vs 802 (2.5); env2: 1.5 (0.5) vs 3.5 (0.5); n 6/6, 2/2"
     counts = claims.counts([s])
-    assert list(counts) == list(claims.VERDICTS)
+    assert list(counts) == list(judging.VERDICTS)
     assert sum(counts.values()) == len(CLAIMS)
     assert any(r[0].text == "iwso-shorter (iwso+g), env1 vs wso" for r in cases.rows)
 

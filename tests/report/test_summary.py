@@ -5,8 +5,9 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from usvtool.report import judging
 from usvtool.report.data import load
-from usvtool.report.sections import claims, summary
+from usvtool.report.sections import summary
 from usvtool.results import Row, write_results
 
 
@@ -41,17 +42,17 @@ def test_the_summary_states_what_was_compared_and_the_claims_own_verdicts(tmp_pa
     assert ("19 simulated runs of 2 controllers on the scene families emergency (3 kinds x 3 "
             "scenes), paired by scene, and on 1 bundled scenario (one run each") in text
     (table,) = s.tables()
-    verdicts = [v for v in claims.verdicts(results) if not v.variant]
+    verdicts = [v for v in judging.paper_verdicts(results) if not v.variant]
     assert [r[0].text for r in table.rows] == [v.claim.id for v in verdicts]
     assert [r[-1].text for r in table.rows] == [v.verdict for v in verdicts]
     row = next(r for r in table.rows if r[0].text == "iwso-shorter")
-    assert row[-1].text == claims.HOLDS
+    assert row[-1].text == judging.HOLDS
     assert row[1].text == "710.873 vs 847.487 m; 927.925 vs 1044.975 m"  # as printed
     # both cases better (p = 2 / 924 each, Holm over the table's two tested p: 4 / 924)
     assert row[2].text.startswith("2/2 better; weakest env")
     # every identical closest distance: ties, inconclusive
     closest = next(r for r in table.rows if r[0].text == "udwa-larger-closest-distance")
-    assert closest[-1].text == claims.INCONCLUSIVE
+    assert closest[-1].text == judging.INCONCLUSIVE
     caveats = s.paragraphs[-1]
     assert caveats.startswith("Caveats.")
     assert "5 runs per function and algorithm against the paper's 25" in caveats

@@ -20,7 +20,7 @@ states it by, the better direction, the method that should win and the rivals it
 the cases it covers (a chart, a function, or a scene family's kind ``ENTRY/KIND``: every scene
 of it, paired by scene across controllers), the paper's table cases each stands for, and the
 preconditions our set-up must meet for the metric to move. The report judges each over our
-seeds and scenes (:mod:`usvtool.report.sections.claims`, docs/statistics.md): a relative claim
+seeds and scenes (:mod:`usvtool.report.judging`, docs/statistics.md): a relative claim
 with rank tests, Holm-corrected across the claims table, and an effect size with a bootstrap
 interval; an absolute claim (no rivals) by whether every run of the method in every case
 reaches ``target`` (a number, or the name of another metric of the same run that the metric

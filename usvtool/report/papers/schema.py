@@ -103,7 +103,7 @@ class Quote:
 
 
 #: The checks a claim's preconditions may name (:class:`Precondition`; the report makes them,
-#: :mod:`usvtool.report.sections.claims`).
+#: :mod:`usvtool.report.judging`).
 CHECKS = ("turns-reachable",)
 
 

@@ -1,360 +1,52 @@
 """The report's claims section: each claim of the papers (:data:`usvtool.report.papers.CLAIMS`)
-judged on our runs with statistics over seeds and scenes (docs/statistics.md).
+judged on our runs with statistics over seeds and scenes (docs/statistics.md), one row per
+claim with its verdict and, in the appendix, every comparison.
 
-A **relative** claim compares the method with each rival in each case: runs paired by scene and
-seed (a scene family's runs: :meth:`usvtool.report.data.Results.pairs`) with the Wilcoxon
-signed-rank test, independent runs (optimizers and functions, which share no randomness by
-seed) with the Mann-Whitney U test (:func:`usvtool.report.inference.compare`); a claim of a
-spread (``variance``, ``std``) compares the runs' absolute deviations from their median. A run
-that failed (a colliding route; a run that collided or did not arrive) is the worst outcome in
-the claim's direction. Every p of the papers' methods in the table is Holm-corrected together
-(our variants' rows, a family of their own). The claim **holds** when the method is better with
-corrected p < :data:`ALPHA` against every rival in every case, **does not hold** when it is
-significantly worse in some, is **inconclusive** otherwise, **not testable** when a declared
-precondition fails (:data:`CHECKS`) and **not tested** when runs are missing.
-
-An **absolute** claim (no rivals) holds when every run of the method in every case meets its
-target, with the proportion that does and its 95 % Clopper-Pearson interval; a failed run never
-meets a COLREGs target, nor does a run that judged no encounter; ``collision`` has a row only
-when the ship hit something (absent: 0).
+The judging itself (the tests, Holm's correction, the verdicts) is
+:mod:`usvtool.report.judging`'s: this module builds the rows and tables from its
+verdicts (:class:`~usvtool.report.judging.Verdict`), and the texts the summary shares
+(:func:`headline`, :func:`paper_figure`).
 """
 
 from __future__ import annotations
 
-import json
 import math
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
+from collections.abc import Sequence
 
 from scipy.stats import binomtest
 
 from usvtool.report import inference
-from usvtool.report.data import JobResults, Results, in_group, summarise
+from usvtool.report.data import Results
 from usvtool.report.document import APPENDIX, Cell, Section, Table
 from usvtool.report.inference import Comparison
-from usvtool.report.papers import CLAIMS, PAPERS, TABLES, Claim, Column
+from usvtool.report.judging import (
+    ALPHA,
+    FAILS,
+    HOLDS,
+    INCONCLUSIVE,
+    UNTESTABLE,
+    UNTESTED,
+    VERDICTS,
+    Test,
+    Verdict,
+    paper_verdicts,
+)
+from usvtool.report.papers import PAPERS, TABLES, Claim, Column
 
-HOLDS, FAILS, INCONCLUSIVE = "holds", "does not hold", "inconclusive"
-UNTESTABLE, UNTESTED = "not testable", "not tested"
-#: The five verdicts, in the order the counts are given.
-VERDICTS = (HOLDS, FAILS, INCONCLUSIVE, UNTESTABLE, UNTESTED)
 CSS = {HOLDS: "holds", FAILS: "fails", INCONCLUSIVE: "inconclusive", UNTESTABLE: "untestable",
        UNTESTED: "untested"}  # fmt: skip
-#: The corrected p below which a difference counts.
-ALPHA = 0.05
-#: The bootstrap's seed and resamples (inference.compare).
-SEED, RESAMPLES = 0, 2000
-#: Metrics with a row only when something happened (absent: 0).
-EVENTS = ("collision",)
-#: Statistics of a spread: judged on the absolute deviations from the median.
-SPREADS = ("variance", "std")
 #: A relative claim with more comparisons than this shows a digest in the claims table (every
 #: comparison is in the appendix's table).
 LISTED = 3
 
 
-@dataclass(frozen=True)
-class Side:
-    """One method's runs in one case: how many, how many failed, their median and IQR (failures
-    the worst), the claim's statistic over every run as measured (a failed route's length or
-    penalised fitness; None when a failed run has no value, as a run that never arrived has no
-    arrival time) and over the runs that did not fail."""
-
-    method: str
-    n: int
-    failed: int
-    median: float | None
-    iqr: float | None
-    figure: float | None
-    clean: float | None
-
-
-@dataclass(frozen=True)
-class Test:
-    """The method against one rival in one case: ``comparison`` None when a side has no runs;
-    ``p`` the Holm-corrected p."""
-
-    case: str
-    rival: str
-    sides: tuple[Side, Side]
-    comparison: Comparison | None
-    p: float | None = None
-
-    @property
-    def outcome(self) -> str:
-        """``better``, ``worse`` (corrected p < ALPHA, by the effect's sign), ``neither`` or
-        ``missing``."""
-        if self.comparison is None:
-            return "missing"
-        if self.p is None or self.p >= ALPHA or self.comparison.effect == 0:
-            return "neither"
-        return "better" if self.comparison.effect > 0 else "worse"
-
-
-@dataclass(frozen=True)
-class Tally:
-    """An absolute claim in one case: runs, those meeting the target with the 95 %
-    Clopper-Pearson interval of the proportion, and what the others did."""
-
-    case: str
-    n: int
-    met: int
-    low: float
-    high: float
-    note: str = ""
-
-
-@dataclass(frozen=True)
-class Verdict:
-    """A claim's verdict, why (``reason``: what fails of a precondition, with ``why`` the
-    precondition's own reason; the runs missing), and its comparisons (relative) or tallies
-    (absolute). ``variant``: our variant of the method."""
-
-    claim: Claim
-    verdict: str
-    reason: str = ""
-    tests: tuple[Test, ...] = ()
-    tallies: tuple[Tally, ...] = ()
-    variant: bool = False
-    why: str = ""
-
-
-# --- runs ------------------------------------------------------------------------------------
-
-
-def _value(job: JobResults, metric: str) -> float | None:
-    if metric in EVENTS:
-        return 1.0 if job.text(metric) else 0.0
-    return job.number(metric)
-
-
-def _worst(claim: Claim) -> float:
-    return math.inf if claim.better == "lower" else -math.inf
-
-
-def outcome(job: JobResults, claim: Claim) -> float | None:
-    """The run's value as the claim is judged: the worst for a failed run; None when it has no
-    value, or the table does not say how it ended (:attr:`JobResults.settled`)."""
-    if not job.settled:
-        return None
-    return _worst(claim) if job.failed else _value(job, claim.metric)
-
-
-def _side(jobs: Sequence[JobResults], claim: Claim, judged: Sequence[float]) -> Side:
-    measured = [_value(j, claim.metric) for j in jobs]
-    fitness = [j.number("fitness") for j in jobs]
-    ok = [i for i, j in enumerate(jobs) if not j.failed and measured[i] is not None]
-    whole = None if any(v is None for v in measured) else summarise(measured, claim.statistic,
-                                                                    fitness)  # fmt: skip
-    clean = summarise([measured[i] for i in ok], claim.statistic, [fitness[i] for i in ok])
-    return Side(jobs[0].method if jobs else "", len(judged), sum(j.failed for j in jobs),
-                inference.median(judged) if judged else None,
-                inference.iqr(judged) if judged else None, whole, clean)  # fmt: skip
-
-
-def _test(results: Results, claim: Claim, case: str, rival: str) -> Test:
-    if claim.kind == "runs":  # scenes: paired by (case, seed)
-        pairs = [(a, b) for a, b in results.pairs(claim.kind, case, claim.method, rival)
-                 if outcome(a, claim) is not None and outcome(b, claim) is not None]  # fmt: skip
-        mine, theirs = [a for a, _ in pairs], [b for _, b in pairs]
-    else:
-        mine, theirs = ([j for j in results.group(claim.kind, case, m)
-                         if outcome(j, claim) is not None] for m in (claim.method, rival))
-    x, y = [outcome(j, claim) for j in mine], [outcome(j, claim) for j in theirs]
-    sides = (replace(_side(mine, claim, x), method=claim.method),
-             replace(_side(theirs, claim, y), method=rival))  # fmt: skip
-    if not x or not y:
-        return Test(case, rival, sides, None)
-    if claim.statistic in SPREADS:
-        x, y = inference.dispersion(x), inference.dispersion(y)
-    comparison = inference.compare(x, y, paired=claim.kind == "runs", better=claim.better,
-                                   seed=SEED, resamples=RESAMPLES, shift=False)  # fmt: skip
-    return Test(case, rival, sides, comparison)
-
-
-# --- preconditions ---------------------------------------------------------------------------
-
-
-def _points(job: JobResults) -> int | None:
-    path = job.dir / "summary.json"
-    try:
-        return int(json.loads(path.read_text(encoding="utf-8"))["points"])
-    except (OSError, ValueError, KeyError, TypeError):
-        return None
-
-
-def _turns_reachable(results: Results, claim: Claim) -> str:
-    """'' when every route of the claim's methods can turn as often as the paper's table has
-    any of them turn in the claim's cases (a route of P points turns at most P - 2 times);
-    else what fails."""
-    table = TABLES[claim.table]
-    column = next(c for c in table.columns if c.metric == "turns")
-    methods = (claim.method, *claim.rivals)
-    want = [v for case in claim.cases for pc in claim.table_cases(case) for m in methods
-            if (v := table.value(m, pc, column.name)) is not None]  # fmt: skip
-    jobs = [j for case in claim.cases for m in methods for j in results.group(claim.kind, case, m)]
-    points = [_points(j) for j in jobs]
-    if not jobs or None in points:
-        return "the routes' summary.json (their points) are missing"
-    cap = min(points) - 2
-    if want and cap < max(want):
-        return (f"our routes turn at most {cap} times ({min(points)} points), the paper's "
-                f"up to {max(want):g}")
-    return ""
-
-
-#: Each precondition check (:data:`usvtool.report.papers.CHECKS`): what fails ('' when met).
-CHECKS: dict[str, Callable[[Results, Claim], str]] = {"turns-reachable": _turns_reachable}
-
-
-def _unmet(results: Results, claim: Claim) -> tuple[str, str]:
-    """What fails of the first precondition that does, and that precondition's reason (two
-    empty strings when every precondition holds)."""
-    for p in claim.preconditions:
-        fails = CHECKS[p.check](results, claim)
-        if fails:
-            return fails, p.reason
-    return "", ""
-
-
-# --- verdicts --------------------------------------------------------------------------------
-
-
-def _relative(claim: Claim, tests: Sequence[Test], variant: bool) -> Verdict:
-    outcomes = {t.outcome for t in tests}
-    missing = [f"{t.case} ({t.rival})" for t in tests if t.outcome == "missing"]
-    if "worse" in outcomes:
-        verdict = FAILS
-    elif missing:
-        verdict = UNTESTED
-    else:
-        verdict = HOLDS if outcomes == {"better"} else INCONCLUSIVE
-    reason = f"no runs: {', '.join(missing)}" if missing else ""
-    return Verdict(claim, verdict, reason, tuple(tests), variant=variant)
-
-
-def _meets(job: JobResults, claim: Claim) -> bool:
-    if not job.settled:  # no evidence of meeting it
-        return False
-    value = _value(job, claim.metric)
-    if isinstance(claim.target, str):
-        target = _value(job, claim.target)
-        # a failed run, or one with nothing to judge, is no evidence of meeting it
-        return (not job.failed and value is not None and target is not None and target >= 1
-                and value == target)  # fmt: skip
-    return value is not None and value == claim.target and (claim.metric in EVENTS
-                                                            or not job.failed)  # fmt: skip
-
-
-def _note(jobs: Sequence[JobResults], claim: Claim) -> str:
-    """What the runs that did not meet an absolute claim's target did instead."""
-    parts = []
-    crashed = sum(bool(j.text("collision")) for j in jobs)
-    stopped = sum(j.text("arrived") == "False" and not j.text("collision") for j in jobs)
-    if crashed:
-        parts.append(f"{crashed} collided")
-    if stopped:
-        parts.append(f"{stopped} did not arrive")
-    if isinstance(claim.target, str):
-        done = [j for j in jobs if not j.failed]
-        if none := sum((_value(j, claim.target) or 0) < 1 for j in done):
-            parts.append(f"{none} judged no encounter")
-        if broke := sum((_value(j, "noncompliant") or 0) > 0 for j in done):
-            parts.append(f"{broke} with a non-compliant encounter")
-        excused = sum(not _meets(j, claim) and (_value(j, "compliant_excused") or 0) > 0
-                      and _value(j, "noncompliant") == 0 and (_value(j, claim.target) or 0) >= 1
-                      for j in done)  # fmt: skip
-        if excused:
-            parts.append(f"{excused} compliant only through an excused Rule 2 departure")
-    return ", ".join(parts)
-
-
-def _absolute(results: Results, claim: Claim, variant: bool) -> Verdict:
-    tallies, missing = [], []
-    for case in claim.cases:
-        jobs = results.group(claim.kind, case, claim.method)
-        if not jobs:
-            missing.append(case)
-            continue
-        met = sum(_meets(j, claim) for j in jobs)
-        ci = binomtest(met, len(jobs)).proportion_ci(0.95, method="exact")
-        tallies.append(Tally(case, len(jobs), met, float(ci.low), float(ci.high),
-                             _note(jobs, claim)))  # fmt: skip
-    if any(t.met < t.n for t in tallies):
-        verdict = FAILS
-    else:
-        verdict = UNTESTED if missing else HOLDS
-    reason = f"no runs: {', '.join(missing)}" if missing else ""
-    return Verdict(claim, verdict, reason, tallies=tuple(tallies), variant=variant)
-
-
-def variants(results: Results, claim: Claim) -> list[str]:
-    """Our clearly named variants of the claim's method run in the claim's cases (``udwa+`` of
-    ``udwa``, ``iwso+g`` of ``iwso``): the claim is judged for each too, beside the paper's."""
-    run = {j.method for case in claim.cases for j in results.jobs
-           if j.kind == claim.kind and in_group(j.case, case)}  # fmt: skip
-    return sorted(m for m in run if m.partition("+")[0] == claim.method and m != claim.method)
-
-
-def _claims(results: Results) -> list[tuple[Claim, bool]]:
-    """Every claim for the paper's method, each followed by the same claim for our variants."""
-    return [(c2, c2 is not c) for c in CLAIMS
-            for c2 in (c, *(replace(c, id=f"{c.id} ({m})", method=m)
-                            for m in variants(results, c)))]  # fmt: skip
-
-
-def judge_all(results: Results, claims: Sequence[tuple[Claim, bool]]) -> list[Verdict]:
-    """The verdicts of ``claims`` ((claim, is a variant) pairs), the p of the relative ones
-    Holm-corrected together, the papers' methods' and the variants' as two families."""
-    pending: list[tuple[Claim, bool, tuple[str, str], list[Test]]] = []
-    for claim, variant in claims:
-        has_runs = any(outcome(j, claim) is not None for case in claim.cases
-                       for j in results.group(claim.kind, case, claim.method))  # fmt: skip
-        unmet = _unmet(results, claim) if has_runs else ("", "")
-        tests = [] if unmet[0] or not claim.rivals else [
-            _test(results, claim, case, rival) for case in claim.cases for rival in claim.rivals]
-        pending.append((claim, variant, unmet, tests))
-    for family in (False, True):
-        tests = [t for _, v, _, ts in pending if v == family for t in ts]
-        corrected = iter(inference.holm([None if t.comparison is None else t.comparison.p
-                                         for t in tests]))  # fmt: skip
-        for _, v, _, ts in pending:
-            if v == family:
-                ts[:] = [replace(t, p=next(corrected)) for t in ts]
-    out = []
-    for claim, variant, unmet, tests in pending:
-        if unmet[0]:
-            out.append(Verdict(claim, UNTESTABLE, unmet[0], variant=variant, why=unmet[1]))
-        elif claim.rivals:
-            out.append(_relative(claim, tests, variant))
-        else:
-            out.append(_absolute(results, claim, variant))
-    return out
-
-
-_CACHE: list[tuple[Results, list[Verdict]]] = []
-
-
-def verdicts(results: Results) -> list[Verdict]:
-    """Every claim's verdict (the papers' methods, each followed by our variants'), computed
-    once per :class:`Results` (the claims section and the summary share them)."""
-    if not _CACHE or _CACHE[0][0] is not results:
-        _CACHE[:] = [(results, judge_all(results, _claims(results)))]
-    return _CACHE[0][1]
-
-
-def judge(results: Results, claim: Claim) -> Verdict:
-    """One claim judged alone (its own Holm family)."""
-    return judge_all(results, [(claim, False)])[0]
-
-
-def counts(sections: list[Section]) -> dict[str, int]:
-    """How many of the papers' claims have each verdict for the papers' own methods (from the
-    claims table; the variants' rows are not counted)."""
+def counts(sections: list[Section], table: str = "claims-table") -> dict[str, int]:
+    """How many claims of the claims table ``table`` have each verdict (the papers' own
+    methods': the rows of our variants, ``id (variant)``, are not counted)."""
     out = dict.fromkeys(VERDICTS, 0)
     for s in sections:
         for t in s.tables():
-            if t.id == "claims-table":
+            if t.id == table:
                 for row in t.rows:
                     if "(" not in row[0].text:
                         out[row[-1].text] += 1
@@ -545,7 +237,7 @@ def _case_rows(vs: Sequence[Verdict]) -> list[list[Cell]]:
 
 
 def section(results: Results) -> Section:
-    vs = verdicts(results)
+    vs = paper_verdicts(results)
     mine = [v for v in vs if not v.variant]
     tally = dict.fromkeys(VERDICTS, 0)
     for v in mine:

@@ -1,5 +1,5 @@
 """The report's first page: what was compared, the headline verdicts of the papers' claims (for
-the papers' own methods; :func:`usvtool.report.sections.claims.verdicts`, computed once) and
+the papers' own methods; :func:`usvtool.report.judging.paper_verdicts`, computed once) and
 the caveats, what differs from the papers' set-ups."""
 
 from __future__ import annotations
@@ -8,6 +8,7 @@ import math
 import re
 from collections import Counter
 
+from usvtool.report import judging
 from usvtool.report.data import Results
 from usvtool.report.document import Cell, Section, Table
 from usvtool.report.papers import IWSO_DWA_TABLE_1, PAPERS
@@ -104,7 +105,7 @@ def smallest_p(n: int) -> float:
     return 2.0 / math.comb(2 * n, n)
 
 
-def caveats(results: Results, verdicts: list[claims.Verdict]) -> list[str]:
+def caveats(results: Results, verdicts: list[judging.Verdict]) -> list[str]:
     """What differs from the papers' set-ups, in short sentences."""
     out = [
         "Our env1, env2 and grid20 are rebuilt from the papers' descriptions, not their maps: "
@@ -118,21 +119,21 @@ def caveats(results: Results, verdicts: list[claims.Verdict]) -> list[str]:
         runs = "-".join(map(str, sorted({min(functions), max(functions)})))
         tested = sum(t.p is not None for v in verdicts if not v.variant for t in v.tests)
         few = (" too few to hold after Holm's correction" if tested and
-               tested * smallest_p(min(functions)) >= claims.ALPHA else "")  # fmt: skip
+               tested * smallest_p(min(functions)) >= judging.ALPHA else "")  # fmt: skip
         out.append(f"Benchmark functions: {runs} runs per function and algorithm against the "
                    f"paper's {IWSO_DWA_TABLE_1.runs}{',' if few else ''}{few}.")
     for v in verdicts:
-        if v.verdict == claims.UNTESTABLE:
+        if v.verdict == judging.UNTESTABLE:
             out.append(f"{v.claim.id} is not testable: {v.reason}.")
     return out
 
 
 def section(results: Results) -> Section:
-    verdicts = [v for v in claims.verdicts(results) if not v.variant]
+    verdicts = [v for v in judging.paper_verdicts(results) if not v.variant]
     counts = Counter(v.verdict for v in verdicts)
     s = Section("summary", "Summary")
     s.paragraphs.append(compared(results))
-    tally = ", ".join(f"{counts[k]} {k}" for k in claims.VERDICTS if counts[k])
+    tally = ", ".join(f"{counts[k]} {k}" for k in judging.VERDICTS if counts[k])
     s.blocks.append(Table(
         "summary-verdicts", f"The papers' {len(verdicts)} claims for their own methods: {tally}",
         "The paper's figure (its method against its first rival); ours: the medians and the "
