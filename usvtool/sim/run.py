@@ -466,6 +466,8 @@ def scenario_facts(scenario: Scenario, own_length: float, base: Path | None = No
         "route": path(scenario.route),
         "tracks": [path(t.track) for t in scenario.targets],
         "wind_field": None if weather is None else path(weather.field),
+        "duration_s": float(scenario.sim.duration),
+        "vessel_preset": scenario.own.vessel,
     }  # fmt: skip
 
 
