@@ -220,6 +220,30 @@ class Voyage:
             self.arrived = True
 
 
+    def trace(self) -> Trace:
+        """The run so far as its trace (the own ship first; the targets' yaw rates from their
+        courses): what :func:`simulate` writes."""
+        times, own = self.times[: self.step + 1], np.array(self.states)
+        ahead, motion, n = self.ahead, self.motion, self.step + 1
+        course = np.unwrap(motion.course[:n], axis=0)
+        turn = np.diff(course, axis=0, append=course[-1:]) / self.sim.dt
+        x = np.column_stack([own[:, 0], ahead[:n, :, 0]])
+        y = np.column_stack([own[:, 1], ahead[:n, :, 1]])
+        heading = np.column_stack([own[:, 2], motion.heading[:n]])
+        speed = np.column_stack([own[:, 3], motion.speed[:n]])
+        yaw = -np.degrees(np.column_stack([own[:, 4], turn]))  # compass sense: + to starboard
+        names = ["own", *[t.name for t in self.scenario.targets]]
+        return Trace(times, names, x, y, heading, speed, yaw)
+
+
+def start_voyage(scenario: Scenario, seed: int = 0) -> Voyage:
+    """The :class:`Voyage` of ``scenario`` at its start (its files read, the targets' courses
+    drawn with ``seed``), for a caller that steers it itself (:mod:`usvtool.gym`): the voyage
+    :func:`simulate` runs, without a controller nor the memory check."""
+    sim = scenario.sim
+    return Voyage(scenario, _Setup(scenario), int(round(sim.duration / sim.dt)), seed)
+
+
 @dataclass(frozen=True)
 class _Motion:
     """The targets' motion over the run, derived once from their positions ``(n + 1, k, 2)``
@@ -372,19 +396,11 @@ def _result(scenario, setup, opts, controller, voyage: Voyage, failed: str | Non
             step_time: float) -> SimResult:  # fmt: skip
     """The trace (the targets' yaw rates from their courses), the COLREGs evaluation and the
     figures; ``failed``: why the controller failed, None when it did not."""
-    times, own = voyage.times[: voyage.step + 1], np.array(voyage.states)
-    ahead, motion, lengths = voyage.ahead, voyage.motion, voyage.lengths
+    lengths = voyage.lengths
     controller_events, collision, arrived = voyage.events, voyage.collision, voyage.arrived
-    n, dt = len(times), scenario.sim.dt
-    course = np.unwrap(motion.course[:n], axis=0)
-    turn = np.diff(course, axis=0, append=course[-1:]) / dt
-    x = np.column_stack([own[:, 0], ahead[:n, :, 0]])
-    y = np.column_stack([own[:, 1], ahead[:n, :, 1]])
-    heading = np.column_stack([own[:, 2], motion.heading[:n]])
-    speed = np.column_stack([own[:, 3], motion.speed[:n]])
-    yaw = -np.degrees(np.column_stack([own[:, 4], turn]))  # compass sense: + to starboard
-    names = ["own", *[t.name for t in scenario.targets]]
-    trace = Trace(times, names, x, y, heading, speed, yaw)
+    dt = scenario.sim.dt
+    trace = voyage.trace()
+    times, x, y, names = trace.t, trace.x, trace.y, list(trace.ships)
     rule2 = [e for e in controller_events if e["kind"] == "rule2-departure"]
     evaluation = verdicts.evaluate(trace, [setup.vessel.length, *lengths], rule2)
     track = np.column_stack([x[:, 0], y[:, 0]])
