@@ -15,7 +15,8 @@ from affine import Affine
 from usvtool.errors import UsvError
 from usvtool.grid import Grid, write_grid
 from usvtool.report.data import JobResults, Results
-from usvtool.report.sections.encounters import lengths, run_file, run_files, scenario_section
+from usvtool.report.runs import lengths, run_file, run_files
+from usvtool.report.sections.encounters import scenario_section
 from usvtool.trace import read_trace
 
 #: Open water, 15 s: the own ship north, an unnamed 40 m target head-on (the simulator names

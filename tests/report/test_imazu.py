@@ -19,21 +19,28 @@ CONTROLLERS = ("dwa", "udwa")
 
 
 def job(root, case: str, method: str, metrics: dict, family: str = "imazu") -> JobResults:
-    """A run job of ``case``: its metrics as a results table holds them, the scenario its job
-    wrote and its events: own ship north at 6 m/s, 12 m long; one 10 m target head-on at 4 m/s,
-    500 m ahead, so its CPA is 500 / 10 = 50 s ahead at 0 m."""
+    """A run job of ``case``: its metrics as a results table holds them, its trace's first step
+    and its events: own ship north at 6 m/s, 12 m long; one 10 m target head-on at 4 m/s,
+    500 m ahead, so its CPA is 500 / 10 = 50 s ahead at 0 m. The scenario file beside them
+    says otherwise: the section never reads it."""
     d = root / "runs" / f"{case.replace('/', '-')}-{method}"
     d.mkdir(parents=True)
     rows = {m: Row("k", "runs", case, method, 1, m, str(v)) for m, v in metrics.items()}
     (d / "scenario.yaml").write_text(
-        "sim: {dt: 0.1, duration: 90.0}\n"
-        "own: {start: [0, 0], goal: [0, 800], heading: 0, speed: 6}\n"
-        "targets: [{name: ts1, start: [0, 500], heading: 180, speed: 4, length: 10}]\n")
+        "sim: {dt: 0.1, duration: 999.0}\n"
+        "own: {start: [0, 0], goal: [0, 900], heading: 90, speed: 2}\n"
+        "targets: [{name: ts1, start: [0, 100], heading: 0, speed: 1, length: 10}]\n")
+    (d / "trace.csv").write_text(
+        "t,ship,x,y,heading,speed,yaw_rate\n"
+        "0.000,own,0.000,0.000,0.000,6.0000,0.0000\n"
+        "0.000,ts1,0.000,500.000,180.000,4.0000,0.0000\n"
+        "0.100,own,0.000,0.600,0.000,6.0000,0.0000\n"
+        "0.100,ts1,0.000,499.600,180.000,4.0000,0.0000\n")
     write_events(d / "trace.events.json", {"encounters": [], "thresholds": {
         "apparent": {"course_deg": 30.0, "speed_reduction": 0.5}, "domain_axes_m": [84, 36]},
         "run": {"own_length": 12.0,
                 "ships": [{"name": "own", "length": 12.0}, {"name": "ts1", "length": 10.0}],
-                "map": None, "wind_field": None, "goal": [0.0, 800.0],
+                "map": None, "wind_field": None, "goal": [0.0, 800.0], "duration_s": 90.0,
                 "scenario_file": "scenario.yaml"}})  # fmt: skip
     config = {"scene": {"family": family, "kind": case.split("/")[1], "scene": 0}}
     return JobResults(f"{case}-{method}", "runs", case, method, 1, d, rows, config=config)
@@ -101,6 +108,16 @@ def test_the_scale_is_read_from_the_runs(built):
     thresholds = cells(built, "imazu-thresholds")
     assert ["ship domain: ellipse's full axes, along x across", "7 L x 3 L (84 m x 36 m)",
             "domain_axes_m"] in thresholds  # fmt: skip
+
+
+def test_events_without_the_duration_are_refused(tmp_path):
+    from usvtool.errors import UsvError
+
+    run = job(tmp_path, "imazu/01/s000", "dwa", {"arrived": True})
+    path = run.dir / "trace.events.json"
+    path.write_text(path.read_text().replace('"duration_s": 90.0,', ""))
+    with pytest.raises(UsvError, match="run has no duration_s .*simulate the run again"):
+        imazu.section(Results([run], [], order=CONTROLLERS))
 
 
 def test_the_grid_is_a_png_of_150_dpi_or_more(built):

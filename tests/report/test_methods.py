@@ -41,18 +41,28 @@ def results(tmp_path):
             "--seed", str(seed), "-o", "route.geojson"], "outputs": ["route.geojson"]},
             summary_json=json.dumps({"parameters": {"pop": 50, "iters": 300, "waypoints": 3}}))
         rows.append(Row(key, "routes", "env1", "iwso", seed, "length_m", "700"))
-    scenario = ("name: emergency-head-on-s004\nown: {start: [0, 0], goal: [0, 450], speed: 7, "
-                "vessel: udwa-usv}\ntargets:\n- {start: [0, 300], speed: 3.5, heading: 180}\n")
+    # the run as it started (the trace's first step): own at (0, 0) at 7 m/s, a target 300 m
+    # north at 3.5 m/s; a scenario file that says otherwise is never read
+    trace = ("t,ship,x,y,heading,speed,yaw_rate\n0.000,own,0.000,0.000,0.000,7.0000,0.0000\n"
+             "0.000,target1,0.000,300.000,180.000,3.5000,0.0000\n"
+             "0.100,own,0.000,0.700,0.000,7.0000,0.0000\n"
+             "0.100,target1,0.000,299.650,180.000,3.5000,0.0000\n")
+    scenario = "own: {start: [9, 9], goal: [9, 9], speed: 1, vessel: iwso-dwa-usv}\n"
+    vessel = {"length": 15.0, "max_speed": 10.0, "max_yaw_rate": 12.0}
     for key, controller, priority in (("f1", "udwa", 0.5), ("f2", "ccdwa", 0.0)):
         events = {"run": {"scenario_file": "scenario.yaml", "own_length": 15.0,
-                          "parameters": {"w_heading": 0.2, "priority": priority}}}
+                          "parameters": {"w_heading": 0.2, "priority": priority},
+                          "ships": [{"name": "own", "length": 15.0},
+                                    {"name": "target1", "length": 10.0}],
+                          "map": None, "wind_field": None, "goal": [0.0, 450.0],
+                          "vessel_preset": "udwa-usv", "vessel": vessel}}
         job(batch, "runs", key, {"case": "emergency/head-on/s004", "method": controller,
             "seed": 4, "scene": {"family": "emergency", "kind": "head-on", "scene": 4,
                                  "options": {}},
             "args": ["simulate", "--family", "emergency", "--kind", "head-on", "--scene", "4",
                      "--controller", controller, "--seed", "4", "-o", "trace.csv", "--events",
                      "trace.events.json"], "outputs": ["trace.csv", "trace.events.json"]},
-            scenario_yaml=scenario, trace_events_json=json.dumps(events))
+            scenario_yaml=scenario, trace_events_json=json.dumps(events), trace_csv=trace)
         rows.append(Row(key, "runs", "emergency/head-on/s004", controller, 4, "arrived", "True"))
     write_results(batch / "metrics.csv", rows)
     return load([batch / "metrics.csv"], ("iwso", "udwa", "ccdwa"))
@@ -97,12 +107,25 @@ def test_the_parameter_tables_come_from_the_jobs_files(results):
     assert controllers.columns == ["parameter", "udwa", "ccdwa"]  # the registry's order
     assert texts(controllers) == [["priority", "0.5", "0"], ["w_heading", "0.2", "0.2"]]
     vessel = texts(blocks["methods-vessels"])
-    assert vessel[0][:2] == ["udwa-usv", "15"] and vessel[0][3] == "1: emergency/head-on"
+    assert vessel == [["udwa-usv", "15", "length 15, max_speed 10, max_yaw_rate 12",
+                       "1: emergency/head-on"]]  # fmt: skip
     family = texts(blocks["methods-families"])
     # one scene (4), seed 4; own run 450 m at 7 m/s; one target 300 m off at 3.5 m/s
     assert family == [["emergency/head-on", "4", "4", "udwa, ccdwa", "450", "7.0", "1", "300",
                        "3.5", "{}"]]  # fmt: skip
     assert {b.placement for b in blocks.values() if b.id != "methods-jobs"} == {"main", APPENDIX}
+
+
+def test_events_without_the_vessel_preset_are_refused(results):
+    from usvtool.errors import UsvError
+
+    for j in results.select("runs"):
+        path = j.dir / "trace.events.json"
+        events = json.loads(path.read_text())
+        del events["run"]["vessel_preset"]
+        path.write_text(json.dumps(events))
+    with pytest.raises(UsvError, match="run has no vessel_preset .*simulate the run again"):
+        methods.section(results)
 
 
 def test_paths_outside_the_repository_and_inside_it(tmp_path):

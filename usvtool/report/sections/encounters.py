@@ -10,113 +10,40 @@ are never compliant. The COLREGs counts are the results table's (``usvtool metri
 ``compliant``, ``compliant_excused``, ``noncompliant``, ``not_judged``; docs/colregs.md,
 "Counting"); the thresholds are those the events files record (``thresholds``).
 
-A run job's files are ``trace.csv`` and ``trace.events.json`` in its directory. The events'
-``run`` object holds the scenario as the simulator resolved it (docs/simulate.md): every ship's
-name and length in the trace's order (``ships``; an unnamed target is ``target1``, ...), the
-absolute paths of the ``map`` and the ``wind_field``. The report reads them there and never
-the scenario YAML; events without them (written by an older usvtool) are refused, one line
-saying to simulate the run again.
+The runs' files, the facts of their scenarios (the events' ``run`` object, never the scenario
+YAML) and the outcome vocabulary are :mod:`usvtool.report.runs`'.
 """
 
 from __future__ import annotations
 
-import math
-from functools import cache
-from pathlib import Path
-from typing import NamedTuple
-
 import numpy as np
 
-from usvtool.errors import UsvError
 from usvtool.grid import read_grid
-from usvtool.report import figures, inference
+from usvtool.report import figures
 from usvtool.report.data import JobResults, Results, stats
 from usvtool.report.document import APPENDIX, Cell, Figure, Section, Table, number
 from usvtool.report.papers import CLAIMS, UDWA_WIND
+from usvtool.report.runs import (
+    COUNTS,
+    TALLY_COLUMNS,
+    VERDICT_WORDS,
+    RunTally,
+    family_kind,
+    is_family,
+    job_events,
+    lengths,
+    median_iqr,
+    own_section,
+    run_facts,
+    run_file,
+    run_files,
+)
 from usvtool.report.sections import published
-from usvtool.trace import Trace, read_events, read_trace
 
 #: The run table: (metric, column, decimals).
 COLUMNS = (("arrival_time_s", "arrival (s)", 1), ("closest_distance_m", "closest (m)", 1),
            ("average_distance_m", "average (m)", 1), ("domain_intrusion_s", "in domain (s)", 1),
            ("length_m", "length (m)", 1), ("turns", "turns", 0))  # fmt: skip
-
-
-@cache
-def _trace(path: Path) -> Trace:
-    return read_trace(path)
-
-
-#: The keys of the events' ``run`` object the report reads (docs/simulate.md).
-RUN_FACTS = ("ships", "map", "wind_field")
-RERUN = "simulate the run again (usvtool batch reruns it when its directory is removed)"
-
-
-@cache
-def _events(path: Path) -> dict:
-    return read_events(path)
-
-
-class RunFiles(NamedTuple):
-    """A run's trace and events, and the events' file (named in errors)."""
-
-    trace: Trace
-    events: dict
-    path: Path
-
-
-def run_files(job: JobResults) -> RunFiles | None:
-    trace, events = job.dir / "trace.csv", job.dir / "trace.events.json"
-    if not (trace.is_file() and events.is_file()):
-        return None
-    return RunFiles(_trace(trace), _events(events), events)
-
-
-def run_facts(events: dict, where: Path | str) -> dict:
-    """The events' ``run`` object, refused (naming ``where``) when it lacks :data:`RUN_FACTS`."""
-    run = events.get("run")
-    if not isinstance(run, dict):
-        raise UsvError(f"{where}: the events hold no 'run' object (an older usvtool): {RERUN}")
-    missing = [k for k in RUN_FACTS if k not in run]
-    if missing:
-        raise UsvError(f"{where}: run has no {', '.join(missing)} (written by an older usvtool, "
-                       f"before the run held the scenario's facts): {RERUN}")  # fmt: skip
-    return run
-
-
-def lengths(trace: Trace, events: dict, where: Path | str) -> dict[str, float]:
-    """Every ship's length by name, from the events' ``run.ships`` (the trace's ships, in its
-    order, each with a length > 0 m)."""
-    ships = run_facts(events, where)["ships"]
-    if not isinstance(ships, list) or not all(isinstance(s, dict) for s in ships):
-        raise UsvError(f"{where}: run.ships must be a list of {{name, length}}")
-    names = tuple(s.get("name") for s in ships)
-    if names != trace.ships:
-        raise UsvError(f"{where}: run.ships name {len(names)} ship(s), not the trace's "
-                       f"{', '.join(trace.ships)}: {RERUN}")  # fmt: skip
-    for s in ships:
-        length = s.get("length")
-        if (isinstance(length, bool) or not isinstance(length, int | float)
-                or not math.isfinite(length) or length <= 0):  # fmt: skip
-            raise UsvError(f"{where}: run.ships: {s['name']}'s length {length!r} is not a "
-                           "number > 0")  # fmt: skip
-    return {s["name"]: float(s["length"]) for s in ships}
-
-
-def run_file(events: dict, key: str, where: Path | str) -> Path | None:
-    """The run's ``map`` or ``wind_field`` (``key``) as the run resolved it (a relative path
-    is relative to the events file ``where``'s folder); None when it had none. Refused when
-    the file is gone since."""
-    value = run_facts(events, where)[key]
-    if value is None:
-        return None
-    if not isinstance(value, str):
-        raise UsvError(f"{where}: run.{key} must be a path or null")
-    path = Path(where).parent / value  # a relative path is the events file's folder's
-    if not path.is_file():
-        raise UsvError(f"{where}: run.{key} {value}: no such file (moved or removed since the "
-                       "run?)")  # fmt: skip
-    return path
 
 
 def primary(scenario: str, controllers: list[str]) -> str:
@@ -191,87 +118,6 @@ def run_table(results: Results, scenario: str, controllers: list[str]) -> Table:
 
 # --- outcomes and COLREGs counts ------------------------------------------------------------
 
-#: The results table's COLREGs counts (docs/colregs.md, "Counting"): every encounter of a run in
-#: exactly one; what each says of an encounter, and its column's heading.
-VERDICTS = ("compliant", "compliant_excused", "noncompliant", "not_judged")
-VERDICT_WORDS = dict(zip(VERDICTS, ("compliant", "compliant only by an excused Rule 2 departure",
-                                    "non-compliant", "not judged"), strict=True))  # fmt: skip
-VERDICT_HEADINGS = ("compliant", "excused only", "non-compliant", "not judged")
-#: A run's outcomes, each in its own column: a run that did not arrive is a failure.
-OUTCOMES = ("arrived", "collided", "did not arrive")
-#: Scene families with a section of their own (the Imazu problem, recorded traffic), left out of
-#: the families table; a run's family is its ``job.json``'s ``scene.family``.
-OWN_SECTION = ("imazu", "ais")
-COUNTS = ("A run that did not arrive or collided is a failure: its encounters are all 'not "
-          "judged', never compliant (docs/colregs.md, 'Counting'). Excused only: compliant "
-          "only through an excused Rule 2 departure, i.e. because the controller's Rule 2 "
-          "record excused a failed side or stand-on rule.")
-
-
-def is_family(case: str) -> bool:
-    """Whether a run's case is a scene of a scene family (``ENTRY/KIND/sNNN``)."""
-    return "/" in case
-
-
-def own_section(job: JobResults) -> bool:
-    """Whether the run is a scene of a family with a section of its own (:data:`OWN_SECTION`)."""
-    return (job.config.get("scene") or {}).get("family") in OWN_SECTION
-
-
-def family_kind(case: str) -> str:
-    """A family scene's ``ENTRY/KIND`` (``emergency/head-on`` of ``emergency/head-on/s007``)."""
-    return case.rsplit("/", 1)[0]
-
-
-def outcome(job: JobResults) -> str:
-    """The run's :data:`OUTCOMES`: collided (whatever else), arrived, or did not arrive."""
-    if job.text("collision"):
-        return "collided"
-    return "arrived" if job.number("arrived") == 1.0 else "did not arrive"
-
-
-class Tally(NamedTuple):
-    """The outcomes of some runs and the sum of their COLREGs counts (None when a run's row
-    lacks them: a table written before the counts were split)."""
-
-    outcomes: dict[str, int]
-    verdicts: dict[str, int] | None
-
-    @classmethod
-    def of(cls, jobs: list[JobResults]) -> Tally:
-        outcomes = dict.fromkeys(OUTCOMES, 0)
-        for j in jobs:
-            outcomes[outcome(j)] += 1
-        counts = [[j.number(v) for v in VERDICTS] for j in jobs]
-        split = None if any(None in c for c in counts) else {
-            v: int(sum(c[i] for c in counts)) for i, v in enumerate(VERDICTS)}  # fmt: skip
-        return cls(outcomes, split)
-
-    def cells(self) -> list[Cell]:
-        """The outcomes (failures marked) and the four counts (``-`` when unknown)."""
-        cells = []
-        for name, n in self.outcomes.items():
-            cells.append(Cell(str(n), "num" + (" fails" if n and name != "arrived" else "")))
-        for v in VERDICTS:
-            n = None if self.verdicts is None else self.verdicts[v]
-            css = MARKS.get(v, "") if n else ""
-            cells.append(Cell("-" if n is None else str(n), "num" + css))
-        return cells
-
-
-TALLY_COLUMNS = [*OUTCOMES, *VERDICT_HEADINGS]
-#: How a count above 0 is marked.
-MARKS = {"noncompliant": " fails", "not_judged": " untested"}
-
-
-def median_iqr(values: list[float], digits: int = 1) -> Cell:
-    """``median (IQR width)`` of the values, as the claims table gives them
-    (:func:`usvtool.report.inference.median` and :func:`~usvtool.report.inference.iqr`)."""
-    if not values:
-        return Cell("-", "num")
-    med, spread = inference.median(values), inference.iqr(values)
-    return Cell(f"{med:.{digits}f} (IQR {spread:.{digits}f})", "num")
-
 
 def _controllers(results: Results, jobs: list[JobResults]) -> list[str]:
     """The controllers of ``jobs`` in the report's order."""
@@ -292,7 +138,7 @@ def families_table(results: Results) -> Table | None:
         for c in _controllers(results, mine):
             runs = [j for j in mine if j.method == c]
             closest = [v for v in (j.number("closest_distance_m") for j in runs) if v is not None]
-            rows.append([Cell(kind), Cell(str(scenes), "num"), Cell(c), *Tally.of(runs).cells(),
+            rows.append([Cell(kind), Cell(str(scenes), "num"), Cell(c), *RunTally.of(runs).cells(),
                          median_iqr(closest)])  # fmt: skip
     return Table("encounter-families", "Scene families: outcomes and COLREGs per kind and "
                  "controller",
@@ -320,7 +166,7 @@ def compliance_table(results: Results) -> Table | None:
                 sorted({r for j in jobs for r in (j.text(m) or "").split(";") if r})
                 for m in ("failed_rules", "excused_rules"))  # fmt: skip
             rules = ", ".join(failed) + (f" (excused: {', '.join(excused)})" if excused else "")
-            rows.append([Cell(s), Cell(c), *Tally.of(jobs).cells(), Cell(rules.strip())])
+            rows.append([Cell(s), Cell(c), *RunTally.of(jobs).cells(), Cell(rules.strip())])
     return Table("colregs-compliance", "Bundled scenarios: outcomes and COLREGs per controller",
                  "The bundled scenarios with encounters (illustrated examples: one run per "
                  "seed; the claims rest on the scene families). " + COUNTS + " Rules failed and "
@@ -407,12 +253,11 @@ def thresholds_table(jobs: list[JobResults]) -> Table | None:
     (``thresholds``; the own ship's length from ``run.own_length``): every value found."""
     found: dict[str, list[tuple[object, float | None]]] = {}
     for job in jobs:
-        path = job.dir / "trace.events.json"
-        if not path.is_file():
+        files = job_events(job)
+        if files is None:
             continue
-        events = _events(path)
-        run = events.get("run") or {}
-        for key, value in (events.get("thresholds") or {}).items():
+        run = files[0].get("run") or {}
+        for key, value in (files[0].get("thresholds") or {}).items():
             found.setdefault(key, []).append((value, run.get("own_length")))
     if not found:
         return None
@@ -456,13 +301,12 @@ def encounter_table(results: Results, scenarios: list[str]) -> Table | None:
     for s in scenarios:
         for c in results.methods("runs", s):
             for job in sorted(results.select("runs", s, c), key=lambda j: j.seed or 0):
-                path = job.dir / "trace.events.json"
-                if not path.is_file():
+                found = job_events(job)
+                if found is None:
                     continue
-                events = _events(path)
-                run = run_facts(events, path)
+                run = run_facts(*found)
                 names = [ship.get("name") for ship in run["ships"][1:]]
-                for e in events.get("encounters") or []:
+                for e in found[0].get("encounters") or []:
                     if e.get("class", "none") == "none":
                         continue
                     onset, cpa = e.get("onset_s"), e.get("cpa_time_s")

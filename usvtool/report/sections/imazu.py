@@ -5,10 +5,11 @@ arrival, collision, closest distance and COLREGs counts, with the totals per con
 
 The runs are those of the ``imazu`` scene family (their ``job.json``'s ``scene.family``), whatever
 the pipeline's entry is named; a case is the family's kind (``01`` ... ``22``). The scale the
-cases ran at is read from the runs' own files, never from the family's defaults: the ships'
-starts, speeds and the duration from the scenario the job wrote (so the targets' classes,
-ranges and time to CPA at the start, by :func:`usvtool.encounter.assess`), lengths and the goal
-from the events' ``run`` object. docs/report-imazu.md says what each cell means.
+cases ran at is read from the runs' own files, never from the family's defaults nor the
+scenario YAML: the ships' starts, headings and speeds from the trace's first step (so the
+targets' classes, ranges and time to CPA at the start, by :func:`usvtool.encounter.assess`),
+lengths, the goal and the duration from the events' ``run`` object
+(:mod:`usvtool.report.runs`). docs/report-imazu.md says what each cell means.
 """
 
 from __future__ import annotations
@@ -24,17 +25,19 @@ from usvtool.report.data import JobResults, Results
 from usvtool.report.document import APPENDIX, Cell, Figure, Section, Table
 from usvtool.report.figures.imazu import Cell as GridCell
 from usvtool.report.figures.imazu import imazu_grid, outcome
-from usvtool.report.sections.encounters import (
+from usvtool.report.runs import (
     COUNTS,
     TALLY_COLUMNS,
     VERDICTS,
-    Tally,
+    RunTally,
+    family_runs,
+    job_facts,
     median_iqr,
-    run_facts,
-    thresholds_table,
+    ship_lengths,
 )
-from usvtool.trace import read_events
-from usvtool.yamlfile import read_yaml
+from usvtool.report.runs import start as first_states
+from usvtool.report.sections.encounters import thresholds_table
+from usvtool.trace import OWN
 
 FAMILY = "imazu"
 #: Short names of the encounter classes at the start, for the case labels.
@@ -63,51 +66,46 @@ class Start:
 def imazu_runs(results: Results) -> dict[str, dict[str, JobResults]]:
     """The Imazu family's runs: case (``ENTRY/KIND/sNNN``) -> controller -> the run of its
     lowest seed."""
-    runs: dict[str, dict[str, JobResults]] = {}
-    for job in results.select("runs"):
-        if (job.config.get("scene") or {}).get("family") != FAMILY:
-            continue
-        if split_family_case(job.case) is None:
-            continue
-        mine = runs.setdefault(job.case, {})
-        if job.method not in mine or (job.seed or 0) < (mine[job.method].seed or 0):
-            mine[job.method] = job
-    return dict(sorted(runs.items()))
+    return family_runs(results, FAMILY)
+
+
+#: The keys of the events' ``run`` object the section reads (docs/simulate.md).
+FACTS = ("goal", "duration_s")
 
 
 def start(job: JobResults) -> Start | None:
-    """The case's situation at the start of the run ``job``, from the scenario its job wrote
-    (the run's ``scenario_file``: the ships' starts, headings and speeds, the duration) and its
-    events (lengths, goal); None without them."""
-    path = job.dir / "trace.events.json"
-    if not path.is_file():
+    """The case's situation at the start of the run ``job``: the ships' positions, headings
+    and speeds at the trace's first step, their lengths, the goal and the duration from the
+    events' ``run`` object; None without the files."""
+    run = job_facts(job, FACTS)
+    states = first_states(job)
+    if run is None or states is None:
         return None
-    run = run_facts(read_events(path), path)
-    scenario = job.dir / str(run.get("scenario_file"))
-    if not run.get("scenario_file") or not scenario.is_file():
-        return None
-    data = read_yaml(scenario)
+    where = job.dir / "trace.events.json"
+    lengths = ship_lengths({"run": run}, where)
+    names = [s["name"] for s in run["ships"]]
+    if names[0] != OWN or set(names) != set(states):
+        raise UsvError(f"{job.dir / 'trace.csv'}: its first step's ships {', '.join(states)} "
+                       f"are not run.ships' {', '.join(map(str, names))} ({where})")  # fmt: skip
+    own, targets = states[OWN], [states[n] for n in names[1:]]
     try:
-        own, targets = data["own"], data.get("targets") or []
-        own_xy = np.asarray(own["start"], float)
-        at = assess(own_xy, own["heading"], own["speed"],
-                    np.array([t["start"] for t in targets], float).reshape(-1, 2),
-                    [t["heading"] for t in targets], [t["speed"] for t in targets])  # fmt: skip
-        duration = (data.get("sim") or {}).get("duration")
-        speeds = tuple(float(t["speed"]) for t in targets)
-    except (KeyError, TypeError, ValueError) as e:
-        raise UsvError(f"{scenario}: not a scenario with own and targets' start, heading and "
-                       f"speed ({e})") from None  # fmt: skip
-    lengths = [float(s["length"]) for s in run["ships"]]
-    return Start(float(own["speed"]), tuple(CLASS_NAMES[c] for c in at.cls), speeds,
-                 tuple(map(float, at.range)), tuple(map(float, at.dcpa)),
-                 tuple(map(float, at.tcpa)),
-                 float(np.hypot(*(np.asarray(run["goal"], float) - own_xy))), lengths[0],
-                 tuple(lengths[1:]), None if duration is None else float(duration))  # fmt: skip
+        goal = np.asarray(run["goal"], float).reshape(2)
+        duration = float(run["duration_s"])
+    except (TypeError, ValueError) as e:
+        raise UsvError(f"{where}: run.goal must be two numbers and run.duration_s a number "
+                       f"({e})") from None  # fmt: skip
+    at = assess(np.array([own.x, own.y]), own.heading, own.speed,
+                np.array([[t.x, t.y] for t in targets], float).reshape(-1, 2),
+                [t.heading for t in targets], [t.speed for t in targets])  # fmt: skip
+    return Start(own.speed, tuple(CLASS_NAMES[c] for c in at.cls),
+                 tuple(t.speed for t in targets), tuple(map(float, at.range)),
+                 tuple(map(float, at.dcpa)), tuple(map(float, at.tcpa)),
+                 float(np.hypot(*(goal - (own.x, own.y)))), lengths[0], tuple(lengths[1:]),
+                 duration)  # fmt: skip
 
 
 def counts(job: JobResults) -> tuple[int, int, int, int]:
-    """The run's COLREGs counts (:data:`~usvtool.report.sections.encounters.VERDICTS`; 0 where
+    """The run's COLREGs counts (:data:`~usvtool.report.runs.VERDICTS`; 0 where
     the table has none)."""
     return tuple(int(job.number(c) or 0) for c in VERDICTS)  # type: ignore[return-value]
 
@@ -163,7 +161,7 @@ def totals_table(runs: dict[str, dict[str, JobResults]], controllers: list[str])
     for c in controllers:
         jobs = [r[c] for r in runs.values() if c in r]
         closest = [v for v in (j.number("closest_distance_m") for j in jobs) if v is not None]
-        rows.append([Cell(c), Cell(str(len(jobs)), "num"), *Tally.of(jobs).cells(),
+        rows.append([Cell(c), Cell(str(len(jobs)), "num"), *RunTally.of(jobs).cells(),
                      median_iqr(closest)])  # fmt: skip
     return Table("imazu-totals", "The Imazu cases: totals per controller",
                  f"Each controller's runs of the cases and their encounters. {COUNTS} "
@@ -187,7 +185,7 @@ def section(results: Results) -> Section | None:
     classes = {case: " ".join(SHORT.get(c, c) for c in s.classes) if s else "?"
                for case, s in starts.items()}  # fmt: skip
     labels = [f"{_label(case)} {classes[case]}" for case in cases]
-    tallies = {c: Tally.of([r[c] for r in runs.values() if c in r]) for c in controllers}
+    tallies = {c: RunTally.of([r[c] for r in runs.values() if c in r]) for c in controllers}
     headers = [f"{c}\n{sum(t.outcomes.values())} runs: {t.outcomes['arrived']} arrived\n"
                f"{t.outcomes['collided']} collided" for c, t in tallies.items()]  # fmt: skip
     cells = {(case, c): grid_cell(job) for case, r in runs.items() for c, job in r.items()}

@@ -8,9 +8,10 @@ grid is the example grid's, written there first). Then the versions of Python, u
 commit) and its libraries, the machine, and the parameter tables, each read from the jobs'
 files, never from another stage: the optimizers' (a route's ``summary.json`` ``parameters``, a
 function job's ``job.json``), the controllers' parameters and weights (the events' ``run``
-``parameters``), the vessels (the scenario files' ``own``, the events' ``run.ships`` and, when
-the run records it, ``run.vessel``) and the scene families' geometry and seeds (each scene's
-``scenario.yaml`` and ``job.json`` ``scene``). The command line of every job is listed in the
+``parameters``), the vessels (the events' ``run.vessel_preset``, ``run.own_length`` and
+``run.vessel``) and the scene families' geometry and seeds (each scene's ``job.json`` ``scene``,
+its trace's first step and its events' ``run.goal``). No scenario YAML is read: a run's facts
+are its events' (:mod:`usvtool.report.runs`). The command line of every job is listed in the
 HTML only. Nothing here depends on the time of day, so the same results give the same page.
 """
 
@@ -28,11 +29,12 @@ from importlib import metadata
 from pathlib import Path
 
 from usvtool import __version__
-from usvtool.errors import UsvError
 from usvtool.report.data import JobResults, Results, seed_text
 from usvtool.report.document import APPENDIX, HTML, Cell, Section, Table
+from usvtool.report.runs import job_facts
+from usvtool.report.runs import start as first_states
 from usvtool.results import file_name
-from usvtool.yamlfile import read_yaml
+from usvtool.trace import OWN
 
 #: The repository this report's source lives in: paths inside it are shown relative to it.
 ROOT = Path(__file__).resolve().parents[3]
@@ -184,9 +186,9 @@ def _json(path: Path) -> dict:
         return {}
 
 
-def _events_run(job: JobResults) -> dict:
-    run = _json(job.dir / "trace.events.json").get("run")
-    return run if isinstance(run, dict) else {}
+def _events_run(job: JobResults, keys: tuple[str, ...] = ()) -> dict:
+    """The run's events' ``run`` object ({} without events; refused without ``keys``)."""
+    return job_facts(job, keys) or {}
 
 
 def optimizers(results: Results) -> Table | None:
@@ -232,35 +234,23 @@ def controllers(results: Results) -> Table | None:
                  ["parameter", *names], rows, APPENDIX)  # fmt: skip
 
 
-def _scenario(job: JobResults) -> tuple[Path | None, dict]:
-    """The run's scenario file (the events' ``run.scenario_file``, relative to the job's
-    directory, else the job's ``scenario``) and its contents ({} when unreadable)."""
-    name = _events_run(job).get("scenario_file") or job.config.get("scenario")
-    if not name:
-        return None, {}
-    path = (job.dir / str(name)).resolve()
-    try:
-        return path, read_yaml(path) or {}
-    except (OSError, UsvError):  # a scenario gone or broken since: the table says what it can
-        return path, {}
+#: The keys of the events' ``run`` object the vessels table reads (docs/simulate.md).
+VESSEL_FACTS = ("vessel_preset", "own_length", "vessel")
 
 
 def vessels(results: Results) -> Table | None:
-    """The own ships' vessels: the preset each scenario names, its inline overrides, the length
-    the runs used and, when the runs record it (``run.vessel``), the motion limits."""
+    """The own ships' vessels: the preset each run's scenario names, the length the runs used
+    and the motion limits as the runs resolved them (a scenario's inline overrides
+    included), from the events' ``run`` (:data:`VESSEL_FACTS`)."""
     seen: dict[str, dict[str, set[str]]] = defaultdict(lambda: defaultdict(set))
     for j in results.select("runs"):
-        _, scenario = _scenario(j)
-        own = scenario.get("own") or {}
-        name = str(own.get("vessel", "(the default)"))
-        run = _events_run(j)
+        run = _events_run(j, VESSEL_FACTS)
+        if not run:
+            continue
+        name = str(run["vessel_preset"])
         seen[name]["scenarios"].add(j.case.rsplit("/", 1)[0])  # a family's scenes: its kind
-        if "own_length" in run:
-            seen[name]["length (m)"].add(_value(run["own_length"]))
-        for k, v in own.items():
-            if k not in ("start", "goal", "heading", "speed", "vessel"):
-                seen[name][f"override {k}"].add(_value(v))
-        for k, v in (run.get("vessel") or {}).items():
+        seen[name]["length (m)"].add(_value(run["own_length"]))
+        for k, v in (run["vessel"] or {}).items():
             seen[name][k].add(_value(v))
     if not seen:
         return None
@@ -268,15 +258,15 @@ def vessels(results: Results) -> Table | None:
     for name, facts in sorted(seen.items()):
         limits = ", ".join(f"{k} {_values(v)}" for k, v in facts.items()
                            if k not in ("scenarios", "length (m)"))  # fmt: skip
-        rows.append([Cell(name), Cell(_values(facts["length (m)"]), "num"),
-                     Cell(limits or "not recorded by these runs (usvtool/sim/vessel.py "
-                                    "PRESETS gives them)"),
+        rows.append([Cell(name), Cell(_values(facts["length (m)"]), "num"), Cell(limits or "-"),
                      Cell(f"{len(facts['scenarios'])}: " + ", ".join(sorted(facts["scenarios"])[:6])
                           + (" ..." if len(facts["scenarios"]) > 6 else ""))])  # fmt: skip
     return Table("methods-vessels", "Vessels of the own ship",
-                 "The preset each scenario names (own.vessel), the length the runs used "
-                 "(run.own_length) and the motion limits and inline overrides.",
-                 ["vessel", "length (m)", "limits and overrides", "scenarios"], rows,
+                 "The preset each run's scenario names (run.vessel_preset), the length the runs "
+                 "used (run.own_length) and the motion limits as the runs resolved them, a "
+                 "scenario's inline overrides included (run.vessel); values that differ between "
+                 "runs are separated by /.",
+                 ["vessel", "length (m)", "limits", "scenarios"], rows,
                  APPENDIX)  # fmt: skip
 
 
@@ -289,9 +279,9 @@ def _span(values: list[float], digits: int = 0) -> str:
 
 def families(results: Results) -> Table | None:
     """Per scene family and kind (the runs' ``job.json`` ``scene``): the scenes, seeds and
-    controllers, and the geometry of the scenes as their ``scenario.yaml`` give it: the own
-    ship's run from start to goal and speed, the targets, their distance from the own start
-    and their speed."""
+    controllers, and the geometry of the scenes as the runs started them (the trace's first
+    step, the events' ``run.goal``): the own ship's run from start to goal and speed, the
+    targets, their distance from the own start and their speed."""
     groups: dict[str, list[JobResults]] = defaultdict(list)
     for j in results.select("runs"):
         scene = j.config.get("scene")
@@ -305,18 +295,17 @@ def families(results: Results) -> Table | None:
         scenes = sorted({int(j.config["scene"].get("scene", -1)) for j in jobs})
         seeds = sorted({j.seed for j in jobs if j.seed is not None})
         run, speed, targets, distance, target_speed = [], [], [], [], []
-        for j in {j.case: j for j in jobs}.values():  # one run per scene: the same scene file
-            _, s = _scenario(j)
-            own = s.get("own") or {}
-            if own.get("start") and own.get("goal"):
-                run.append(math.dist(own["start"], own["goal"]))
-                speed.append(float(own.get("speed", 0.0)))
-            ts = s.get("targets") or []
+        for j in {j.case: j for j in jobs}.values():  # one run per scene: the same scene
+            states, facts = first_states(j), _events_run(j, ("goal",))
+            if states is None or not facts:
+                continue
+            own = states[OWN]
+            run.append(math.dist((own.x, own.y), facts["goal"]))
+            speed.append(own.speed)
+            ts = [t for name, t in states.items() if name != OWN]
             targets.append(len(ts))
-            for t in ts:
-                if own.get("start") and t.get("start"):
-                    distance.append(math.dist(own["start"], t["start"]))
-                target_speed.append(float(t.get("speed", 0.0)))
+            distance += [math.dist((own.x, own.y), (t.x, t.y)) for t in ts]
+            target_speed += [t.speed for t in ts]
         options = sorted({_value(j.config["scene"].get("options") or {}) for j in jobs})
         rows.append([Cell(name), Cell(seed_text(scenes)), Cell(seed_text(seeds)),
                      Cell(", ".join(sorted({j.method for j in jobs}, key=order.index))),
@@ -325,7 +314,7 @@ def families(results: Results) -> Table | None:
                      Cell(_span(target_speed, 1), "num"), Cell(" / ".join(options))])  # fmt: skip
     return Table("methods-families", "Scene families: geometry and seeds",
                  "Per family and kind (docs/families.md): the scenes drawn and the seeds of "
-                 "the runs, the controllers, and over the scenes (their scenario.yaml): the "
+                 "the runs, the controllers, and over the scenes (as the runs started them): the "
                  "own ship's start-goal distance (m) and speed (m/s), the number of targets, "
                  "their distance from the own start (m) and speed (m/s); min-max.",
                  ["family/kind", "scenes", "seeds", "controllers", "own run (m)",

@@ -26,7 +26,14 @@ from usvtool.digest import sha256
 from usvtool.errors import UsvError
 from usvtool.report.data import JobResults, Results
 from usvtool.report.document import Cell, Section, Table, number
-from usvtool.report.sections.encounters import COUNTS, MARKS, VERDICT_HEADINGS, VERDICTS, outcome
+from usvtool.report.runs import (
+    COUNTS,
+    MARKS,
+    VERDICT_HEADINGS,
+    VERDICTS,
+    family_runs,
+    outcome,
+)
 from usvtool.tracks import NS, Tracks, read_tracks
 from usvtool.traffic import (
     Manoeuvre,
@@ -76,14 +83,7 @@ class Recorded:
 def traffic_runs(results: Results) -> dict[str, dict[str, JobResults]]:
     """The ``ais`` family's runs (their ``job.json``'s ``scene.family``): case
     (``ENTRY/KIND/sNNN``) -> controller -> the run of its lowest seed."""
-    runs: dict[str, dict[str, JobResults]] = {}
-    for job in results.select("runs"):
-        if (job.config.get("scene") or {}).get("family") != FAMILY:
-            continue
-        mine = runs.setdefault(job.case, {})
-        if job.method not in mine or (job.seed or 0) < (mine[job.method].seed or 0):
-            mine[job.method] = job
-    return dict(sorted(runs.items()))
+    return family_runs(results, FAMILY)
 
 
 def recorded(job: JobResults) -> Recorded | None:

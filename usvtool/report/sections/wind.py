@@ -29,7 +29,7 @@ from usvtool.report.figures.wind import (
 )
 from usvtool.report.inference import compare, iqr, median
 from usvtool.report.papers import UDWA_WIND
-from usvtool.report.sections.encounters import run_file, run_files
+from usvtool.report.runs import run_file, run_files
 from usvtool.wind import read_wind_field
 
 FAMILY = "wind"
