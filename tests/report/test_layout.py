@@ -7,7 +7,7 @@ from __future__ import annotations
 import ast
 from pathlib import Path
 
-from usvtool.report import build
+from usvtool.report import sections
 from usvtool.report.regression.compare import compare
 
 REPORT = Path(__file__).resolve().parents[2] / "usvtool" / "report"
@@ -37,12 +37,15 @@ def modules(*parts: str) -> list[Path]:
 
 
 def test_every_section_builder_is_a_module_of_the_sections_package():
-    names = [b.__module__.rsplit(".", 1)[1] for b in build.BUILDERS]
+    names = [b.__module__.rsplit(".", 1)[1] for b in sections.builders()]
     assert names[0] == "summary" and names[-1] == "methods"  # page 1; the methods last
     assert len(set(names)) == len(names)
-    for builder in build.BUILDERS:
+    for builder in sections.builders():
         assert builder.__module__.startswith("usvtool.report.sections."), builder.__module__
     assert not [p.name for p in modules() if "def section(" in p.read_text(encoding="utf-8")]
+    # every module of the package with a section builder is registered (and only those)
+    built = {p.stem for p in modules("sections") if "def section(" in p.read_text(encoding="utf-8")}
+    assert built == set(names)
 
 
 def test_the_regression_report_is_a_package_using_only_the_shared_pieces():

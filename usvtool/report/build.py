@@ -23,18 +23,7 @@ from usvtool.report.data import load
 from usvtool.report.document import Section
 from usvtool.report.output import write_together
 from usvtool.report.page import PdfUnavailable, html, pdf
-from usvtool.report.sections import (
-    benchmark_functions,
-    claims,
-    encounters,
-    imazu,
-    methods,
-    planning,
-    preprocessing,
-    summary,
-    traffic,
-    wind,
-)
+from usvtool.report.sections import builders, claims
 
 TITLE = "usvtool: path planning and collision avoidance, compared with the papers"
 
@@ -85,14 +74,9 @@ class ReportResult:
         }
 
 
-#: The section builders, in reading order.
-BUILDERS = (summary.section, claims.section, planning.section, benchmark_functions.section,
-            encounters.section, imazu.section, wind.section, traffic.section, preprocessing.section,
-            methods.section)  # fmt: skip
-
-
 def sections(results, workers: int = 1) -> list[Section]:
-    """The report's sections, in reading order (a section without data is left out). With
+    """The report's sections, in reading order (:data:`usvtool.report.sections.SECTIONS`; a
+    section without data is left out). With
     ``workers`` > 1 the sections are built in that many forked processes (their figures are
     most of the report's time); each figure's bytes do not depend on where it is drawn."""
     import multiprocessing
@@ -102,9 +86,9 @@ def sections(results, workers: int = 1) -> list[Section]:
 
         context = multiprocessing.get_context("fork")
         with ProcessPoolExecutor(workers, mp_context=context) as pool:
-            built = [f.result() for f in [pool.submit(b, results) for b in BUILDERS]]
+            built = [f.result() for f in [pool.submit(b, results) for b in builders()]]
     else:
-        built = [b(results) for b in BUILDERS]
+        built = [b(results) for b in builders()]
     return [s for s in built if s is not None]
 
 

@@ -1,9 +1,49 @@
-"""The comparison report's sections (``usvtool report``, docs/report.md), one module each, in
-reading order: :mod:`.claims` (the papers' claims and their verdicts), :mod:`.planning` (global
-path planning), :mod:`.benchmark_functions`, :mod:`.encounters` (collision avoidance),
-:mod:`.preprocessing` (charts and their grids) and :mod:`.methods` (what produced the results).
-Each ``section(results)`` builds its part of the document (:mod:`usvtool.report.document`) from
-the loaded results (:mod:`usvtool.report.data`), or None without data; :mod:`.published` sets a
-paper's table beside our figures for the sections that show one. :mod:`usvtool.report.build`
-puts them together.
+"""The comparison report's sections (``usvtool report``, docs/report.md), one module each.
+
+Each section module has a ``section(results)`` that builds its part of the document
+(:mod:`usvtool.report.document`) from the loaded results (:mod:`usvtool.report.data`), or
+returns None when the results have nothing for it. :data:`SECTIONS` lists them in reading order;
+:mod:`usvtool.report.build` builds them all and puts them together. Adding a section is one
+module here and one entry in :data:`SECTIONS`. The helpers some sections share are not
+sections: :mod:`.published` sets a paper's table beside our figures; the judging, the runs'
+files and their outcome words are report-level modules (:mod:`usvtool.report.judging`,
+:mod:`usvtool.report.runs`).
 """
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from usvtool.report.sections import (
+    benchmark_functions,
+    claims,
+    encounters,
+    imazu,
+    methods,
+    planning,
+    preprocessing,
+    summary,
+    traffic,
+    wind,
+)
+
+#: The section modules in reading order: the summary (page 1), the papers' claims, global path
+#: planning, the benchmark functions, collision avoidance in encounters, the Imazu problem, runs
+#: in wind, recorded traffic, the charts' preprocessing and the methods (last).
+SECTIONS = (
+    summary,
+    claims,
+    planning,
+    benchmark_functions,
+    encounters,
+    imazu,
+    wind,
+    traffic,
+    preprocessing,
+    methods,
+)
+
+
+def builders() -> tuple[Callable, ...]:
+    """Each section's builder (its module's ``section``), in reading order."""
+    return tuple(m.section for m in SECTIONS)
