@@ -4,6 +4,7 @@ are the batch's: tests/batch/test_commands.py, tests/batch/test_make_fragment.py
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -11,7 +12,16 @@ import yaml
 
 from usvtool.cli.batch import stage_names
 from usvtool.errors import UsvError
-from usvtool.pipeline import BUNDLED, Ends, Names, load
+from usvtool.pipeline import (
+    BUNDLED,
+    CLAIM_METRICS,
+    ClaimSpec,
+    Ends,
+    Names,
+    claims_text,
+    load,
+    read_claims,
+)
 
 ROOT = Path(__file__).resolve().parent.parent
 NAMES = stage_names()
@@ -297,3 +307,161 @@ def test_bad_yaml_and_a_missing_file_are_one_line(tmp_path):
 def test_names_know_exact_planners_with_shortening():
     names = Names(optimizers=("pso",), exact=("astar",), controllers=(), functions=())
     assert names.is_exact("astar+s") and not names.is_exact("pso")
+
+
+# --- claims -----------------------------------------------------------------------------------
+
+
+def with_claims(*claims: dict) -> dict:
+    """The minimal pipeline with pso too, functions F1 x pso, gwo, the emergency family's runs
+    of ccdwa and udwa, and ``claims``."""
+    data = minimal()
+    data["routes"]["a"]["algorithms"] = ["iwso", "astar", "pso"]
+    data["functions"] = dict(FUNCS, algorithms=["pso", "gwo"])
+    data["families"] = [{"family": "emergency", "scenes": {"first": 0, "count": 2},
+                         "controllers": ["ccdwa", "udwa"], "seeds": [1]}]  # fmt: skip
+    data["claims"] = list(claims)
+    return data
+
+
+SHORTER = {"id": "pso-shorter", "method": "pso", "rivals": ["iwso", "astar"],
+           "metric": "length_m", "better": "lower", "cases": ["m"]}  # fmt: skip
+SAFE = {"id": "udwa-safe", "method": "udwa", "metric": "collision", "better": "lower",
+        "target": 0, "cases": ["emergency/head-on", "emergency"]}  # fmt: skip
+
+
+def test_claims_read_with_their_kind_inferred_from_their_cases(tmp_path):
+    cost = {"id": "pso-cheaper", "method": "pso", "rivals": ["gwo"], "metric": "final_cost",
+            "better": "lower", "statistic": "std", "cases": ["F1"]}  # fmt: skip
+    p = load(write(tmp_path, with_claims(SHORTER, SAFE, cost)), NAMES)
+    shorter, safe, cheaper = p.claims
+    assert shorter == ClaimSpec("pso-shorter", "routes", "pso", ("iwso", "astar"), "length_m",
+                                "lower", "median", ("m",))  # fmt: skip
+    assert (safe.kind, safe.statistic, safe.target, safe.share) == ("runs", "every", 0.0, 1.0)
+    assert (cheaper.kind, cheaper.statistic) == ("functions", "std")
+    # claims.json: what the batch writes, read back the same
+    (tmp_path / "claims.json").write_text(claims_text(p.claims))
+    assert read_claims(tmp_path / "claims.json") == p.claims
+    assert json.loads(claims_text(p.claims))["claims"][0] == {
+        "id": "pso-shorter", "kind": "routes", "method": "pso", "rivals": ["iwso", "astar"],
+        "metric": "length_m", "better": "lower", "statistic": "median", "cases": ["m"]}
+    assert load(write(tmp_path, minimal())).claims == ()
+
+
+@pytest.mark.parametrize(
+    "claim, field, words",
+    [
+        (dict(SHORTER, better="less"), "better", "must be lower or higher, not 'less'"),
+        (dict(SHORTER, metric="length"), "metric", "'length' is not a metric of routes"),
+        (dict(SHORTER, metric="closest_distance_m"), "metric",
+         "'closest_distance_m' is not a metric of routes"),
+        (dict(SAFE, metric="length_ratio"), "metric", "'length_ratio' is not a metric of runs"),
+        (dict(SHORTER, method="gwo"), "method", "'gwo' is not run in case 'm' (the pipeline "
+                                                "runs astar, iwso, pso there)"),
+        (dict(SHORTER, rivals=["iwso", "woa"]), "rivals[1]", "'woa' is not run in case 'm'"),
+        (dict(SHORTER, rivals=["iwso", "pso"]), "rivals[1]", "'pso' is the claim's method"),
+        (dict(SHORTER, rivals=["iwso", "iwso"]), "rivals", "named twice: iwso"),
+        (dict(SHORTER, rivals="iwso"), "rivals", "expected a list of methods"),
+        (dict(SHORTER, cases=["m", "nowhere"]), "cases[1]", "'nowhere' is no case of the "
+                                                            "pipeline"),
+        (dict(SHORTER, cases=[]), "cases", "expected a non-empty list of cases"),
+        (dict(SHORTER, cases=["m", "m"]), "cases", "named twice: m"),
+        (dict(SHORTER, cases=["m", "F1"]), "cases", "cases of different kinds of job (m: "
+                                                    "routes; F1: functions)"),
+        (dict(SHORTER, cases=["m", "x/../y"]), "cases[1]", "not a case"),
+        (dict(SHORTER, kind="functions"), "cases[0]", "'m' is no case of functions (it is of "
+                                                      "routes)"),
+        (dict(SHORTER, kind="boats"), "kind", "must be routes, runs, functions, not 'boats'"),
+        (dict(SHORTER, statistic="every"), "statistic", "a relative claim's (with rivals): "
+                                                        "median, mean, min, max, variance, std"),
+        (dict(SHORTER, statistic="of-best"), "statistic", "not 'of-best'"),
+        (dict(SHORTER, target=5), "target", "a claim with rivals has none"),
+        (dict(SHORTER, share=0.5), "share", "a claim with rivals has none"),
+        (dict(SHORTER, colour="red"), "colour", "unknown field"),
+        (dict(SHORTER, id="a b"), "id", "not a valid name"),
+        ({k: v for k, v in SHORTER.items() if k != "metric"}, "metric", "missing"),
+        ({k: v for k, v in SAFE.items() if k != "target"}, "target", "missing (an absolute "
+                                                                     "claim"),
+        (dict(SAFE, statistic="median"), "statistic", "an absolute claim's (no rivals): every"),
+        (dict(SAFE, target="nonsense"), "target", "'nonsense' is not a metric of runs"),
+        (dict(SAFE, target=True), "target", "expected a number or a metric, got True"),
+        (dict(SAFE, target=float("nan")), "target", "expected a number or a metric"),
+        (dict(SAFE, share=1.5), "share", "expected a number in (0, 1], got 1.5"),
+        (dict(SAFE, share=0), "share", "expected a number in (0, 1], got 0"),
+        (dict(SAFE, cases=["emergency/sideways"]), "cases[0]", "no case of the pipeline"),
+        (dict(SAFE, method="dwa"), "method", "'dwa' is not run in case 'emergency/head-on'"),
+    ],
+)  # fmt: skip
+def test_each_bad_claim_is_one_line_naming_its_field(tmp_path, claim, field, words):
+    path = write(tmp_path, with_claims(SAFE, claim))  # the second claim: claims[1]
+    with pytest.raises(UsvError) as info:
+        load(path, NAMES)
+    message = str(info.value)
+    assert "\n" not in message
+    assert message.startswith(f"{path}: claims[1].{field}: "), message
+    assert words in message, message
+
+
+def test_claims_given_twice_or_not_as_a_list_are_refused(tmp_path):
+    path = write(tmp_path, with_claims(SHORTER, dict(SAFE, id="pso-shorter")))
+    with pytest.raises(UsvError) as info:
+        load(path, NAMES)
+    assert str(info.value) == f"{path}: claims[1].id: 'pso-shorter' names two claims"
+    data = with_claims()
+    data["claims"] = {"a": SHORTER}
+    with pytest.raises(UsvError, match=r"p\.yaml: claims: expected a list of claims"):
+        load(write(tmp_path, data), NAMES)
+
+
+def test_a_case_of_two_kinds_needs_the_claims_kind(tmp_path):
+    data = with_claims(dict(SHORTER, rivals=["gwo"], metric="wall_time_s", cases=["F1"]))
+    data["charts"]["F1"] = dict(data["charts"]["m"])
+    data["routes"]["a"]["charts"] = ["m", "F1"]
+    path = write(tmp_path, data)
+    with pytest.raises(UsvError) as info:
+        load(path, NAMES)
+    assert str(info.value) == (f"{path}: claims[0].kind: missing: the cases are of functions, "
+                               "routes; give one")  # fmt: skip
+    data["claims"][0]["kind"] = "functions"
+    assert load(write(tmp_path, data), NAMES).claims[0].kind == "functions"
+
+
+def test_without_the_stages_names_a_familys_kinds_are_any(tmp_path):
+    path = write(tmp_path, with_claims(SAFE))
+    assert load(path).claims[0].cases == ("emergency/head-on", "emergency")
+
+
+def test_a_claims_file_is_checked_as_a_pipelines_claims(tmp_path):
+    path = tmp_path / "claims.json"
+    good = ClaimSpec("c", "runs", "udwa", (), "collision", "lower", "every", ("emergency",), 0.0)
+    path.write_text(claims_text([good]))
+    assert read_claims(path) == (good,)
+    data = json.loads(claims_text([good]))
+    data["claims"][0]["better"] = "less"
+    path.write_text(json.dumps(data))
+    with pytest.raises(UsvError) as info:
+        read_claims(path)
+    assert str(info.value) == f"{path}: claims[0].better: must be lower or higher, not 'less'"
+    del data["claims"][0]["kind"]
+    path.write_text(json.dumps(data))
+    with pytest.raises(UsvError, match=r"claims\.json: claims\[0\]\.kind: missing"):
+        read_claims(path)
+    path.write_text("{")
+    with pytest.raises(UsvError, match=r"claims\.json: not JSON"):
+        read_claims(path)
+
+
+def test_the_claims_metrics_are_the_results_tables():
+    """Every metric a claim may judge is a column of usvtool metrics (but those naming the job
+    or giving words) or a timing, and each of those columns is one."""
+    from usvtool.metrics import ROUTE_COLUMNS, RUN_COLUMNS
+    from usvtool.report.values import BOOLEANS, NUMBERS
+    from usvtool.results import TIMING_METRICS
+
+    named = {"chart", "algorithm", "run", "scenario", "controller", "seed",
+             "reference_controller", "failed_rules", "excused_rules"}  # fmt: skip
+    assert set(CLAIM_METRICS["routes"]) == set(ROUTE_COLUMNS) - named | set(TIMING_METRICS)
+    assert set(CLAIM_METRICS["runs"]) == set(RUN_COLUMNS) - named | {"wall_time_s"}
+    assert set(CLAIM_METRICS["functions"]) == {"final_cost", "wall_time_s"}
+    for metrics in CLAIM_METRICS.values():
+        assert set(metrics) <= NUMBERS | BOOLEANS | {"collision"}

@@ -3,12 +3,15 @@
 A pipeline names its charts (a source file, ``usvtool preprocess`` options, extra inputs, the
 start and goal of its routes), named route matrices (charts x algorithms x seeds, with attempts
 and ``usvtool plan`` options), a simulation matrix (scenario files x controllers x seeds), scene
-families (family x kinds x scenes x controllers x seeds: docs/families.md) and a
-benchmark-function matrix (functions x optimizers x seeds). :func:`load` reads and validates
-one; a bad file raises :class:`usvtool.errors.UsvError` in one line naming the file and the
-field. The schema is in docs/pipelines.md. This is a contract module: it imports no stage, so
-the names of algorithms, controllers, scene families and functions are checked against a
-:class:`Names` that the caller takes from the stages (``usvtool batch`` does). It holds plain
+families (family x kinds x scenes x controllers x seeds: docs/families.md), a
+benchmark-function matrix (functions x optimizers x seeds), and the user's claims about its
+methods (``claims:``, :class:`ClaimSpec`: judged by ``usvtool report`` as the papers' are, from
+the ``claims.json`` the batch writes beside its results table, :func:`claims_path`).
+:func:`load` reads and validates one; a bad file raises :class:`usvtool.errors.UsvError` in
+one line naming the file and the field. The schema is in docs/pipelines.md. This is a contract
+module: it imports no stage, so the names of algorithms, controllers, scene families and
+functions are checked against a :class:`Names` that the caller takes from the stages
+(``usvtool batch`` does), and a claim's methods against the pipeline's own. It holds plain
 data: the command lines of the jobs, and the Make fragment, are the batch's
 (:mod:`usvtool.batch.commands`, :mod:`usvtool.batch.make`).
 
@@ -23,10 +26,11 @@ Ends(start=(0.5, 0.5), goal=(19.5, 19.5), frame='map')
 from __future__ import annotations
 
 import glob
+import json
 import math
 import re
 from collections.abc import Callable, Collection, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from usvtool.budget import require
@@ -44,6 +48,28 @@ BUNDLED = Path(__file__).resolve().parent.parent / "pipelines" / "report.yaml"
 #: output file are refused for every command (:class:`FileOptions`).
 RESERVED_PLAN_OPTIONS = {"seed", "attempts", "algo", "start", "goal", "start-lonlat",
                          "goal-lonlat", "timing", "no-timing"}  # fmt: skip
+
+#: The metrics a claim may judge, per kind of job: the results table's (``usvtool metrics``'
+#: columns that are numbers or True/False, ``collision`` as an event: 1 when the run hit
+#: something, else 0; a function's ``final_cost``) and the timings (docs/metrics.md).
+CLAIM_METRICS: dict[str, tuple[str, ...]] = {
+    "routes": ("length_m", "length_ratio", "turns", "mot", "fitness", "collision_free",
+               "attempt", "planning_time_s", "wall_time_s"),
+    "runs": ("arrived", "collision", "length_m", "turns", "mot", "arrival_time_s",
+             "closest_distance_m", "average_distance_m", "domain_intrusion_s", "encounters",
+             "judged", "compliant", "compliant_excused", "noncompliant", "not_judged",
+             "closest_distance_rate", "average_distance_rate", "wall_time_s"),
+    "functions": ("final_cost", "wall_time_s"),
+}  # fmt: skip
+#: The statistics a relative claim may be stated by (judged by where the runs lie; a variance
+#: or standard deviation by the runs' deviations from their median: docs/statistics.md), the
+#: first the default; an absolute claim's (``every``: each run meets the target).
+RELATIVE_STATISTICS = ("median", "mean", "min", "max", "variance", "std")
+ABSOLUTE_STATISTICS = ("every",)
+#: The file of a batch's claims, beside its results table (:func:`claims_path`).
+CLAIMS_FILE = "claims.json"
+CLAIM_FIELDS = {"id", "method", "rivals", "metric", "better", "statistic", "cases", "kind",
+                "target", "share"}  # fmt: skip
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
 _OPTION = re.compile(r"^[a-z][a-z0-9-]*$")
@@ -245,6 +271,64 @@ class FunctionMatrix:
 
 
 @dataclass(frozen=True)
+class ClaimSpec:
+    """A user's claim about a method of the pipeline (docs/pipelines.md, "Claims"): the
+    ``method`` beats each of ``rivals`` on ``metric`` (``better``: lower or higher), stated by
+    ``statistic``, in every case of ``cases`` (results cases of ``kind``: a chart, a route
+    matrix's ``CHART-LABEL``, a scenario's stem, a function, a family entry ``ENTRY``, its kind
+    ``ENTRY/KIND`` or one scene ``ENTRY/KIND/sNNN``); without rivals an **absolute** claim:
+    every run's metric at least as good as ``target`` (a number, or another metric of the same
+    run), or with ``share`` < 1 that share of the runs."""
+
+    id: str
+    kind: str
+    method: str
+    rivals: tuple[str, ...]
+    metric: str
+    better: str
+    statistic: str
+    cases: tuple[str, ...]
+    target: float | str | None = None
+    share: float = 1.0
+
+    def to_json(self) -> dict:
+        """The claim as ``claims.json`` holds it: every field, but an absolute claim's target
+        and share for a relative one (it has none)."""
+        out = {"id": self.id, "kind": self.kind, "method": self.method,
+               "rivals": list(self.rivals), "metric": self.metric, "better": self.better,
+               "statistic": self.statistic, "cases": list(self.cases)}  # fmt: skip
+        return out if self.rivals else {**out, "target": self.target, "share": self.share}
+
+
+def claims_path(table: str | Path) -> Path:
+    """The claims of a batch, beside its results table (``metrics.csv``)."""
+    return Path(table).with_name(CLAIMS_FILE)
+
+
+def claims_text(claims: tuple[ClaimSpec, ...] | list[ClaimSpec]) -> str:
+    """``claims.json``'s text: ``{"claims": [...]}``, keys sorted, indent 2, a final newline."""
+    return json.dumps({"claims": [c.to_json() for c in claims]}, indent=2, sort_keys=True) + "\n"
+
+
+def read_claims(path: str | Path) -> tuple[ClaimSpec, ...]:
+    """The claims of a ``claims.json`` (:func:`claims_text`), each field checked as a
+    pipeline's are but the methods and cases, which only the pipeline knows (one line naming
+    the file and the field, ``claims.json: claims[0].better: ...``)."""
+    path = Path(path)
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError) as e:
+        raise UsvError(f"{path}: cannot read ({e})") from None
+    except ValueError as e:
+        raise UsvError(f"{path}: not JSON ({e})") from None
+    r = _Reader(path)
+    r.mapping(data, "", {"claims"}, {"claims"})
+    if not isinstance(data["claims"], list):
+        r.fail("claims", f"expected a list of claims, got {_show(data['claims'])}")
+    return _claims(r, data["claims"], None) if data["claims"] else ()
+
+
+@dataclass(frozen=True)
 class Pipeline:
     path: Path
     root: Path
@@ -253,6 +337,37 @@ class Pipeline:
     simulation: SimulationMatrix | None = None
     functions: FunctionMatrix | None = None
     families: tuple[FamilyEntry, ...] = ()
+    claims: tuple[ClaimSpec, ...] = ()
+
+    def cases(self) -> dict[str, dict[str, frozenset[str]]]:
+        """Every case a claim may name, with the kinds of job it is a case of and the methods
+        the pipeline runs there: ``{case: {kind: methods}}``; a family entry gives its name,
+        its kinds and its scenes (``ENTRY``, ``ENTRY/KIND``, ``ENTRY/KIND/sNNN``; when its kinds
+        are not known, neither read with the stages' names nor given, ``ENTRY/*`` stands for
+        any)."""
+        found: dict[str, dict[str, set[str]]] = {}
+
+        def add(case: str, kind: str, methods) -> None:
+            found.setdefault(case, {}).setdefault(kind, set()).update(methods)
+
+        for m in self.routes.values():
+            for chart in m.charts:
+                add(route_case(chart, m.label), "routes", m.algorithms)
+        if self.simulation is not None:
+            for f in self.simulation.scenarios:
+                add(Path(f).stem, "runs", self.simulation.controllers)
+        for e in self.families:
+            add(e.name, "runs", e.controllers)
+            if not e.kinds:  # read without the stages' names: any kind of the entry
+                add(f"{e.name}/*", "runs", e.controllers)
+            for kind in e.kinds:
+                add(f"{e.name}/{kind}", "runs", e.controllers)
+                for scene in e.scenes:
+                    add(family_case(e.name, kind, scene), "runs", e.controllers)
+        if self.functions is not None:
+            for fn in self.functions.functions:
+                add(fn, "functions", self.functions.algorithms)
+        return {c: {k: frozenset(m) for k, m in kinds.items()} for c, kinds in found.items()}
 
     def job_counts(self, exact: Names | None = None) -> list[tuple[str, int]]:
         """(field, jobs) of each matrix, counted without expanding it (the matrices' products;
@@ -431,7 +546,7 @@ def _load(path: Path, names: Names | None, including: tuple[Path, ...]) -> Pipel
     r = _Reader(path)
     data = read_yaml(path)
     r.mapping(data, "", {"root", "include", "charts", "routes", "simulation", "families",
-                         "functions"})  # fmt: skip
+                         "functions", "claims"})  # fmt: skip
     root_field = data.get("root", ".")
     if not isinstance(root_field, str):
         r.fail("root", f"expected a directory, got {_show(root_field)}")
@@ -467,7 +582,12 @@ def _load(path: Path, names: Names | None, including: tuple[Path, ...]) -> Pipel
                                                                   names)  # fmt: skip
     if not including and not (routes or simulation or functions or families):
         r.fail("routes", "missing: a pipeline needs routes, simulation, families or functions")
-    return Pipeline(path, root, charts, routes, simulation, functions, families)
+    pipeline = Pipeline(path, root, charts, routes, simulation, functions, families)
+    if data.get("claims") is None:
+        return pipeline
+    if not isinstance(data["claims"], list) or not data["claims"]:
+        r.fail("claims", f"expected a list of claims, got {_show(data['claims'])}")
+    return replace(pipeline, claims=_claims(r, data["claims"], pipeline.cases()))
 
 
 def _included_charts(r: _Reader, value, root: Path, names, including) -> dict[str, Chart]:
@@ -674,3 +794,120 @@ def _family_options(r: _Reader, value, field: str, spec: FamilySpec | None, root
         except UsvError as exc:
             raise UsvError(f"{r.path}: {exc}") from None
     return tuple(sorted(options.items()))
+
+
+def _claims(r: _Reader, value: list, cases: dict | None) -> tuple[ClaimSpec, ...]:
+    """The claims of a pipeline (``cases``: :meth:`Pipeline.cases`, against which each claim's
+    cases and methods are checked) or of a ``claims.json`` (``cases`` None: each claim must
+    give its kind; its cases and methods cannot be checked)."""
+    claims: dict[str, ClaimSpec] = {}
+    for i, item in enumerate(value):
+        claim = _claim(r, item, f"claims[{i}]", cases)
+        if claim.id in claims:
+            r.fail(f"claims[{i}].id", f"{claim.id!r} names two claims")
+        claims[claim.id] = claim
+    return tuple(claims.values())
+
+
+def _claim(r: _Reader, item, where: str, cases: dict | None) -> ClaimSpec:
+    required = {"id", "method", "metric", "better", "cases"}
+    if cases is None:
+        required.add("kind")
+    e = r.mapping(item, where, CLAIM_FIELDS, required)
+    for key in ("id", "method"):
+        if not isinstance(e[key], str) or not _NAME.match(e[key]):
+            r.fail(f"{where}.{key}", f"not a valid name (letters, digits, _ . + -): "
+                   f"{_show(e[key])}")  # fmt: skip
+    rivals = e.get("rivals") or []
+    if not isinstance(rivals, list):
+        r.fail(f"{where}.rivals", f"expected a list of methods, got {_show(rivals)}")
+    rivals = r.names(rivals, f"{where}.rivals", "method") if rivals else ()
+    if e["method"] in rivals:
+        r.fail(f"{where}.rivals[{rivals.index(e['method'])}]", f"{e['method']!r} is the "
+               "claim's method")  # fmt: skip
+    kind = e.get("kind")
+    if kind is not None and kind not in CLAIM_METRICS:
+        r.fail(f"{where}.kind", f"must be {', '.join(CLAIM_METRICS)}, not {_show(kind)}")
+    named = e["cases"]
+    if isinstance(named, str) or not isinstance(named, list) or not named:
+        r.fail(f"{where}.cases", f"expected a non-empty list of cases, got {_show(named)}")
+    for j, case in enumerate(named):
+        if not isinstance(case, str) or not case or any(
+                not _NAME.match(part) for part in case.split("/")):  # fmt: skip
+            r.fail(f"{where}.cases[{j}]", f"not a case (a chart, a scenario, a function, "
+                   f"ENTRY, ENTRY/KIND or ENTRY/KIND/sNNN): {_show(case)}")  # fmt: skip
+    dup = sorted({c for c in named if named.count(c) > 1})
+    if dup:
+        r.fail(f"{where}.cases", f"named twice: {', '.join(dup)}")
+    if cases is not None:
+        kind = _claim_kind(r, where, named, kind, cases)
+        for field_, method in [("method", e["method"]),
+                               *((f"rivals[{k}]", m) for k, m in enumerate(rivals))]:  # fmt: skip
+            for case in named:
+                run = cases[case][kind]
+                if method not in run:
+                    r.fail(f"{where}.{field_}", f"{method!r} is not run in case {case!r} (the "
+                           f"pipeline runs {', '.join(sorted(run))} there)")  # fmt: skip
+    metric = e["metric"]
+    if metric not in CLAIM_METRICS[kind]:
+        r.fail(f"{where}.metric", f"{_show(metric)} is not a metric of {kind} (known: "
+               f"{', '.join(CLAIM_METRICS[kind])})")  # fmt: skip
+    if e["better"] not in ("lower", "higher"):
+        r.fail(f"{where}.better", f"must be lower or higher, not {_show(e['better'])}")
+    allowed = RELATIVE_STATISTICS if rivals else ABSOLUTE_STATISTICS
+    statistic = e.get("statistic", allowed[0])
+    if statistic not in allowed:
+        what = "a relative claim's (with rivals)" if rivals else "an absolute claim's (no rivals)"
+        r.fail(f"{where}.statistic", f"must be {what}: {', '.join(allowed)}, not "
+               f"{_show(statistic)}")  # fmt: skip
+    target, share = e.get("target"), e.get("share", 1.0)
+    if rivals:
+        for key in ("target", "share"):
+            if key in e:
+                r.fail(f"{where}.{key}", "a claim with rivals has none (an absolute claim has "
+                       "no rivals)")  # fmt: skip
+    else:
+        if "target" not in e:
+            r.fail(f"{where}.target", "missing (an absolute claim, without rivals, needs a "
+                   "target: a number, or a metric of the same run)")  # fmt: skip
+        if isinstance(target, str):
+            if target not in CLAIM_METRICS[kind]:
+                r.fail(f"{where}.target", f"{_show(target)} is not a metric of {kind} (known: "
+                       f"{', '.join(CLAIM_METRICS[kind])})")  # fmt: skip
+        elif (isinstance(target, bool) or not isinstance(target, int | float)
+              or not math.isfinite(target)):  # fmt: skip
+            r.fail(f"{where}.target", f"expected a number or a metric, got {_show(target)}")
+        else:
+            target = float(target)
+        if (isinstance(share, bool) or not isinstance(share, int | float)
+                or not 0 < share <= 1):  # fmt: skip
+            r.fail(f"{where}.share", f"expected a number in (0, 1], got {_show(share)}")
+    return ClaimSpec(e["id"], kind, e["method"], tuple(rivals), metric, e["better"], statistic,
+                     tuple(named), target, float(share))  # fmt: skip
+
+
+def _claim_kind(r: _Reader, where: str, named: list, kind: str | None, cases: dict) -> str:
+    """The kind of job a claim's cases are cases of: ``kind`` when given, else the one their
+    cases share."""
+    for j, case in enumerate(named):
+        if case not in cases and case.count("/") in (1, 2):
+            any_kind = cases.get(case.split("/")[0] + "/*")
+            if any_kind is not None:
+                cases[case] = any_kind
+        if case not in cases:
+            r.fail(f"{where}.cases[{j}]", f"{case!r} is no case of the pipeline (a chart of a "
+                   "route matrix, CHART-LABEL, a scenario's stem, a function, a family entry "
+                   "ENTRY, ENTRY/KIND or ENTRY/KIND/sNNN)")  # fmt: skip
+        if kind is not None and kind not in cases[case]:
+            r.fail(f"{where}.cases[{j}]", f"{case!r} is no case of {kind} (it is of "
+                   f"{', '.join(sorted(cases[case]))})")  # fmt: skip
+    if kind is not None:
+        return kind
+    shared = set.intersection(*(set(cases[c]) for c in named))
+    if len(shared) == 1:
+        return shared.pop()
+    if shared:
+        r.fail(f"{where}.kind", f"missing: the cases are of {', '.join(sorted(shared))}; give "
+               "one")  # fmt: skip
+    r.fail(f"{where}.cases", "cases of different kinds of job (" + "; ".join(
+        f"{c}: {', '.join(sorted(cases[c]))}" for c in named) + "): one claim, one kind")
