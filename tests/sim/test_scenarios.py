@@ -43,7 +43,10 @@ from usvtool.sim.vessel import vessel_from
 pytestmark = pytest.mark.slow  # every bundled scenario with every controller
 
 SCENARIOS = Path(__file__).resolve().parents[2] / "charts" / "scenarios"
-CONTROLLERS = tuple(registry.CONTROLLERS)  # every registered controller
+#: every registered controller but exec, a program run as a process, which needs its program
+#: (tests/sim/test_exec.py runs the reference clients on bundled scenarios)
+CONTROLLERS = tuple(n for n, cls in registry.CONTROLLERS.items()
+                    if not issubclass(cls, registry.ProcessController))
 PAPER = [
     f"{env}-{kind}"
     for env in ("env1", "env2")

@@ -83,6 +83,8 @@ class SimResult:
     events: dict
     figures: dict
     crs: object | None = None
+    #: what the controller wrote for people to read (a process's stderr: Controller.log)
+    controller_log: str | None = None
 
     def summary(self) -> dict:
         return dict(self.figures)
@@ -131,8 +133,10 @@ def _run(scenario: Scenario, opts: SimOptions, controller, n_steps: int,
             voyage.advance(decision.v, decision.omega, decision.events)
     finally:
         controller.close()
-    return _result(scenario, setup, opts, controller, voyage, failed,
-                   decide_time / max(voyage.step, 1))  # fmt: skip
+    result = _result(scenario, setup, opts, controller, voyage, failed,
+                     decide_time / max(voyage.step, 1))  # fmt: skip
+    result.controller_log = controller.log()
+    return result
 
 
 class Voyage:
@@ -156,7 +160,7 @@ class Voyage:
         self.lengths = np.array([t.length for t in scenario.targets], float)
         vessel = self.vessel = setup.vessel
         self.world = World(vessel, setup.goal, setup.clearance, setup.route, setup.weather,
-                           sim.dt, sim.goal_tolerance)  # fmt: skip
+                           sim.dt, sim.goal_tolerance, seed, scenario.map)  # fmt: skip
         self.x, self.y = setup.start
         self.psi = float(angles.compass_to_math(scenario.own.heading))
         self.v = float(np.clip(scenario.own.speed, vessel.min_speed, vessel.max_speed))

@@ -1,5 +1,6 @@
-"""The DWA controllers, by name: :data:`CONTROLLERS`, the built-ins and the plugins installed
-distributions declare (:class:`usvtool.registry.Registry`)."""
+"""The controllers, by name: :data:`CONTROLLERS`, the built-ins (the DWA controllers, and
+``exec``, a program run as a process: :mod:`.process`) and the plugins installed distributions
+declare (:class:`usvtool.registry.Registry`)."""
 
 from __future__ import annotations
 
@@ -18,6 +19,7 @@ from usvtool.sim.controllers.base import (
 from usvtool.sim.controllers.ccdwa import CCDWA
 from usvtool.sim.controllers.dwa import DWA
 from usvtool.sim.controllers.gdwa import GDWA
+from usvtool.sim.controllers.process import ProcessController
 from usvtool.sim.controllers.udwa import UDWA
 from usvtool.sim.controllers.udwa_plus import UDWAPlus
 
@@ -27,7 +29,7 @@ CONTROLLERS = Registry("controller", Controller, "usvtool.controllers")
 register = CONTROLLERS.register
 #: Remove the controller registered under a name (``KeyError`` when there is none).
 unregister = CONTROLLERS.unregister
-for _cls in (DWA, GDWA, CCDWA, UDWA, UDWAPlus):
+for _cls in (DWA, GDWA, CCDWA, UDWA, UDWAPlus, ProcessController):
     register(_cls)
 
 
@@ -43,5 +45,5 @@ def make_controller(name: str, **params) -> Controller:
 
 __all__ = [
     "CONTROLLERS", "Controller", "ControllerFailed", "Decision", "DynamicWindow", "Encounter",
-    "Own", "Targets", "World", "make_controller", "register", "unregister",
+    "Own", "ProcessController", "Targets", "World", "make_controller", "register", "unregister",
 ]  # fmt: skip

@@ -87,6 +87,9 @@ class World:
     weather: object | None = None  # a usvtool.sim.weather.Weather, or None for calm water
     period: float = 0.1  # control period (s)
     goal_tolerance: float = 0.0  # m: a rollout passing this close to the goal reaches it
+    seed: int = 0  # the run's seed (--seed), for a controller that draws (a process's hello)
+    map_file: object | None = None  # the map's file (a Path), for a controller that reads it
+    # itself: a process (docs/protocol.md), which has no access to this process's grid
 
 
 @dataclass(frozen=True)
@@ -208,6 +211,12 @@ class Controller(ABC):
         """(bytes, what, remedy) of what one decision holds at once beyond the run's trace
         (:func:`usvtool.sim.memory.run_parts`); none by default."""
         return []
+
+    def log(self) -> str | None:
+        """What the controller wrote for people to read during its last run (a process's
+        standard error), once :meth:`close` has run; None for one that writes nothing (the
+        default). ``usvtool simulate`` writes it to ``--controller-log`` or on its stderr."""
+        return None
 
 
 class DynamicWindow(Controller):
