@@ -122,6 +122,32 @@ def test_the_registry_checks_kind_name_and_origin():
     assert len(registry) == 0
 
 
+def test_registries_sharing_a_group_share_its_names_and_problems():
+    """The optimizers and the exact planners share usvtool.planners: a name is one method of
+    the group, and a built-in registered after a plugin took its name takes it back."""
+
+    class A:
+        pass
+
+    class B:
+        pass
+
+    a = Registry("a-thing", A, "usvtool.no-such-group")
+    b = Registry("b-thing", B, "usvtool.no-such-group", shares=a)
+    a.register(type("One", (A,), {"name": "one"}))
+    with pytest.raises(ValueError, match=r"^b-thing 'one': already registered \(by usvtool\)$"):
+        b.register(type("Other", (B,), {"name": "one"}))
+    where = "plugin two = plug:P (plug 1.0, usvtool.no-such-group)"
+    b.register(type("P", (B,), {"name": "two"}), ("plug", "1.0"), where)
+    with pytest.raises(ValueError, match=r"^a-thing 'two': already registered \(by plug\)$"):
+        a.register(type("Q", (A,), {"name": "two"}), ("other", "2"))
+    a.register(type("Two", (A,), {"name": "two"}))  # a built-in
+    assert list(a) == ["one", "two"] and list(b) == [] and a.problems is b.problems
+    assert a.problems == [f"{where}: b-thing 'two': already registered (by usvtool)"]
+    with pytest.raises(ValueError, match="shares group usvtool.no-such-group, not other"):
+        Registry("c-thing", A, "other", shares=a)
+
+
 def test_plugins_lists_every_method_with_its_origin_and_parameters(site):
     r = usvtool(site, "plugins")
     assert r.returncode == 0, r.stderr
@@ -130,8 +156,17 @@ def test_plugins_lists_every_method_with_its_origin_and_parameters(site):
     assert methods["slow-dwa"] == {**methods["dwa"], "name": "slow-dwa", "distribution":
                                    "usvplug", "version": "1.2"}  # fmt: skip
     assert methods["wide-pso"]["kind"] == "optimizer" and methods["wide-pso"]["version"] == "1.2"
-    assert methods["pso"]["parameters"]["w_start"] == 0.9 and methods["pso"]["distribution"] == \
-        "usvtool"  # fmt: skip
+    assert methods["pso"]["distribution"] == "usvtool"
+    # every parameter with its default and its range or choices, from the one declaration
+    assert methods["pso"]["parameters"]["c1"] == {
+        "default": 2.0, "kind": "number", "takes": "a finite number >= 0", "range": ">= 0",
+        "help": "the pull toward the particle's own best"}  # fmt: skip
+    assert methods["udwa"]["parameters"]["sides"]["choices"] == ["none", "paper", "colregs",
+                                                                 "iwso"]  # fmt: skip
+    assert methods["udwa"]["parameters"]["v_samples"]["takes"] == "an integer >= 2"
+    assert methods["ais"]["parameters"]["tracks"]["required"] is True
+    assert methods["wide-pso"]["parameters"] == methods["pso"]["parameters"]
+    assert all(m["parameters"] for m in listed["methods"] if m["kind"] != "exact planner")
     assert {m["kind"] for m in listed["methods"]} == {"optimizer", "exact planner", "controller",
                                                       "scene family"}  # fmt: skip
     assert methods["imazu"]["kind"] == "scene family" and "astar" in methods

@@ -108,11 +108,12 @@ def test_a_map_is_read_from_the_root_and_its_content_keys_the_runs(tmp_path):
 
 
 @pytest.mark.parametrize("options, words", [
-    ("{tracks: nyharbor-tracks.parquet}", "families[0].options.encounters: missing"),
+    ("{tracks: nyharbor-tracks.parquet}",
+     "families[0].options.encounters must be given for family ais: the encounters CSV"),
     ("{encounters: none.csv, tracks: nyharbor-tracks.parquet}",
      "families[0].options.encounters: none.csv: no such file"),
     ("{encounters: nyharbor-encounters.csv, tracks: nyharbor-tracks.parquet, own: c}",
-     "families[0].options.own: must be one of a, b"),
+     "families[0].options.own must be one of a, b for family ais, not 'c'"),
     ("{encounters: nyharbor-encounters.csv, tracks: nyharbor-tracks.parquet, map: no.tif}",
      "families[0].options.map: no.tif: no such file"),
 ])  # fmt: skip

@@ -209,8 +209,9 @@ def test_fitness_spread_eqs_6_7():
 
 
 def test_pso_presets():
-    assert OPTIMIZERS["pso"].defaults["c1"] == 2.0 and OPTIMIZERS["pso"].defaults["w_start"] == 0.9
-    issa = OPTIMIZERS["pso-issa"].defaults
+    pso = OPTIMIZERS["pso"].declarations()
+    assert pso["c1"].default == 2.0 and pso["w_start"].default == 0.9
+    issa = {k: p.default for k, p in OPTIMIZERS["pso-issa"].declarations().items()}
     assert (issa["c1"], issa["c2"], issa["w_start"], issa["w_end"]) == (2.5, 2.5, 1.0, 1.0)
     assert issubclass(OPTIMIZERS["pso-issa"], PSO)
 

@@ -56,12 +56,24 @@ def test_the_registry_names_every_controller():
     assert all(cls.name == name for name, cls in CONTROLLERS.items()) and "udwa+" in CONTROLLERS
     with pytest.raises(UsvError, match="unknown controller 'apf'.*dwa"):
         make_controller("apf")
-    with pytest.raises(UsvError, match=r"dwa: unknown parameter\(s\) \['alpha'\]"):
+    with pytest.raises(UsvError, match=r"^alpha is not a parameter of dwa \(known: horizon, "):
         make_controller("dwa", alpha=1)
-    for bad in ({"horizon": 0}, {"v_samples": 1}, {"sides": "left"}, {"priority": -1},
-                {"window": "step"}):
-        with pytest.raises(UsvError):
+    # the core's checks are its declarations' (usvtool/params.py), one line each
+    for bad, words in (({"horizon": 0}, "horizon must be > 0 for udwa, not 0"),
+                       ({"v_samples": 1}, "v_samples must be >= 2 for udwa, not 1"),
+                       ({"v_samples": 2.5}, "v_samples must be an integer, not 2.5"),
+                       ({"sides": "left"}, "sides must be one of none, paper, colregs, iwso "
+                                           "for udwa, not 'left'"),
+                       ({"priority": -1}, "priority must be >= 0 for udwa, not -1"),
+                       ({"window": "step"}, "window must be one of period, horizon for udwa, "
+                                            "not 'step'"),
+                       ({"weather": 1}, "weather must be true or false, not 1")):  # fmt: skip
+        with pytest.raises(UsvError) as info:
             make_controller("udwa", **bad)
+        assert str(info.value) == words
+    with pytest.raises(UsvError, match=r"^reach must be > 0 for gdwa, not 0$"):
+        make_controller("gdwa", reach=0)
+    assert make_controller("gdwa", reach=None).params["reach"] is None
     # a horizon shorter than half a rollout step rolls nothing out (was an internal IndexError)
     with pytest.raises(UsvError, match=r"horizon \(0.05\) must be at least half a step \(0.2\)"):
         make_controller("udwa", horizon=0.05)

@@ -284,10 +284,14 @@ def test_options_kinds_and_scenes_are_checked():
         (lambda: make_scene("emergency", "abeam"), "family emergency has no kind 'abeam'"),
         (lambda: make_scene("imazu", "01", 1), "imazu is not seeded"),
         (lambda: make_scene("iwso", "head-on", -1), "a scene is an integer >= 0"),
-        (lambda: make_scene("iwso", "head-on", 0, {"speed": 3}), "option speed: not an option"),
-        (lambda: make_scene("iwso", "head-on", 0, {"own_speed": 0}), "must be > 0, not 0"),
-        (lambda: make_scene("iwso", "head-on", 0, {"own_speed": "4"}), "a finite number"),
-        (lambda: make_scene("iwso", "head-on", 0, {"vessel": "tug"}), "must be one of"),
+        (lambda: make_scene("iwso", "head-on", 0, {"speed": 3}),
+         r"^option speed is not a parameter of family iwso \(known: own_speed, "),
+        (lambda: make_scene("iwso", "head-on", 0, {"own_speed": 0}),
+         "^option own_speed must be > 0 for family iwso, not 0$"),
+        (lambda: make_scene("iwso", "head-on", 0, {"own_speed": "4"}),
+         "^option own_speed must be a finite number, not '4'$"),
+        (lambda: make_scene("iwso", "head-on", 0, {"vessel": "tug"}),
+         "^option vessel must be one of iwso-dwa-usv, udwa-usv for family iwso, not 'tug'$"),
     ]:
         with pytest.raises(UsvError, match=message):
             call()

@@ -68,10 +68,12 @@ def test_the_own_vessel_b_and_the_options_in_the_name():
     ("any", 0, {}, "family ais, kind any, scene 0: no such rank in"),
     ("under-way", 31, {}, "scene 31: " + FILES["encounters"] + " holds 30 encounters"),
     ("any", 3, {"radius": 10}, "MMSI 368139870, never comes within the radius, 10 m"),
-    ("any", 3, {"own": "c"}, "option own: must be one of a, b"),
-    ("any", 3, {"tracks": "no/such.parquet"}, "option tracks: no/such.parquet: no such file"),
-    ("any", 3, {"encounters": None}, "option encounters: missing"),
-    ("any", 3, {"tracks": 3}, "option tracks: must be a file's path, not 3"),
+    ("any", 3, {"own": "c"}, "option own must be one of a, b for family ais, not 'c'"),
+    ("any", 3, {"tracks": "no/such.parquet"},
+     "option tracks must be an existing file's path, not 'no/such.parquet'"),
+    ("any", 3, {"encounters": None},
+     "option encounters must be given for family ais: the encounters CSV"),
+    ("any", 3, {"tracks": 3}, "option tracks must be a file's path, not 3"),
 ])  # fmt: skip
 def test_bad_scenes_and_options_are_refused_in_one_line(kind, scene, options, words):
     given = {k: v for k, v in {**FILES, **options}.items() if v is not None}
@@ -122,7 +124,7 @@ def test_with_a_map_the_scene_runs_on_a_copy_of_it_in_lon_lat(tmp_path):
     land, _ = _grid(tmp_path, 1)
     with pytest.raises(UsvError, match="on an obstacle"):
         make_scene("ais", "under-way", 1, {**FILES, "map": str(land)})
-    with pytest.raises(UsvError, match="no such file"):
+    with pytest.raises(UsvError, match=r"^option map must be an existing file's path, not "):
         make_scene("ais", "under-way", 1, {**FILES, "map": str(tmp_path / "none.tif")})
 
 

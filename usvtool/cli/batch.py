@@ -66,10 +66,11 @@ def stage_names() -> Names:
     from usvtool.sim.families import FAMILIES
 
     files = {"preprocess": file_options(preprocess), "plan": file_options(plan)}
-    plugins = {name: " ".join(registry.origin(name)) for registry in (OPTIMIZERS, CONTROLLERS,
-               FAMILIES) for name in registry if registry.origin(name)[0] != BUILT_IN}  # fmt: skip
+    plugins = {name: " ".join(registry.origin(name)) for registry in (OPTIMIZERS, EXACT,
+               CONTROLLERS, FAMILIES) for name in registry
+               if registry.origin(name)[0] != BUILT_IN}  # fmt: skip
     families = {name: FamilySpec(cls.kinds, cls.seeded, cls().check_options,
-                                 frozenset(k for k, o in cls.options.items() if o.file))
+                                 frozenset(k for k, o in cls.declarations().items() if o.file))
                 for name, cls in FAMILIES.items()}  # fmt: skip
     return Names(tuple(OPTIMIZERS), tuple(EXACT), tuple(CONTROLLERS), tuple(FUNCTIONS), files,
                  families, plugins)  # fmt: skip

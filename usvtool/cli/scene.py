@@ -31,7 +31,7 @@ def scene(family: str | None, kind: str | None, scene_number: int, family_option
             raise click.UsageError("--list: alone")
         emit({name: {"kinds": cls.about, "seeded": cls.seeded,
                      "options": {k: {"default": o.default, "help": o.help}
-                                 for k, o in cls.options.items()}}
+                                 for k, o in cls.declarations().items()}}
               for name, cls in FAMILIES.items()})  # fmt: skip
         return
     if family is None or output is None:

@@ -2,12 +2,14 @@
 
 Algorithms: the planners of :mod:`usvtool.plan.planners`, by name: every optimizer of
 :data:`usvtool.plan.optimizers.OPTIMIZERS` (minimising the
-:class:`~usvtool.plan.problem.PathProblem` cost), ``anyangle`` (the exact any-angle shortest
-route, :mod:`usvtool.plan.exact`) and ``astar`` (8-connected). A ``+s`` suffix (``iwso+s``,
-``astar+s``) adds route shortening (:mod:`usvtool.plan.shorten`) to the planner's result; a
-``+g`` suffix (``iwso+g``, optimizers only) runs the optimizer on the route-guided problem of
-:mod:`usvtool.plan.guided` (waypoints about the stations of the exact any-angle route, K from
-the route with ``waypoints="auto"``, the default there).
+:class:`~usvtool.plan.problem.PathProblem` cost) and every exact planner of
+:data:`usvtool.plan.planners.EXACT`: ``anyangle`` (the exact any-angle shortest route,
+:mod:`usvtool.plan.exact`), ``astar`` (8-connected) and those of plugins. A ``+s`` suffix
+(``iwso+s``, ``astar+s``) adds route shortening (:mod:`usvtool.plan.shorten`) to the planner's
+result; a ``+g`` suffix (``iwso+g``, optimizers only) runs the optimizer on the route-guided
+problem of :mod:`usvtool.plan.guided` (waypoints about the stations of the exact any-angle
+route, K from the route with ``waypoints="auto"``, the default there). A plugin's exact planner
+takes no suffix unless it declares one (:attr:`usvtool.plan.planners.Planner.variants`).
 
 What to plan is a :class:`PlanOptions`, which checks itself (:meth:`PlanOptions.checked`); the
 answer a :class:`PlanResult`, holding the :class:`usvtool.route.Route` (write it with
@@ -33,12 +35,9 @@ from usvtool.collision import check_point, is_collision_free
 from usvtool.errors import UsvError
 from usvtool.grid import Grid
 from usvtool.plan import guided
-from usvtool.plan.planners import EXACT as EXACT_PLANNERS
 from usvtool.plan.planners import Planner, Request, resolve
 from usvtool.plan.problem import ENCODINGS, PathProblem
 from usvtool.route import Route, route_length
-
-EXACT = tuple(EXACT_PLANNERS)  # the exact planners' names (their routes take no seed)
 
 
 @dataclass

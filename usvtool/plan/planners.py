@@ -3,11 +3,14 @@
 
 A base planner is an optimizer of :data:`usvtool.plan.optimizers.OPTIMIZERS` (:class:`Optimize`:
 it minimises the :class:`~usvtool.plan.problem.PathProblem` cost, :func:`optimize`) or an exact
-planner of :data:`EXACT` (``anyangle``, the exact any-angle shortest route; ``astar``,
-8-connected A*: :mod:`usvtool.plan.exact`). A variant suffix wraps one (:data:`VARIANTS`):
-``+s`` (:class:`Shortened`, any planner: route shortening of its result,
-:mod:`usvtool.plan.shorten`) and ``+g`` (:class:`Guided`, optimizers only: the optimizer on the
-route-guided problem of :mod:`usvtool.plan.guided`). A name takes one suffix at most.
+planner of :data:`EXACT` (an :class:`ExactPlanner`, deterministic: ``anyangle``, the exact
+any-angle shortest route; ``astar``, 8-connected A*: :mod:`usvtool.plan.exact`). Both registries
+take plugins from the entry-point group ``usvtool.planners``, which they share
+(:class:`usvtool.registry.Registry`): a class goes to the one of its base. A variant suffix
+wraps a planner that takes it (:attr:`Planner.variants`; :data:`VARIANTS`): ``+s``
+(:class:`Shortened`: route shortening of its result, :mod:`usvtool.plan.shorten`; the optimizers
+and the built-in exact planners) and ``+g`` (:class:`Guided`, optimizers only: the optimizer on
+the route-guided problem of :mod:`usvtool.plan.guided`). A name takes one suffix at most.
 
 :func:`names` lists the base names in the order every listing uses (the optimizers in their
 registry's order, then the exact planners); the CLI, the pipelines (``usvtool batch``) and the
@@ -28,8 +31,9 @@ import numpy as np
 from usvtool.collision import is_collision_free
 from usvtool.errors import UsvError
 from usvtool.plan import exact, guided, shorten
-from usvtool.plan.optimizers import OPTIMIZERS, Optimizer
+from usvtool.plan.optimizers import OPTIMIZERS, Optimizer, no_suffix
 from usvtool.plan.problem import PathProblem
+from usvtool.registry import Registry
 
 if TYPE_CHECKING:
     from usvtool.plan.planner import PlanOptions
@@ -66,13 +70,15 @@ class Planner(ABC):
 
     ``seeded``: the route depends on the seed (the route records it); ``guided``: a ``+g``
     variant, which takes ``waypoints="auto"`` (its default) and only the waypoints encoding;
-    ``optimizer``: the optimizer it runs (None: an exact planner).
+    ``optimizer``: the optimizer it runs (None: an exact planner); ``variants``: the suffixes
+    of :data:`VARIANTS` it takes (``NAME+s``).
     """
 
     name: str = ""
     seeded: bool = True
     guided: bool = False
     optimizer: type[Optimizer] | None = None
+    variants: tuple[str, ...] = ()
 
     @property
     def default_waypoints(self) -> int | str:
@@ -96,7 +102,9 @@ class Planner(ABC):
 
 
 class Optimize(Planner):
-    """An optimizer of :data:`OPTIMIZERS` on the path problem."""
+    """An optimizer of :data:`OPTIMIZERS` on the path problem (with its ``+s`` and ``+g``)."""
+
+    variants = (shorten.SUFFIX, guided.SUFFIX)
 
     def __init__(self, optimizer: type[Optimizer]):
         self.optimizer = optimizer
@@ -111,11 +119,20 @@ class Optimize(Planner):
         return replace(run, parameters=parameters)
 
 
-class AnyAngle(Planner):
+class ExactPlanner(Planner):
+    """An exact planner: deterministic (its route takes no seed), no optimizer, constructed
+    without arguments; :meth:`plan` gives the route's cells (or :class:`UsvError`). It takes no
+    variant unless it lists one in ``variants`` (the built-ins take ``+s``). A plugin registers
+    a subclass under the entry-point group ``usvtool.planners`` (:data:`EXACT`)."""
+
+    seeded = False
+
+
+class AnyAngle(ExactPlanner):
     """The exact any-angle shortest route (:func:`usvtool.plan.exact.any_angle`)."""
 
     name = "anyangle"
-    seeded = False
+    variants = (shorten.SUFFIX,)
 
     def plan(self, request: Request) -> Planned:
         p = request.problem
@@ -123,11 +140,11 @@ class AnyAngle(Planner):
         return Planned(_found(self.name, cells), {"delta_cells": exact.DELTA})
 
 
-class AStar(Planner):
+class AStar(ExactPlanner):
     """The 8-connected A* route (:func:`usvtool.plan.exact.astar`)."""
 
     name = "astar"
-    seeded = False
+    variants = (shorten.SUFFIX,)
 
     def plan(self, request: Request) -> Planned:
         cells = exact.astar(request.problem.grid.blocked, request.start, request.goal)
@@ -154,7 +171,12 @@ class Variant(Planner):
 
     @classmethod
     def of(cls, inner: Planner, algo: str) -> Variant:
-        """The variant of ``inner``, or :class:`UsvError` when it has none (``algo`` named)."""
+        """The variant of ``inner``, or :class:`UsvError` when it does not take it (``algo``
+        named)."""
+        if cls.suffix not in inner.variants:
+            has = ", ".join(inner.variants) or "none"
+            raise UsvError(f"{algo!r}: {inner.name} has no {cls.suffix} variant (its variants: "
+                           f"{has})")  # fmt: skip
         return cls(inner)
 
     @property
@@ -186,13 +208,6 @@ class Guided(Variant):
         super().__init__(inner)
         self.guided = True
 
-    @classmethod
-    def of(cls, inner: Planner, algo: str) -> Variant:
-        if inner.optimizer is None:
-            raise UsvError(f"{algo!r}: {cls.suffix} is a variant of the optimizers, "
-                           f"not of {inner.name}")  # fmt: skip
-        return cls(inner)
-
     @property
     def default_waypoints(self) -> int | str:
         return guided.AUTO
@@ -221,15 +236,22 @@ class Guided(Variant):
         return replace(run, cells=cells, parameters=parameters)
 
 
-#: The exact planners, by name.
-EXACT: dict[str, Planner] = {p.name: p for p in (AnyAngle(), AStar())}
+#: Every exact planner (:class:`ExactPlanner` classes) by name: the built-ins, then the
+#: ``usvtool.planners`` plugins of that base (the group the optimizers' registry shares).
+EXACT = Registry("exact planner", ExactPlanner, "usvtool.planners",
+                 lambda cls: no_suffix(cls) or ("is seeded: an exact planner takes no seed"
+                                                if cls.seeded else None),
+                 shares=OPTIMIZERS)  # fmt: skip
+for _cls in (AnyAngle, AStar):
+    EXACT.register(_cls)
 #: The variant suffixes and the wrappers they stand for.
 VARIANTS: dict[str, type[Variant]] = {v.suffix: v for v in (Shortened, Guided)}
 
 
 def planners() -> dict[str, Planner]:
     """Every base planner by name: the optimizers registered now, then the exact planners."""
-    return {**{name: Optimize(cls) for name, cls in OPTIMIZERS.items()}, **EXACT}
+    return {**{name: Optimize(cls) for name, cls in OPTIMIZERS.items()},
+            **{name: cls() for name, cls in EXACT.items()}}  # fmt: skip
 
 
 def names() -> list[str]:

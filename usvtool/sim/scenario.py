@@ -21,6 +21,7 @@ from pathlib import Path
 
 from usvtool.angles import wrap360
 from usvtool.errors import UsvError
+from usvtool.params import check
 from usvtool.sim.vessel import PRESETS, USER_UNITS
 from usvtool.yamlfile import read_yaml, show
 
@@ -223,38 +224,20 @@ def _weather(v: _Fields, data) -> Weather:
 
 
 def controller_params(name: str, params: dict, where) -> dict:
-    """Check ``params`` against controller ``name``'s parameters: known names, and the type of
-    each default (a number: a finite number; true/false: a boolean; a string: a string; none: a
-    finite number or null). ``where(key)`` names a parameter in the errors. The values
-    themselves (a horizon > 0, ...) are the controller's to check.
+    """Check ``params`` against controller ``name``'s declared parameters (known names, and the
+    kind, range and choices of each: :func:`usvtool.params.check`); ``where(key)`` names a
+    parameter in the errors. Returns ``params``.
 
     >>> controller_params("dwa", {"horizon": 2}, lambda k: f"--param {k}")
     {'horizon': 2}
     >>> controller_params("dwa", {"horizon": "far"}, lambda k: f"--param {k}")
     Traceback (most recent call last):
     usvtool.errors.UsvError: --param horizon must be a finite number, not 'far'
+    >>> controller_params("dwa", {"horizon": 0}, lambda k: f"s.yaml: controller.{k}")
+    Traceback (most recent call last):
+    usvtool.errors.UsvError: s.yaml: controller.horizon must be > 0 for dwa, not 0
     """
-    cls = _controllers()[name]
-    known = {**cls.common, **cls.defaults}
-    for key, value in params.items():
-        if key not in known:
-            raise UsvError(f"{where(key)} is not a parameter of {name} "
-                           f"(known: {', '.join(sorted(known))})")  # fmt: skip
-        default = known[key]
-        number = not isinstance(value, bool) and isinstance(value, int | float)
-        if isinstance(default, bool):
-            ok, what = isinstance(value, bool), "true or false"
-        elif isinstance(default, int | float) or default is None:
-            ok = number and math.isfinite(value) or (default is None and value is None)
-            what = "a finite number" + (" or null" if default is None else "")
-            if number and not math.isfinite(value):
-                what = "finite"
-        elif isinstance(default, str):
-            ok, what = isinstance(value, str) and bool(value), "a non-empty string"
-        else:
-            ok, what = True, ""
-        if not ok:
-            raise UsvError(f"{where(key)} must be {what}, not {show(value)}")
+    check(_controllers()[name].declarations(), params, where, name)
     return params
 
 

@@ -1,8 +1,8 @@
 """The population-based optimizers, by name: :data:`OPTIMIZERS`, in the order every listing
 shows them (the papers' algorithms, each variant after the algorithm it varies).
 
-Adding one is its module (an :class:`Optimizer` subclass with ``name``, ``defaults``, ``ranges``
-and ``_run``) and its entry in the tuple below; :func:`register` adds one at run time, and an
+Adding one is its module (an :class:`Optimizer` subclass with ``name``, ``parameters`` and
+``_run``) and its entry in the tuple below; :func:`register` adds one at run time, and an
 installed distribution adds one under the entry-point group ``usvtool.planners``
 (:class:`usvtool.registry.Registry`; docs/extending.md).
 """
@@ -23,10 +23,15 @@ from usvtool.plan.optimizers.woa import WOA
 from usvtool.plan.optimizers.wso import WSO
 from usvtool.registry import Registry
 
-#: Every optimizer: the built-ins below, then the ``usvtool.planners`` plugins (docs/extending.md).
-OPTIMIZERS = Registry("optimizer", Optimizer, "usvtool.planners",
-                      lambda cls: "has a '+' (the planners' variant suffix)" if "+" in cls.name
-                      else None)  # fmt: skip
+
+def no_suffix(cls: type) -> str | None:
+    """Why ``cls``'s name cannot be an ``--algo`` name (it has a ``+``), or None."""
+    return "has a '+' (the planners' variant suffix)" if "+" in cls.name else None
+
+
+#: Every optimizer: the built-ins below, then the ``usvtool.planners`` plugins of its base (the
+#: group it shares with the exact planners, usvtool.plan.planners.EXACT; docs/extending.md).
+OPTIMIZERS = Registry("optimizer", Optimizer, "usvtool.planners", no_suffix)
 #: Add an optimizer (a class decorator too); ``ValueError`` for a taken or bad name.
 register = OPTIMIZERS.register
 #: Remove the optimizer registered under a name (``KeyError`` when there is none).

@@ -5,15 +5,15 @@ An optimizer minimises a vectorised objective: ``objective(X)`` takes the whole 
 using the helpers here (bounds handling, the seeded generator, the evaluation budget and the
 best-so-far history), never looping over individuals in Python.
 
-A subclass declares its parameters beside each other: ``defaults`` (name -> value; the value's
-type is the parameter's) and ``ranges`` (name -> :class:`Range`, where the algorithm's equations
-need one: a probability in [0, 1], a divisor > 0). :meth:`Optimizer.check_params` refuses
-anything else in one line naming ``--param NAME``.
+A subclass declares its parameters in ``parameters`` (name -> :class:`usvtool.params.Param`:
+the default, what it sets, a :class:`Range` where the algorithm's equations need one: a
+probability in [0, 1], a divisor > 0); :meth:`Optimizer.check_params` refuses anything else in
+one line naming ``--param NAME`` (:func:`usvtool.params.check`). The older ``defaults`` (name ->
+value) and ``ranges`` (name -> :class:`Range`) are still read (:func:`usvtool.params.declared`).
 """
 
 from __future__ import annotations
 
-import math
 import time
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
@@ -21,45 +21,23 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from usvtool.errors import UsvError
-from usvtool.yamlfile import show
+from usvtool.params import (
+    NON_NEGATIVE,
+    POSITIVE,
+    PROBABILITY,
+    Param,
+    Range,
+    View,
+    check,
+    declared,
+    defaults,
+    ranges,
+)
+
+__all__ = ["NON_NEGATIVE", "POSITIVE", "PROBABILITY", "Objective", "Optimizer", "OptimizerResult",
+           "Param", "Range"]  # fmt: skip
 
 Objective = Callable[[np.ndarray], np.ndarray]
-
-
-@dataclass(frozen=True)
-class Range:
-    """The interval a numeric parameter must lie in (``open_low``/``open_high``: that end
-    excluded).
-
-    >>> str(Range(0, 1)), str(Range(0, open_low=True)), str(Range(0.0, 1.0, True, True))
-    ('in [0, 1]', '> 0', 'in (0, 1)')
-    >>> 0 in Range(0, open_low=True), 0.5 in Range(0, 1)
-    (False, True)
-    """
-
-    low: float = -math.inf
-    high: float = math.inf
-    open_low: bool = False
-    open_high: bool = False
-
-    def __contains__(self, value: float) -> bool:
-        above = value > self.low if self.open_low else value >= self.low
-        below = value < self.high if self.open_high else value <= self.high
-        return above and below
-
-    def __str__(self) -> str:
-        if self.high == math.inf:
-            return f"{'>' if self.open_low else '>='} {self.low:g}"
-        if self.low == -math.inf:
-            return f"{'<' if self.open_high else '<='} {self.high:g}"
-        return (f"in {'(' if self.open_low else '['}{self.low:g}, {self.high:g}"
-                f"{')' if self.open_high else ']'}")  # fmt: skip
-
-
-PROBABILITY = Range(0.0, 1.0)  # a probability, a threshold against U(0, 1), a population share
-POSITIVE = Range(0.0, open_low=True)  # a divisor, a scale that must not vanish
-NON_NEGATIVE = Range(0.0)
 
 
 @dataclass
@@ -79,29 +57,36 @@ class Optimizer(ABC):
 
     Parameters common to all: ``pop`` (population size, >= 2), ``iters`` (iterations, >= 1),
     ``seed`` (an int or a ``numpy.random.Generator``). Algorithm parameters are keyword
-    arguments listed in the subclass's ``defaults``, checked by :meth:`check_params`.
+    arguments the subclass declares in ``parameters`` (:meth:`declarations`), checked by
+    :meth:`check_params`.
     """
 
     name: str = ""
-    defaults: dict = {}
-    ranges: dict[str, Range] = {}
+    parameters: dict[str, Param] = {}
+    #: The older attributes, read from :meth:`declarations` (name -> default, name -> Range).
+    defaults = View(defaults)
+    ranges = View(ranges)
 
     def __init__(self, pop: int = 50, iters: int = 300, seed=None, **params):
         if pop < 2:
             raise ValueError("pop must be >= 2")
         if iters < 1:
             raise ValueError("iters must be >= 1")
-        self.check_params(params)
+        self.params = check(self.declarations(), params, _where, self.name)
         self.pop = int(pop)
         self.iters = int(iters)
         self.rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
-        self.params = {**self.defaults, **params}
+
+    @classmethod
+    def declarations(cls) -> dict[str, Param]:
+        """Its parameters: ``parameters`` (and the older ``defaults`` and ``ranges``) of each
+        class from :class:`Optimizer` down (:func:`usvtool.params.declared`)."""
+        return declared(cls, ("defaults", "ranges", "parameters"))
 
     @classmethod
     def check_params(cls, params: Mapping) -> None:
-        """Refuse a parameter the algorithm has not got, a value not of its default's type (a
-        number: a finite int or float; true/false: a bool; an int: an integer; a string: a
-        string) or outside its :data:`ranges` entry, in one line naming ``--param NAME``.
+        """Refuse a parameter the algorithm has not got or a value its declaration does not
+        take (:func:`usvtool.params.check`), in one line naming ``--param NAME``.
 
         >>> from usvtool.plan.optimizers.boa import BOA
         >>> BOA.check_params({"p": 0.5})
@@ -109,16 +94,7 @@ class Optimizer(ABC):
         Traceback (most recent call last):
         usvtool.errors.UsvError: --param p must be in [0, 1] for boa, not 1.5
         """
-        for key, value in params.items():
-            if key not in cls.defaults:
-                known = ", ".join(cls.defaults) or "none"
-                raise UsvError(f"--param {key} is not a parameter of {cls.name} (known: {known})")
-            what = _kind_error(cls.defaults[key], value)
-            if what:
-                raise UsvError(f"--param {key} must be {what}, not {show(value)}")
-            limits = cls.ranges.get(key)
-            if limits is not None and value not in limits:
-                raise UsvError(f"--param {key} must be {limits} for {cls.name}, not {show(value)}")
+        check(cls.declarations(), params, _where, cls.name)
 
     def minimize(self, objective: Objective, lower, upper) -> OptimizerResult:
         """Minimise ``objective`` over the box; ``lower``/``upper`` are scalars or (d,) arrays."""
@@ -173,15 +149,5 @@ class Optimizer(ABC):
         """Run ``self.iters`` iterations, calling :meth:`evaluate` and :meth:`record`."""
 
 
-def _kind_error(default, value) -> str | None:
-    """What ``value`` must be to stand for ``default`` (its type), or None when it is."""
-    number = isinstance(value, int | float) and not isinstance(value, bool)
-    if isinstance(default, bool):
-        return None if isinstance(value, bool) else "true or false"
-    if isinstance(default, int):
-        return None if number and isinstance(value, int) else "an integer"
-    if isinstance(default, float):
-        return None if number and math.isfinite(value) else "a finite number"
-    if isinstance(default, str):
-        return None if isinstance(value, str) else "a string"
-    return None
+def _where(key: str) -> str:
+    return f"--param {key}"

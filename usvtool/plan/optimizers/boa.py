@@ -21,14 +21,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.plan.optimizers.base import NON_NEGATIVE, POSITIVE, PROBABILITY, Optimizer
+from usvtool.plan.optimizers.base import NON_NEGATIVE, POSITIVE, PROBABILITY, Optimizer, Param
 
 
 class BOA(Optimizer):
     name = "boa"
-    defaults = {"c": 0.01, "a": 0.1, "p": 0.8, "c_growth": 0.025}
     # c divides the growth step and stays > 0 as it grows; p is a switch probability
-    ranges = {"c": POSITIVE, "p": PROBABILITY, "c_growth": NON_NEGATIVE}
+    parameters = {
+        "c": Param(0.01, "the sensory modality at the start (eq. 1)", POSITIVE),
+        "a": Param(0.1, "the power exponent (eq. 1)"),
+        "p": Param(0.8, "the switch probability, global against local search", PROBABILITY),
+        "c_growth": Param(0.025, "c's growth per iteration (0: a constant c)", NON_NEGATIVE),
+    }
 
     def _run(self) -> None:
         rng, prm = self.rng, self.params

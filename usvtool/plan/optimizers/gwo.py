@@ -13,13 +13,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.plan.optimizers.base import NON_NEGATIVE, Optimizer
+from usvtool.plan.optimizers.base import NON_NEGATIVE, Optimizer, Param
 
 
 class GWO(Optimizer):
     name = "gwo"
-    defaults = {"a_start": 2.0}
-    ranges = {"a_start": NON_NEGATIVE}  # a decreases from a_start to 0 (eq. 3.3)
+    # a decreases from a_start to 0 (eq. 3.3)
+    parameters = {"a_start": Param(2.0, "a at the start, decreasing to 0 (eq. 3.3)", NON_NEGATIVE)}
 
     def _run(self) -> None:
         X = self.uniform()

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.plan.optimizers.base import NON_NEGATIVE
+from usvtool.plan.optimizers.base import NON_NEGATIVE, Param
 from usvtool.plan.optimizers.chaotic import chaotic_population, cubic_step
 from usvtool.plan.optimizers.ssa import SSA
 
@@ -35,8 +35,12 @@ def fitness_spread(F: np.ndarray) -> float:
 
 class ISSA(SSA):
     name = "issa"
-    defaults = {**SSA.defaults, "stagnation": 1e-3}
-    ranges = {**SSA.ranges, "stagnation": NON_NEGATIVE}  # a bound on |change of sigma|
+    parameters = {
+        **SSA.parameters,
+        "stagnation": Param(
+            1e-3, "the bound on |change of sigma| under which the search stagnates", NON_NEGATIVE
+        ),
+    }
 
     def _initial(self) -> np.ndarray:
         return chaotic_population(cubic_step, self.pop, self.lower, self.upper, self.rng)

@@ -33,18 +33,22 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.plan.optimizers.base import POSITIVE, Range
+from usvtool.plan.optimizers.base import POSITIVE, Param, Range
 from usvtool.plan.optimizers.chaotic import chaotic_population, circle_step
 from usvtool.plan.optimizers.wso import WSO
 
 
 class IWSO(WSO):
     name = "iwso"
-    defaults = {**WSO.defaults, "delta": 1.0, "chi": 2.0, "phi": 0.5, "xi": 0.5}
     # Nelder & Mead's conditions: reflection > 0, expansion > 1, contraction and shrinkage
     # in (0, 1)
-    ranges = {**WSO.ranges, "delta": POSITIVE, "chi": Range(1.0, open_low=True),
-              "phi": Range(0.0, 1.0, True, True), "xi": Range(0.0, 1.0, True, True)}  # fmt: skip
+    parameters = {
+        **WSO.parameters,
+        "delta": Param(1.0, "Nelder-Mead's reflection", POSITIVE),
+        "chi": Param(2.0, "Nelder-Mead's expansion", Range(1.0, open_low=True)),
+        "phi": Param(0.5, "Nelder-Mead's contraction", Range(0.0, 1.0, True, True)),
+        "xi": Param(0.5, "Nelder-Mead's shrinkage", Range(0.0, 1.0, True, True)),
+    }
 
     def _initial(self) -> tuple[np.ndarray, np.ndarray]:
         """Eq. 7: circle-map and random populations together; keep the best ``pop``."""

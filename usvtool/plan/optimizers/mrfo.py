@@ -19,13 +19,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.plan.optimizers.base import POSITIVE, Optimizer
+from usvtool.plan.optimizers.base import POSITIVE, Optimizer, Param
 
 
 class MRFO(Optimizer):
     name = "mrfo"
-    defaults = {"somersault": 2.0}
-    ranges = {"somersault": POSITIVE}  # the somersault factor S of eq. 8
+    parameters = {"somersault": Param(2.0, "the somersault factor S (eq. 8)", POSITIVE)}
 
     def _run(self) -> None:
         rng = self.rng

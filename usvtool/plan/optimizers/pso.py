@@ -15,14 +15,19 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.plan.optimizers.base import NON_NEGATIVE, POSITIVE, Optimizer
+from usvtool.plan.optimizers.base import NON_NEGATIVE, POSITIVE, Optimizer, Param
 
 
 class PSO(Optimizer):
     name = "pso"
-    defaults = {"w_start": 0.9, "w_end": 0.4, "c1": 2.0, "c2": 2.0, "vmax": 0.2}
     # acceleration weights of the pulls (r1, r2 >= 0); vmax a share of the box's span
-    ranges = {"c1": NON_NEGATIVE, "c2": NON_NEGATIVE, "vmax": POSITIVE}
+    parameters = {
+        "w_start": Param(0.9, "the inertia weight at the start"),
+        "w_end": Param(0.4, "the inertia weight at the end"),
+        "c1": Param(2.0, "the pull toward the particle's own best", NON_NEGATIVE),
+        "c2": Param(2.0, "the pull toward the swarm's best", NON_NEGATIVE),
+        "vmax": Param(0.2, "the largest speed, a share of the box's span", POSITIVE),
+    }
 
     def _run(self) -> None:
         p = self.params
@@ -45,4 +50,4 @@ class PSO(Optimizer):
 
 class PSOISSA(PSO):
     name = "pso-issa"
-    defaults = {**PSO.defaults, "w_start": 1.0, "w_end": 1.0, "c1": 2.5, "c2": 2.5}
+    parameters = {"w_start": 1.0, "w_end": 1.0, "c1": 2.5, "c2": 2.5}  # PSO's, other defaults

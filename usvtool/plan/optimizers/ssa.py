@@ -33,15 +33,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.plan.optimizers.base import POSITIVE, PROBABILITY, Optimizer
+from usvtool.plan.optimizers.base import POSITIVE, PROBABILITY, Optimizer, Param
 
 
 class SSA(Optimizer):
     name = "ssa"
-    defaults = {"producers": 0.2, "scouts": 0.15, "safety": 0.8, "zeta": 1e-50}
     # shares of the population; ST against R2 ~ U(0, 1); zeta keeps eq. 3's divisor off 0
-    ranges = {"producers": PROBABILITY, "scouts": PROBABILITY, "safety": PROBABILITY,
-              "zeta": POSITIVE}  # fmt: skip
+    parameters = {
+        "producers": Param(0.2, "the producers' share of the population", PROBABILITY),
+        "scouts": Param(0.15, "the scouts' share of the population", PROBABILITY),
+        "safety": Param(0.8, "the safety threshold ST against the warning value R2", PROBABILITY),
+        "zeta": Param(1e-50, "keeps eq. 3's divisor off 0", POSITIVE),
+    }
 
     def _run(self) -> None:
         X = self._initial()

@@ -17,12 +17,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.plan.optimizers.base import Optimizer
+from usvtool.plan.optimizers.base import Optimizer, Param
 
 
 class WOA(Optimizer):
     name = "woa"
-    defaults = {"b": 1.0}
+    parameters = {"b": Param(1.0, "the logarithmic spiral's shape")}
 
     def _run(self) -> None:
         rng = self.rng

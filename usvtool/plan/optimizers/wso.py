@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from usvtool.plan.optimizers.base import NON_NEGATIVE, POSITIVE, Optimizer, Range
+from usvtool.plan.optimizers.base import NON_NEGATIVE, POSITIVE, Optimizer, Param, Range
 
 
 def constants(p: dict) -> tuple[float, float]:
@@ -46,21 +46,19 @@ def schedule(p: dict, k: int, K: int) -> tuple[float, float, float, float]:
 
 class WSO(Optimizer):
     name = "wso"
-    defaults = {
-        "f_min": 0.07,
-        "f_max": 0.75,
-        "tau": 4.11,
-        "p_min": 0.5,
-        "p_max": 1.5,
-        "a0": 6.25,
-        "a1": 100.0,
-        "a2": 0.0005,
-    }
     # f_min, f_max > 0 keep the wavy frequency f > 0 (eq. 4 divides by it); tau >= 4 keeps
     # mu's square root real (Clerc's constriction); a0 >= 0 keeps mv's divisor > 0 and a1
     # divides; a2 >= 0 keeps s_s in [0, 1)
-    ranges = {"f_min": POSITIVE, "f_max": POSITIVE, "tau": Range(4.0), "a0": NON_NEGATIVE,
-              "a1": POSITIVE, "a2": NON_NEGATIVE}  # fmt: skip
+    parameters = {
+        "f_min": Param(0.07, "the wavy frequency's low end", POSITIVE),
+        "f_max": Param(0.75, "the wavy frequency's high end", POSITIVE),
+        "tau": Param(4.11, "the acceleration coefficient (Clerc's constriction)", Range(4.0)),
+        "p_min": Param(0.5, "the low end of the velocity weights p1, p2"),
+        "p_max": Param(1.5, "the high end of the velocity weights p1, p2"),
+        "a0": Param(6.25, "the constant of mv's divisor", NON_NEGATIVE),
+        "a1": Param(100.0, "the time scale of mv's exponential", POSITIVE),
+        "a2": Param(0.0005, "the rate of s_s", NON_NEGATIVE),
+    }
 
     def _run(self) -> None:
         n, K = self.pop, self.iters

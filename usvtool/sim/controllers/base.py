@@ -60,6 +60,7 @@ import numpy as np
 from usvtool.angles import wrap_pi
 from usvtool.encounter import domain_semi_axes
 from usvtool.errors import UsvError
+from usvtool.params import NON_NEGATIVE, POSITIVE, Param, Range, View, check, declared, defaults
 from usvtool.sim import sides as side_rules
 from usvtool.sim import vessel as vessel_model
 from usvtool.sim.controllers.critics import Critic
@@ -176,24 +177,27 @@ class Controller(ABC):
     :class:`Decision` within the vessel's limits (the simulator applies it as given); and
     :meth:`close` when the run ends, however it ends.
 
-    ``name``: unique in :data:`usvtool.sim.controllers.CONTROLLERS`; ``common`` and
-    ``defaults``: its parameters (keyword arguments) and their defaults, the type of each
-    default the type a value must have (:func:`usvtool.sim.scenario.controller_params`); an
-    unknown one is refused here.
+    ``name``: unique in :data:`usvtool.sim.controllers.CONTROLLERS`; ``parameters``: its
+    parameters (keyword arguments), a :class:`usvtool.params.Param` each (or a plain default),
+    added to its base classes' (:meth:`declarations`); a parameter it has not got or a value
+    its declaration does not take is refused here (:func:`usvtool.params.check`), and before,
+    naming where it was given, by :func:`usvtool.sim.scenario.controller_params`.
     """
 
     name: str = ""
-    common: dict = {}
-    defaults: dict = {}
+    parameters: dict[str, Param] = {}
+    #: The older attribute, read from :meth:`declarations` (name -> default).
+    defaults = View(defaults)
 
     def __init__(self, **params):
-        options = {**self.common, **self.defaults}
-        unknown = set(params) - set(options)
-        if unknown:
-            known = ", ".join(sorted(options)) or "none"
-            raise UsvError(f"{self.name}: unknown parameter(s) {sorted(unknown)} (known: {known})")
-        self.params = {**options, **params}
+        self.params = check(self.declarations(), params, str, self.name, complete=True)
         self.world: World | None = None
+
+    @classmethod
+    def declarations(cls) -> dict[str, Param]:
+        """Its parameters: ``parameters`` (and the older ``common`` and ``defaults``) of each
+        class from :class:`Controller` down (:func:`usvtool.params.declared`)."""
+        return declared(cls, ("common", "defaults", "parameters"))
 
     def reset(self, world: World) -> None:
         """Start a run in ``world``."""
@@ -222,8 +226,8 @@ class Controller(ABC):
 class DynamicWindow(Controller):
     """A DWA controller: a trajectory generator, critics with scales, a side rule, the fallback.
 
-    Parameters common to all (keyword arguments, each controller adding its own ``defaults``):
-    ``horizon`` (s), ``step`` (s, the rollout's time step), ``v_samples`` and
+    Parameters common to all (:attr:`parameters`, each controller adding its own and changing
+    these defaults): ``horizon`` (s), ``step`` (s, the rollout's time step), ``v_samples`` and
     ``omega_samples`` (the window's grid), ``window`` (the generator:
     :data:`~usvtool.sim.controllers.windows.WINDOWS`), ``dist_max`` (m, the clearance term's
     cap), ``weather`` (use the attainable speed of UDWA eq. 5 in the velocity term), ``sides``
@@ -234,38 +238,26 @@ class DynamicWindow(Controller):
     (:meth:`critics`) and whether its side rule removes the other side (``removes_side``).
     """
 
-    common: dict = {
-        "horizon": 10.0,
-        "step": 0.2,
-        "v_samples": 21,
-        "omega_samples": 21,
-        "dist_max": 30.0,
-        "weather": False,
-        "sides": "none",
-        "priority": 0.0,
-        "domain": True,
-        "window": "period",
-        "safe_priority": False,
-    }
+    parameters = {
+        "horizon": Param(10.0, "the rollouts' horizon, s", POSITIVE),
+        "step": Param(0.2, "the rollouts' time step, s", POSITIVE),
+        "v_samples": Param(21, "speeds in the dynamic window's grid", Range(2)),
+        "omega_samples": Param(21, "yaw rates in the dynamic window's grid", Range(2)),
+        "dist_max": Param(30.0, "the clearance critic's cap, m", POSITIVE),
+        "weather": Param(False, "score the speed made good in the wind and waves (UDWA eq. 5)"),
+        "sides": Param("none", "the side table of an encounter (usvtool.sim.sides)",
+                       choices=("none", *side_rules.TABLES)),
+        "priority": Param(0.0, "the preferred side's score bonus", NON_NEGATIVE),
+        "domain": Param(True, "keep the targets out of the own ship's domain when one can"),
+        "window": Param("period", "the trajectory generator", choices=tuple(WINDOWS)),
+        "safe_priority": Param(False, "the side bonus only where the clearance reaches "
+                                      "dist_max"),
+    }  # fmt: skip
     removes_side = False  # CCDWA removes the other side; the others prefer
 
     def __init__(self, **params):
         super().__init__(**params)
         p = self.params
-        for key in ("horizon", "step", "dist_max"):
-            if not p[key] > 0:
-                raise UsvError(f"{self.name}: {key} must be > 0, not {p[key]}")
-        for key in ("v_samples", "omega_samples"):
-            if int(p[key]) != p[key] or p[key] < 2:
-                raise UsvError(f"{self.name}: {key} must be an integer >= 2, not {p[key]}")
-        if p["sides"] != "none" and p["sides"] not in side_rules.TABLES:
-            known = ", ".join(["none", *side_rules.TABLES])
-            raise UsvError(f"{self.name}: unknown sides {p['sides']!r} (known: {known})")
-        if p["window"] not in WINDOWS:
-            raise UsvError(f"{self.name}: window must be one of {', '.join(WINDOWS)}, "
-                           f"not {p['window']!r}")  # fmt: skip
-        if not p["priority"] >= 0:
-            raise UsvError(f"{self.name}: priority must be >= 0, not {p['priority']}")
         self.times = p["step"] * np.arange(1, int(round(p["horizon"] / p["step"])) + 1)
         if not self.times.size:
             raise UsvError(f"{self.name}: horizon ({p['horizon']}) must be at least half a step "

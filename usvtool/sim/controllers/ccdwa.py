@@ -14,5 +14,5 @@ from usvtool.sim.controllers.dwa import DWA
 
 class CCDWA(DWA):
     name = "ccdwa"
-    defaults = {"w_velocity": 0.3, "w_heading": 0.2, "w_distance": 0.5, "sides": "paper"}
+    parameters = {"w_velocity": 0.3, "w_heading": 0.2, "w_distance": 0.5, "sides": "paper"}
     removes_side = True

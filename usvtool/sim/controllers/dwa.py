@@ -10,13 +10,18 @@ one-period window, no side rule.
 
 from __future__ import annotations
 
+from usvtool.params import Param
 from usvtool.sim.controllers.base import DynamicWindow
 from usvtool.sim.controllers.critics import Critic, Distance, GoalHeading, Velocity
 
 
 class DWA(DynamicWindow):
     name = "dwa"
-    defaults = {"w_velocity": 0.3, "w_heading": 0.06, "w_distance": 0.4}
+    parameters = {
+        "w_velocity": Param(0.3, "the speed critic's scale (alpha)"),
+        "w_heading": Param(0.06, "the heading critic's scale (beta)"),
+        "w_distance": Param(0.4, "the clearance critic's scale (gamma)"),
+    }
 
     def critics(self) -> list[Critic]:
         p = self.params

@@ -29,7 +29,7 @@ with ``priority`` 0.5.
 
 from __future__ import annotations
 
-from usvtool.errors import UsvError
+from usvtool.params import POSITIVE, Param
 from usvtool.sim.controllers.base import DynamicWindow
 from usvtool.sim.controllers.critics import (
     Critic,
@@ -43,20 +43,16 @@ from usvtool.sim.controllers.critics import (
 
 class GDWA(DynamicWindow):
     name = "gdwa"
-    defaults = {
-        "w_velocity": 0.3,
-        "w_heading": 0.06,
-        "w_distance": 0.4,
-        "w_path": 0.06,
-        "reach": None,
+    parameters = {
+        "w_velocity": Param(0.3, "the speed critic's scale (alpha)"),
+        "w_heading": Param(0.06, "the sub-goal heading critic's scale (beta)"),
+        "w_distance": Param(0.4, "the clearance critic's scale (gamma)"),
+        "w_path": Param(0.06, "the sub-goal path critic's scale (eta)"),
+        "reach": Param(None, "a route vertex within this is reached, m (null: one horizon "
+                             "at full speed)", POSITIVE),
         "sides": "iwso",
         "priority": 0.5,
-    }
-
-    def __init__(self, **params):
-        super().__init__(**params)
-        if self.params["reach"] is not None and not self.params["reach"] > 0:
-            raise UsvError(f"gdwa: reach must be > 0, not {self.params['reach']}")
+    }  # fmt: skip
 
     def critics(self) -> list[Critic]:
         p = self.params

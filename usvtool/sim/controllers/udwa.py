@@ -18,7 +18,7 @@ from usvtool.sim.controllers.dwa import DWA
 
 class UDWA(DWA):
     name = "udwa"
-    defaults = {
+    parameters = {
         "w_velocity": 0.3,
         "w_heading": 0.2,
         "w_distance": 0.5,

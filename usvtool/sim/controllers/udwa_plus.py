@@ -29,4 +29,4 @@ from usvtool.sim.controllers.udwa import UDWA
 
 class UDWAPlus(UDWA):
     name = "udwa+"
-    defaults = {**UDWA.defaults, "window": "horizon", "safe_priority": True}
+    parameters = {"window": "horizon", "safe_priority": True}  # and UDWA's

@@ -31,7 +31,8 @@ import numpy as np
 
 from usvtool.errors import UsvError
 from usvtool.grid import read_grid
-from usvtool.sim.families.base import Draw, Family, MapFile, Option, vessel_option
+from usvtool.params import NON_NEGATIVE, POSITIVE, Param
+from usvtool.sim.families.base import Draw, Family, MapFile, vessel_option
 from usvtool.tracks import read_tracks
 from usvtool.traffic import (
     KINDS,
@@ -57,20 +58,22 @@ class Ais(Family):
     kinds = KINDS
     controller = "udwa"
     max_draws = 1
-    options = {
-        "encounters": Option("", "the encounters CSV (usvtool ais encounters)", file=True),
-        "tracks": Option("", "the tracks file the encounters were found in (usvtool ais read)",
-                         file=True),  # fmt: skip
-        "own": Option("a", "the encounter's vessel the USV replaces", choices=("a", "b")),
-        "radius": Option(2000.0, "vessels within this of the own ship's track are targets, m"),
-        "pad": Option(60.0, "seconds added on each side of the encounter's window", False),
-        "min_speed": Option(1.0, "under-way: both vessels make this at first detection, kn",
-                            False),  # fmt: skip
+    parameters = {
+        "encounters": Param("", "the encounters CSV (usvtool ais encounters)", file=True,
+                            required=True),
+        "tracks": Param("", "the tracks file the encounters were found in (usvtool ais read)",
+                        file=True, required=True),
+        "own": Param("a", "the encounter's vessel the USV replaces", choices=("a", "b")),
+        "radius": Param(2000.0, "vessels within this of the own ship's track are targets, m",
+                        POSITIVE),
+        "pad": Param(60.0, "seconds added on each side of the encounter's window", NON_NEGATIVE),
+        "min_speed": Param(1.0, "under-way: both vessels make this at first detection, kn",
+                           NON_NEGATIVE),
         "vessel": vessel_option("udwa-usv"),
-        "duration": Option(0.0, "sim.duration, s (0: twice the window)", False),
-        "map": Option("", "a navigation grid with a CRS (usvtool preprocess) the scene runs on",
-                      file=True, required=False),  # fmt: skip
-    }
+        "duration": Param(0.0, "sim.duration, s (0: twice the window)", NON_NEGATIVE),
+        "map": Param("", "a navigation grid with a CRS (usvtool preprocess) the scene runs on",
+                     file=True),
+    }  # fmt: skip
     about = {"any": "scene n: the encounter of rank n (ranked by CPA)",
              "under-way": "scene n: the n-th closest encounter of two vessels under way"}
 

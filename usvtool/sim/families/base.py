@@ -1,5 +1,5 @@
-"""What every scene family shares: its options, its seeded draws, the bound on them, and the
-checks of what a scene promises (docs/families.md).
+"""What every scene family shares: its options (its parameters), its seeded draws, the bound on
+them, and the checks of what a scene promises (docs/families.md).
 
 A :class:`Family` draws a scene of one of its ``kinds`` from a generator seeded by the scene's
 number alone (:meth:`Family.generator`), checks the draw (:meth:`Family.reject`: the reason it
@@ -15,17 +15,16 @@ drawn (the scenario file holds them exactly: YAML floats round-trip).
 
 from __future__ import annotations
 
-import math
 import zlib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import ClassVar
 
 import numpy as np
 
 from usvtool import encounter
 from usvtool.errors import UsvError
+from usvtool.params import NON_NEGATIVE, POSITIVE, Param, View, check, declared
 from usvtool.sim.vessel import PRESETS
 from usvtool.yamlfile import show
 
@@ -35,29 +34,27 @@ Value = float | int | str
 Where = Callable[[str], str]
 
 
-@dataclass(frozen=True)
-class Option:
-    """A family option: its default (a number or a word), what it sets; a number must be > 0
-    (``positive``) or >= 0; a word one of ``choices`` when given. A ``file`` option names a
-    file the family reads (its default ``""``: it must be given unless it is not ``required``,
-    and the file must exist; a pipeline gives it relative to its root, and its content keys the
-    jobs)."""
-
-    default: Value
-    help: str
-    positive: bool = True
-    choices: tuple[str, ...] = ()
-    file: bool = False
-    required: bool = True  # a file option: must be given
+def Option(default: Value, help: str, positive: bool = True, choices: tuple[str, ...] = (),
+           file: bool = False, required: bool = True) -> Param:  # fmt: skip
+    """The families' older declaration of an option, still taken (a family declares a
+    :class:`usvtool.params.Param` now): a number (any, an int default too) > 0 (``positive``)
+    or >= 0; a word one of ``choices`` when given; a ``file`` option (default ``""``) names a
+    file the family reads, which must be given unless it is not ``required``."""
+    if file:
+        return Param(default, help, file=True, required=required)
+    if isinstance(default, str):
+        return Param(default, help, choices=tuple(choices))
+    return Param(default, help, POSITIVE if positive else NON_NEGATIVE, kind="number")
 
 
-def vessel_option(default: str) -> Option:
+def vessel_option(default: str) -> Param:
     """The own ship's vessel preset (:data:`usvtool.sim.vessel.PRESETS`)."""
-    return Option(default, "the own ship's vessel preset", choices=tuple(sorted(PRESETS)))
+    return Param(default, "the own ship's vessel preset", choices=tuple(sorted(PRESETS)))
 
 
-def duration_option(default: float) -> Option:
-    return Option(default, "sim.duration, s (the run stops there if the own ship has not arrived)")
+def duration_option(default: float) -> Param:
+    return Param(default, "sim.duration, s (the run stops there if the own ship has not arrived)",
+                 POSITIVE)
 
 
 class MapFile:
@@ -114,14 +111,19 @@ class Scene:
 
 
 class Family:
-    """A scene family (a subclass per family: ``name``, ``kinds``, ``options``, ``controller``,
-    :meth:`draw` and :meth:`reject`)."""
+    """A scene family (a subclass per family: ``name``, ``kinds``, ``parameters`` (its options:
+    a :class:`usvtool.params.Param` each; the older ``options`` is still read), ``controller``,
+    :meth:`draw` and :meth:`reject`). A ``file`` option names a file the family reads (its
+    default ``""``: it must be given when it is ``required``, and the file must exist; a
+    pipeline gives it relative to its root, and its content keys the jobs)."""
 
     name: ClassVar[str] = ""
     kinds: ClassVar[tuple[str, ...]] = ()
     #: False: a kind is one scene (the Imazu cases); its only scene is 0.
     seeded: ClassVar[bool] = True
-    options: ClassVar[dict[str, Option]] = {}
+    parameters: ClassVar[dict[str, Param]] = {}
+    #: The older attribute, read from :meth:`declarations` (name -> its declaration).
+    options = View(dict)
     #: The scenario's controller field: the paper's (``usvtool simulate --controller`` overrides).
     controller: ClassVar[str] = "dwa"
     max_draws: ClassVar[int] = 100
@@ -147,18 +149,16 @@ class Family:
         words = [zlib.crc32(self.name.encode()), zlib.crc32(kind.encode()), scene]
         return np.random.default_rng(np.random.SeedSequence(words))
 
+    @classmethod
+    def declarations(cls) -> dict[str, Param]:
+        """Its options: ``parameters`` (and the older ``options``) of each class from
+        :class:`Family` down (:func:`usvtool.params.declared`)."""
+        return declared(cls, ("options", "parameters"))
+
     def check_options(self, given: Mapping, where: Where) -> dict[str, Value]:
-        """Every option: ``given`` checked against :attr:`options`, the defaults filled in."""
-        out: dict[str, Value] = {}
-        for key, value in given.items():
-            if key not in self.options:
-                raise UsvError(f"{where(key)}: not an option of family {self.name} (known: "
-                               f"{', '.join(sorted(self.options))})")  # fmt: skip
-            out[key] = _checked(self.options[key], value, where(key))
-        for key, o in self.options.items():
-            if o.file and o.required and key not in out:
-                raise UsvError(f"{where(key)}: missing: {o.help} (family {self.name} reads it)")
-        return {key: out.get(key, o.default) for key, o in self.options.items()}
+        """Every option: ``given`` checked against :meth:`declarations`
+        (:func:`usvtool.params.check`, every required one given), the defaults filled in."""
+        return check(self.declarations(), given, where, f"family {self.name}", complete=True)
 
     def scene(self, kind: str, scene: int = 0, given: Mapping | None = None,
               where: Where = lambda key: f"option {key}") -> Scene:  # fmt: skip
@@ -176,8 +176,9 @@ class Family:
         opts = self.check_options(given, where)
         rng = self.generator(kind, scene)
         rejected: dict[str, int] = {}
+        declared = self.declarations()
         suffix = "".join(f"-{k}={v}" for k, v in sorted(given.items())
-                         if v != self.options[k].default and not self.options[k].file)
+                         if v != declared[k].default and not declared[k].file)
         for draws in range(1, self.max_draws + 1):
             draw = self.draw_scene(kind, scene, rng, opts)
             reason = self.reject(kind, draw, opts)
@@ -189,27 +190,6 @@ class Family:
         counts = ", ".join(f"{n} {r}" for r, n in sorted(rejected.items(), key=lambda i: -i[1]))
         raise UsvError(f"family {self.name}, kind {kind}, scene {scene}: no draw of "
                        f"{self.max_draws} keeps its promise ({counts})")  # fmt: skip
-
-
-def _checked(option: Option, value, where: str) -> Value:
-    if option.file:
-        if not isinstance(value, str) or not value:
-            raise UsvError(f"{where}: must be a file's path, not {show(value)}")
-        if not Path(value).is_file():
-            raise UsvError(f"{where}: {value}: no such file")
-        return value
-    if isinstance(option.default, str):
-        if not isinstance(value, str) or not value:
-            raise UsvError(f"{where}: must be a word, not {show(value)}")
-        if option.choices and value not in option.choices:
-            raise UsvError(f"{where}: must be one of {', '.join(option.choices)}, not "
-                           f"{show(value)}")  # fmt: skip
-        return value
-    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
-        raise UsvError(f"{where}: must be a finite number, not {show(value)}")
-    if value < 0 or (option.positive and value == 0):
-        raise UsvError(f"{where}: must be {'> 0' if option.positive else '>= 0'}, not {value:g}")
-    return value
 
 
 # ----------------------------------------------------------------------------- building scenes

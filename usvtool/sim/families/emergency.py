@@ -26,10 +26,10 @@ from __future__ import annotations
 import numpy as np
 
 from usvtool.angles import wrap180
+from usvtool.params import POSITIVE, Param
 from usvtool.sim.families.base import (
     Draw,
     Family,
-    Option,
     class_names,
     crowding,
     duration_option,
@@ -49,9 +49,9 @@ class Emergency(Family):
     name = "emergency"
     kinds = ("head-on", "crossing", "overtaking")
     controller = "udwa"
-    options = {
-        "own_speed": Option(7.0, "the own ship's speed at the start, m/s"),
-        "length": Option(15.0, "the other ships' length, m"),
+    parameters = {
+        "own_speed": Param(7.0, "the own ship's speed at the start, m/s", POSITIVE),
+        "length": Param(15.0, "the other ships' length, m", POSITIVE),
         "vessel": vessel_option("udwa-usv"),
         "duration": duration_option(150.0),
     }

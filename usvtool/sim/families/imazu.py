@@ -17,10 +17,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from usvtool.params import POSITIVE, Param
 from usvtool.sim.families.base import (
     Draw,
     Family,
-    Option,
     class_names,
     crowding,
     duration_option,
@@ -67,11 +67,13 @@ class Imazu(Family):
     seeded = False
     max_draws = 1  # one scene per case: a second draw would be the same
     controller = "udwa"
-    options = {
-        "own_speed": Option(7.0, "the own ship's speed, m/s (every target's but the overtaken)"),
-        "tcpa": Option(60.0, "the time at which every ship reaches the CPA, s"),
-        "overtaken_speed": Option(0.7, "the overtaken target's speed over the own ship's"),
-        "length": Option(15.0, "the targets' length, m"),
+    parameters = {
+        "own_speed": Param(
+            7.0, "the own ship's speed, m/s (every target's but the overtaken)", POSITIVE
+        ),
+        "tcpa": Param(60.0, "the time at which every ship reaches the CPA, s", POSITIVE),
+        "overtaken_speed": Param(0.7, "the overtaken target's speed over the own ship's", POSITIVE),
+        "length": Param(15.0, "the targets' length, m", POSITIVE),
         "vessel": vessel_option("udwa-usv"),
         "duration": duration_option(180.0),
     }

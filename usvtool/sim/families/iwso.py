@@ -32,11 +32,11 @@ import numpy as np
 from affine import Affine
 
 from usvtool.grid import NAVIGABLE, OBSTACLE, Grid
+from usvtool.params import POSITIVE, Param
 from usvtool.sim.families.base import (
     Draw,
     Family,
     MapFile,
-    Option,
     class_names,
     crowding,
     duration_option,
@@ -63,10 +63,12 @@ class Iwso(Family):
     name = "iwso"
     kinds = ("head-on", "crossing-port", "crossing-starboard", "overtaking", "static")
     controller = "gdwa"
-    options = {
-        "own_speed": Option(4.0, "the own ship's speed at the start, m/s"),
-        "length": Option(2.5, "the target's length, m"),
-        "island_max": Option(25.0, "static: the largest island radius, m (the smallest is 8)"),
+    parameters = {
+        "own_speed": Param(4.0, "the own ship's speed at the start, m/s", POSITIVE),
+        "length": Param(2.5, "the target's length, m", POSITIVE),
+        "island_max": Param(
+            25.0, "static: the largest island radius, m (the smallest is 8)", POSITIVE
+        ),
         "vessel": vessel_option("iwso-dwa-usv"),
         "duration": duration_option(150.0),
     }

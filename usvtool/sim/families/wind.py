@@ -21,10 +21,10 @@ from __future__ import annotations
 import numpy as np
 from affine import Affine
 
+from usvtool.params import NON_NEGATIVE, POSITIVE, Param
 from usvtool.sim.families.base import (
     Draw,
     Family,
-    Option,
     duration_option,
     own_ship,
     scenario,
@@ -86,11 +86,11 @@ class Wind(Family):
     name = "wind"
     kinds = ("halves", "uniform")
     controller = "udwa"
-    options = {
-        "own_speed": Option(5.0, "the own ship's speed at the start, m/s"),
-        "wind_from": Option(225.0, "the middle of the wind's directions, compass deg", False),
-        "spread": Option(180.0, "the wind comes from wind_from ± spread deg", False),
-        "ramp": Option(20.0, "halves: the width of the ramp across the line, m"),
+    parameters = {
+        "own_speed": Param(5.0, "the own ship's speed at the start, m/s", POSITIVE),
+        "wind_from": Param(225.0, "the middle of the wind's directions, compass deg", NON_NEGATIVE),
+        "spread": Param(180.0, "the wind comes from wind_from ± spread deg", NON_NEGATIVE),
+        "ramp": Param(20.0, "halves: the width of the ramp across the line, m", POSITIVE),
         "vessel": vessel_option("udwa-usv"),
         "duration": duration_option(240.0),
     }
