@@ -287,9 +287,9 @@ def _job_command(options: BatchOptions, capacity: int) -> Command:
 
 def run_batch(pipeline_path, options: BatchOptions) -> BatchResult:
     """Run every job of the pipeline not done yet in ``options.out``, then write
-    ``metrics.csv``, ``timings.csv`` (and ``metrics.parquet``) there. Raises
-    :class:`UsvError` for a bad pipeline, an executor that cannot start, or a table that
-    cannot be made; failed jobs are in the result."""
+    ``metrics.csv``, ``timings.csv``, the pipeline's ``claims.json`` (and ``metrics.parquet``)
+    there. Raises :class:`UsvError` for a bad pipeline, an executor that cannot start, or a
+    table that cannot be made; failed jobs are in the result."""
     started = time.monotonic()
     pipeline = load(pipeline_path, options.names)
     check_expansion(pipeline, options.names, options.max_memory)
@@ -323,7 +323,8 @@ def run_batch(pipeline_path, options: BatchOptions) -> BatchResult:
             measured = [j for j in done if j.kind in results_tables.METHOD_COLUMN]
             table = _measure(executor, pipeline, out, measured, options.command) if measured else {}
             metrics, timings = results_tables.rows(done, table, out)
-            parquet = results_tables.write(out / "metrics.csv", metrics, timings)
+            parquet = results_tables.write(out / "metrics.csv", metrics, timings,
+                                           pipeline.claims)  # fmt: skip
             run.stage_time["table"] = time.monotonic() - table_started
             _remove_temporaries(out)
     finally:

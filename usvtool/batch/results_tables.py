@@ -1,5 +1,6 @@
 """The batch's results tables: ``metrics.csv`` and ``timings.csv`` (the :mod:`usvtool.results`
-contract), and ``metrics.parquet`` when pyarrow is installed.
+contract), and ``metrics.parquet`` when pyarrow is installed; beside them the pipeline's
+claims, ``claims.json`` (:mod:`usvtool.pipeline`), which ``usvtool report`` judges.
 
 Routes and runs are measured by ``usvtool metrics`` commands (:func:`measure`, run by the
 workers like jobs, as many at once as the executor runs), each over every route and the runs
@@ -32,6 +33,7 @@ from usvtool.batch.jobs import Job
 from usvtool.batch.record import cannot_write
 from usvtool.batch.worker import Command, fresh_directory, in_directory, one_line
 from usvtool.errors import UsvError
+from usvtool.pipeline import ClaimSpec, claims_path, claims_text
 from usvtool.results import COLUMNS, FILES, KINDS, TIMING_METRICS, Row, timings_path, write_results
 
 #: Columns of ``usvtool metrics`` that say which job a row is, not what it measured.
@@ -138,10 +140,13 @@ def _row(job: Job, metric: str, value: str) -> Row:
     return Row(job.key, job.kind, job.case, job.method, job.seed, metric, value)
 
 
-def write(path: Path, metrics: list[Row], timings: list[Row]) -> Path | None:
-    """Write ``metrics.csv`` at ``path``, ``timings.csv`` beside it, and ``metrics.parquet``
-    when pyarrow is importable (its path, or None), renamed into place together
-    (``metrics.csv`` last)."""
+def write(path: Path, metrics: list[Row], timings: list[Row],
+          claims: tuple[ClaimSpec, ...] = ()) -> Path | None:  # fmt: skip
+    """Write ``metrics.csv`` at ``path``, ``timings.csv`` beside it, the pipeline's claims
+    beside them (``claims.json``, :func:`usvtool.pipeline.claims_text`; an empty list when it
+    declares none, so that no earlier batch's claims stay beside this table) and
+    ``metrics.parquet`` when pyarrow is importable (its path, or None), renamed into place
+    together (``metrics.csv`` last)."""
     from usvtool.atomic import staged
 
     try:
@@ -150,9 +155,11 @@ def write(path: Path, metrics: list[Row], timings: list[Row]) -> Path | None:
     except ImportError:
         pa = None
     parquet = path.with_suffix(".parquet") if pa is not None else None
-    with staged(path, timings_path(path), parquet) as (metrics_tmp, timings_tmp, parquet_tmp):
+    with staged(path, timings_path(path), claims_path(path), parquet) as (
+        metrics_tmp, timings_tmp, claims_tmp, parquet_tmp):  # fmt: skip
         write_results(metrics_tmp, metrics)
         write_results(timings_tmp, timings)
+        Path(claims_tmp).write_text(claims_text(claims), encoding="utf-8")
         if parquet_tmp is not None:
             ordered = sorted(metrics, key=lambda r: r.key)  # the CSV's order
             columns = {c: [getattr(r, c) for r in ordered] for c in COLUMNS}

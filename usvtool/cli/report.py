@@ -46,13 +46,18 @@ def report(tables, output, pdf, allow_missing, summary_path) -> None:
 
 def summary_line(summary: dict) -> str:
     """The one line ``make report`` ends with (from the summary JSON): where the report is, the
-    PDF's pages (main body and in all) and how many claims get each verdict.
+    PDF's pages (main body and in all) and how many of the papers' claims get each verdict,
+    then, when the pipelines declared any, the user's claims' (kept apart).
 
     >>> summary_line({"output": "build/report/index.html", "pdf": "build/report/report.pdf",
     ...               "pdf_pages": 41, "main_pages": 28, "pdf_hint": None,
     ...               "claims": {"holds": 3, "does not hold": 1, "not tested": 0}})
     'report: build/report/index.html and build/report/report.pdf, 28 pages of main body, 41 in \
 all; claims: 3 holds, 1 does not hold, 0 not tested'
+    >>> summary_line({"output": "r/index.html", "pdf": None, "pdf_hint": None,
+    ...               "claims": {"holds": 3}, "your_claims": {"holds": 1, "inconclusive": 1}})
+    'report: r/index.html, no PDF (--no-pdf); claims: 3 holds; your claims: 1 holds, 1 \
+inconclusive'
     """
     if summary.get("pdf"):
         where = (f"{summary['output']} and {summary['pdf']}, {summary['main_pages']} pages of "
@@ -61,7 +66,11 @@ all; claims: 3 holds, 1 does not hold, 0 not tested'
         why = "WeasyPrint cannot run: pdf_hint" if summary.get("pdf_hint") else "--no-pdf"
         where = f"{summary['output']}, no PDF ({why})"
     claims = ", ".join(f"{n} {verdict}" for verdict, n in summary["claims"].items())
-    return f"report: {where}; claims: {claims or 'none'}"
+    line = f"report: {where}; claims: {claims or 'none'}"
+    yours = summary.get("your_claims") or {}
+    if any(yours.values()):
+        line += "; your claims: " + ", ".join(f"{n} {verdict}" for verdict, n in yours.items())
+    return line
 
 
 def stage_methods() -> tuple[str, ...]:

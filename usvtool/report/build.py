@@ -23,7 +23,7 @@ from usvtool.report.data import load
 from usvtool.report.document import Section
 from usvtool.report.output import write_together
 from usvtool.report.page import PdfUnavailable, html, pdf
-from usvtool.report.sections import builders, claims
+from usvtool.report.sections import builders, claims, your_claims
 
 TITLE = "usvtool: path planning and collision avoidance, compared with the papers"
 
@@ -53,7 +53,8 @@ class ReportResult:
     pdf_bytes: int | None
     pdf_pages: int | None
     hint: str | None = None
-    verdicts: dict[str, int] = field(default_factory=dict)
+    verdicts: dict[str, int] = field(default_factory=dict)  # the papers' claims'
+    your_verdicts: dict[str, int] = field(default_factory=dict)  # the user's claims
     main_pages: int | None = None  # the PDF's pages before the appendix
     missing: list[Path] = field(default_factory=list)  # job folders reported without
 
@@ -69,6 +70,7 @@ class ReportResult:
             "figures": sum(len(s.figures()) for s in self.sections),
             "tables": sum(len(s.tables()) for s in self.sections),
             "claims": self.verdicts,
+            "your_claims": self.your_verdicts,
             "pdf_hint": self.hint,
             "missing_jobs": len(self.missing),
         }
@@ -128,7 +130,7 @@ def make_report(options: ReportOptions) -> ReportResult:
             hint = str(e)
     files = outputs(out, page, document, parts)
     write_together(files, out, remove=sorted(before - set(files)))
-    verdicts = claims.counts(parts)
     return ReportResult(out, parts, len(files[out / "index.html"]),
                         None if document is None else len(document), pages, hint,
-                        verdicts, main_pages, results.missing)  # fmt: skip
+                        claims.counts(parts), claims.counts(parts, your_claims.TABLE),
+                        main_pages, results.missing)  # fmt: skip

@@ -24,7 +24,9 @@ import numpy as np
 
 from usvtool.digest import RECORD
 from usvtool.errors import UsvError
+from usvtool.pipeline import ClaimSpec, claims_path, read_claims
 from usvtool.report import values
+from usvtool.report.papers.schema import Claim
 from usvtool.results import Row, file_name, job_dir, read_results, timings_path
 
 
@@ -117,6 +119,9 @@ class Results:
     #: The job folders that are missing, when the report goes on without them
     #: (:func:`usvtool.report.evidence.check`).
     missing: list[Path] = field(default_factory=list)
+    #: The user's claims: those of the pipelines the tables' batches ran (the ``claims.json``
+    #: beside each table, :func:`user_claims`), judged as the papers' are.
+    claims: tuple[Claim, ...] = ()
     #: The jobs by (kind, method), made by :meth:`group` on its first call.
     _by_method: dict[tuple[str, str], list[JobResults]] = field(
         default_factory=dict, init=False, repr=False, compare=False)
@@ -201,7 +206,40 @@ def load(tables, order: Sequence[str] = ()) -> Results:
             if row.key in mine and row.number is not None:
                 mine[row.key].timings[row.metric] = row.number
         jobs.update(mine)
-    return Results([jobs[k] for k in sorted(jobs)], [Path(t) for t in tables], tuple(order))
+    paths = [Path(t) for t in tables]
+    return Results([jobs[k] for k in sorted(jobs)], paths, tuple(order),
+                   claims=user_claims(paths))  # fmt: skip
+
+
+def user_claims(tables: Sequence[Path]) -> tuple[Claim, ...]:
+    """The claims of the pipelines behind ``tables``: each table's ``claims.json``
+    (:func:`usvtool.pipeline.claims_path`; none without it), in the tables' order. A claim
+    given by two tables must be the same claim: one of the same id that differs is refused,
+    naming both files and the first field that differs."""
+    found: dict[str, tuple[ClaimSpec, Path]] = {}
+    for table in tables:
+        path = claims_path(table)
+        if not path.is_file():
+            continue
+        for spec in read_claims(path):
+            if spec.id not in found:
+                found[spec.id] = (spec, path)
+                continue
+            was, where = found[spec.id]
+            if was != spec:
+                mine, theirs = spec.to_json(), was.to_json()
+                field_ = next(k for k in (*mine, *theirs) if mine.get(k) != theirs.get(k))
+                raise UsvError(f"{path}: claim {spec.id!r} is also in {where}, with another "
+                               f"{field_} ({mine.get(field_)!r}, there {theirs.get(field_)!r}): "
+                               "give each claim its own id")  # fmt: skip
+    return tuple(as_claim(spec) for spec, _ in found.values())
+
+
+def as_claim(spec: ClaimSpec) -> Claim:
+    """A user's claim (:class:`usvtool.pipeline.ClaimSpec`) as the report judges claims."""
+    return Claim(spec.id, "", (), spec.kind, spec.metric, spec.statistic, spec.better,
+                 spec.method, spec.rivals, spec.cases, target=spec.target,
+                 share=spec.share)  # fmt: skip
 
 
 def read_record(directory: Path) -> dict:

@@ -1,7 +1,11 @@
 """How the report judges a claim on our runs (docs/statistics.md): the tests, Holm's correction
-within a family of claims and the five verdicts. Nothing here writes a page: the sections
-(:mod:`.sections.claims`, :mod:`.sections.summary`) build their tables from the
-:class:`Verdict` and :class:`Test` given here.
+within a family of claims and the five verdicts, for the papers' claims
+(:data:`usvtool.report.papers.CLAIMS`, each followed by our variants of its method:
+:func:`paper_verdicts`) and the user's (a pipeline's ``claims:``,
+:attr:`usvtool.report.data.Results.claims`: :func:`user_verdicts`) alike, each source a Holm
+family of its own. Nothing here writes a page: the sections (:mod:`.sections.claims`,
+:mod:`.sections.your_claims`, :mod:`.sections.summary`, :mod:`.sections.other_methods`) build
+their tables from the :class:`Verdict` and :class:`Test` given here.
 
 A **relative** claim compares the method with each rival in each case (:func:`comparison`):
 runs paired by scene and seed (a scene family's runs: :meth:`usvtool.report.data.Results.pairs`)
@@ -20,8 +24,9 @@ fails (:data:`CHECKS`) and **not tested** when runs are missing.
 An **absolute** claim (no rivals) is counted per case by its statistic's function in
 :data:`ABSOLUTE` (``every``: the runs meeting the target, with the 95 % Clopper-Pearson
 interval of their share); it holds when every run of the method in every case meets its
-target, does not hold when one does not, and is not tested when a case has no runs. A failed
-run never meets a COLREGs target, nor does a run that judged no encounter; ``collision`` has a
+target (a user's claim may ask for a ``share`` of them: then by the interval), does not hold
+when one does not, and is not tested when a case has no runs. A failed run never meets a
+COLREGs target, nor does a run that judged no encounter; ``collision`` has a
 row only when the ship hit something (absent: 0).
 """
 
@@ -182,10 +187,11 @@ RELATIVE: dict[str, Compare] = {
 
 
 def meets(job: JobResults, claim: Claim) -> bool:
-    """Whether the run meets an absolute claim's target: its metric equal to the target (a
-    number, or the name of another metric of the run, as ``compliant`` against ``judged``). A
-    run that failed meets none (but a target on :data:`EVENTS`), nor does one whose table does
-    not say how it ended, nor one whose target metric is below 1 (nothing to judge)."""
+    """Whether the run meets an absolute claim's target: its metric at least as good as the
+    target in the claim's direction (the target a number, or the name of another metric of the
+    run, as ``compliant`` against ``judged``: for the papers' claims, equal to it). A run that
+    failed meets none (but a target on :data:`EVENTS`), nor does one whose table does not say
+    how it ended, nor one whose target metric is below 1 (nothing to judge)."""
     if not job.settled:  # no evidence of meeting it
         return False
     mine = value(job, claim.metric)
@@ -193,9 +199,15 @@ def meets(job: JobResults, claim: Claim) -> bool:
         target = value(job, claim.target)
         # a failed run, or one with nothing to judge, is no evidence of meeting it
         return (not job.failed and mine is not None and target is not None and target >= 1
-                and mine == target)  # fmt: skip
-    return mine is not None and mine == claim.target and (claim.metric in EVENTS
-                                                          or not job.failed)  # fmt: skip
+                and _reaches(mine, target, claim.better))  # fmt: skip
+    return (mine is not None and claim.target is not None
+            and _reaches(mine, float(claim.target), claim.better)
+            and (claim.metric in EVENTS or not job.failed))  # fmt: skip
+
+
+def _reaches(mine: float, target: float, better: str) -> bool:
+    """``mine`` at least as good as ``target`` when ``better`` (lower or higher) is better."""
+    return mine <= target if better == "lower" else mine >= target
 
 
 def _note(jobs: Sequence[JobResults], claim: Claim) -> str:
@@ -324,6 +336,10 @@ def _relative(claim: Claim, tests: Sequence[Test]) -> Verdict:
 
 
 def _absolute(results: Results, claim: Claim) -> Verdict:
+    """Every run in every case meets the target (``share`` 1, the papers'); for a smaller
+    ``share``, the 95 % Clopper-Pearson interval of each case's share: it holds when every
+    case's interval lies at or above ``share``, does not hold when one lies wholly below it,
+    and is inconclusive otherwise."""
     tallies, missing = [], []
     for case in claim.cases:
         jobs = results.group(claim.kind, case, claim.method)
@@ -331,10 +347,17 @@ def _absolute(results: Results, claim: Claim) -> Verdict:
             missing.append(case)
             continue
         tallies.append(ABSOLUTE[claim.statistic](case, jobs, claim))
-    if any(t.met < t.n for t in tallies):
-        verdict = FAILS
+    if claim.share >= 1:
+        short, sure = [t for t in tallies if t.met < t.n], True
     else:
-        verdict = UNTESTED if missing else HOLDS
+        short = [t for t in tallies if t.high < claim.share]
+        sure = all(t.low >= claim.share for t in tallies)
+    if short:
+        verdict = FAILS
+    elif missing:
+        verdict = UNTESTED
+    else:
+        verdict = HOLDS if sure else INCONCLUSIVE
     reason = f"no runs: {', '.join(missing)}" if missing else ""
     return Verdict(claim, verdict, reason, tallies=tuple(tallies))
 
@@ -410,3 +433,15 @@ def paper_verdicts(results: Results) -> list[Verdict]:
             )
         ]
     return _PAPERS[0][1]
+
+
+_USERS: list[tuple[Results, list[Verdict]]] = []
+
+
+def user_verdicts(results: Results) -> list[Verdict]:
+    """The user's claims (:attr:`Results.claims`: a pipeline's ``claims:``) judged as one Holm
+    family of their own, so that a user's claim never changes a verdict on the papers' (nor
+    theirs on the user's). Computed once per :class:`Results`."""
+    if not _USERS or _USERS[0][0] is not results:
+        _USERS[:] = [(results, judge_family(results, results.claims))]
+    return _USERS[0][1]

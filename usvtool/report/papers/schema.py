@@ -133,7 +133,11 @@ class Claim:
     ``"higher"``), None where it states none; empty when it states none at all. ``table``: the
     id of the paper's table of these cases, if any (it may have no column of the claim's
     metric: the text states the claim alone). ``preconditions``: what the set-up must allow
-    (:class:`Precondition`)."""
+    (:class:`Precondition`). ``target`` (an absolute claim's: a number, or another metric of
+    the same run) is met by a run whose metric is at least as good in the claim's direction;
+    ``share``: the share of the runs that must meet it (1: every run, the papers'; a user's
+    claim may ask less, docs/statistics.md). A user's claim (a pipeline's ``claims:``) has no
+    paper (``paper`` empty, no quotes)."""
 
     id: str
     paper: str
@@ -151,6 +155,7 @@ class Claim:
     note: str = ""
     paper_cases: tuple[tuple[str, ...], ...] = ()
     preconditions: tuple[Precondition, ...] = ()
+    share: float = 1.0
 
     def table_cases(self, case: str) -> tuple[str, ...]:
         """The cases of the paper's table that ``case`` (one of :attr:`cases`) stands for."""

@@ -182,19 +182,18 @@ def _test_text(t: Test) -> str:
     return f"{short} p {_p(t.p)}, {_effect(t.comparison)}"
 
 
-def _row(v: Verdict, mine: Sequence[Verdict]) -> list[Cell]:
-    """The claim's row; ``mine``: the verdicts of our variants of its method."""
+def judged(v: Verdict) -> tuple[str, str, str]:
+    """The claim's judgement in three texts of its row: ours (the medians with the IQR of each
+    side and the runs n per comparison, or the runs meeting an absolute claim's target, or a
+    digest of many comparisons), our change in per cent (- for none) and the test with its
+    corrected p and effect."""
     c = v.claim
-    quote = c.quotes[0]
-    paper = f"{PAPERS[c.paper].id} §{quote.section}: \u201c{quote.text}\u201d"
-    if (figure := paper_figure(c)) != "-":
-        paper += f" Figures: {figure}."
-    stated = ", ".join(x for x in c.paper_change if x) if c.paper_change else ""
     tests = [t for t in v.tests if t.comparison is not None]
     if v.tallies:
         ours = "; ".join(f"{t.case}: {t.met}/{t.n} ({100 * t.low:.0f}-{100 * t.high:.0f} %)"
                          for t in v.tallies) if len(v.tallies) <= LISTED else headline(v)
-        ours, change, test = ours + " runs meet it", "-", "Clopper-Pearson 95 %"
+        share = "" if c.share >= 1 else f" (asked: {100 * c.share:g} % of them)"
+        ours, change, test = ours + " runs meet it" + share, "-", "Clopper-Pearson 95 %"
     elif tests and len(v.tests) <= LISTED:
         ours, change, test = ("; ".join(_label(t, c) + f(t) for t in tests) for f in (
             _ours, lambda t: _figures(t, c), _test_text))  # fmt: skip
@@ -210,13 +209,26 @@ def _row(v: Verdict, mine: Sequence[Verdict]) -> list[Cell]:
         ours, change, test = v.reason or "-", "-", "-"
     if v.reason and (v.tests or v.tallies):
         ours += f" ({v.reason})"
+    return ours, change, test
+
+
+def _row(v: Verdict, mine: Sequence[Verdict]) -> list[Cell]:
+    """The claim's row; ``mine``: the verdicts of our variants of its method."""
+    c = v.claim
+    quote = c.quotes[0]
+    paper = f"{PAPERS[c.paper].id} §{quote.section}: \u201c{quote.text}\u201d"
+    if (figure := paper_figure(c)) != "-":
+        paper += f" Figures: {figure}."
+    stated = ", ".join(x for x in c.paper_change if x) if c.paper_change else ""
+    ours, change, test = judged(v)
     change = "; ".join([f"ours {change}"] * (change != "-") + [f"paper {stated}"] * bool(stated))
     variant = "; ".join(f"{m.claim.method}: {m.verdict}" for m in mine) or "-"
     return [Cell(c.id), Cell(paper), Cell(ours), Cell(change or "-", "num"), Cell(test),
             Cell(variant), Cell(v.verdict, CSS[v.verdict])]  # fmt: skip
 
 
-def _case_rows(vs: Sequence[Verdict]) -> list[list[Cell]]:
+def case_rows(vs: Sequence[Verdict]) -> list[list[Cell]]:
+    """Every comparison (claim x case x rival) and every absolute claim's case, a row each."""
     rows = []
     for v in vs:
         for t in v.tests:
@@ -281,7 +293,7 @@ def section(results: Results) -> Section:
         "[95 % interval] and the outcome. An absolute claim: its runs meeting the target, "
         "what the others did, and the 95 % Clopper-Pearson interval of the share.",
         ["claim, case", "medians (IQR)", "n (failed)", "our change %", "test: p, corrected",
-         "effect [95 %]", "outcome"], _case_rows(vs),
+         "effect [95 %]", "outcome"], case_rows(vs),
         placement=APPENDIX))  # fmt: skip
     return s
 

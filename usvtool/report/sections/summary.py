@@ -145,5 +145,16 @@ def section(results: Results) -> Section:
         [[Cell(v.claim.id), Cell(claims.paper_figure(v.claim, named=False), "paper"),
           Cell(claims.headline(v)), Cell(v.verdict, claims.CSS[v.verdict])]
          for v in verdicts]))  # fmt: skip
+    if yours := judging.user_verdicts(results):
+        counts = Counter(v.verdict for v in yours)
+        tally = ", ".join(f"{counts[k]} {k}" for k in judging.VERDICTS if counts[k])
+        s.blocks.append(Table(
+            "summary-your-verdicts", f"Your {len(yours)} claims: {tally}",
+            "The claims of the pipelines behind these results, judged as the papers' are, "
+            "with Holm's correction within their own family (the section Your claims gives "
+            "the tests): ours as above and the verdict.",
+            ["claim", "ours", "verdict"],
+            [[Cell(v.claim.id), Cell(claims.headline(v)), Cell(v.verdict, claims.CSS[v.verdict])]
+             for v in yours]))  # fmt: skip
     s.paragraphs.append("Caveats. " + " ".join(caveats(results, verdicts)))
     return s
