@@ -17,7 +17,7 @@ import pytest
 
 from usvtool.report import build
 from usvtool.report.page import PDF_HINT
-from usvtool.report.papers import TABLES
+from usvtool.report.papers import CLAIMS, TABLES
 
 pytestmark = pytest.mark.slow  # the report built from a batch, with its PDF
 
@@ -95,8 +95,14 @@ def test_every_table_the_report_promises_is_there_with_the_papers_numbers(report
         printed = {p for r in TABLES[paper_table].rows for p in r.printed if p}
         missing = [p for p in printed if f">{p}<" not in html]
         assert not missing, (paper_table, missing[:5])
-    assert set(summary["sections"]) == {"summary", "claims", "planning", "functions", "encounters",
-                                        "wind", "preprocessing", "methods"}  # fmt: skip
+    # the pipeline's claims before the papers'; anyangle, no paper's method, has its part
+    assert summary["sections"] == ["summary", "your-claims", "claims", "planning", "functions",
+                                   "encounters", "wind", "other-methods", "preprocessing",
+                                   "methods"]  # fmt: skip
+    for t in ("your-claims-table", "summary-your-verdicts", "other-anyangle-routes"):
+        assert t in ids, t
+    assert sum(summary["your_claims"].values()) == 2
+    assert sum(summary["claims"].values()) == len(CLAIMS)  # the papers' counted apart
 
 
 def test_each_figure_is_embedded_written_and_its_data_beside_it(report):

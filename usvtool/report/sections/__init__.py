@@ -20,18 +20,22 @@ from usvtool.report.sections import (
     encounters,
     imazu,
     methods,
+    other_methods,
     planning,
     preprocessing,
     summary,
     traffic,
     wind,
+    your_claims,
 )
 
-#: The section modules in reading order: the summary (page 1), the papers' claims, global path
-#: planning, the benchmark functions, collision avoidance in encounters, the Imazu problem, runs
-#: in wind, recorded traffic, the charts' preprocessing and the methods (last).
+#: The section modules in reading order: the summary (page 1), the user's claims (a pipeline's
+#: ``claims:``), the papers' claims, global path planning, the benchmark functions, collision
+#: avoidance in encounters, the Imazu problem, runs in wind, recorded traffic, the methods that
+#: are not the papers' (ours and plugins'), the charts' preprocessing and the methods (last).
 SECTIONS = (
     summary,
+    your_claims,
     claims,
     planning,
     benchmark_functions,
@@ -39,6 +43,7 @@ SECTIONS = (
     imazu,
     wind,
     traffic,
+    other_methods,
     preprocessing,
     methods,
 )
