@@ -341,3 +341,103 @@ def test_the_autopilot_turns_onto_a_course_within_the_limits_without_overshoot()
     assert min(headings) >= target - math.radians(1.0)  # no more than a degree past the course
     assert headings[-1] == pytest.approx(target, abs=1e-6)
     assert own.psi == 0.0
+
+
+# -- the command line ----------------------------------------------------------------------
+
+
+def exec_word(command) -> str:
+    import shlex
+
+    return "exec:" + shlex.join(map(str, command))
+
+
+def test_simulate_runs_a_program_and_writes_its_stderr_to_the_controller_log(usv, tmp_path):
+    out = tmp_path / "out"
+    out.mkdir()
+    r = usv("simulate", SCENARIOS / "env1-head-on.yaml", "--controller", exec_word(PY), "-o",
+            out / "trace.csv", "--events", out / "trace.events.json", "--controller-log",
+            out / "controller.log", "--seed", 2)  # fmt: skip
+    assert r.exit_code == 0, r.stderr
+    summary = json.loads(r.stdout)
+    assert summary["controller"] == "exec" and summary["arrived"]
+    assert summary["controller_log"] == str(out / "controller.log")
+    assert summary["parameters"]["command"] == list(map(str, PY))
+    log = (out / "controller.log").read_text().splitlines()
+    assert log[0].startswith("client.py: protocol 1, seed 2, course replies")
+    assert "client.py" not in r.stderr  # in the file, not relayed
+
+
+def test_without_a_controller_log_its_lines_are_relayed_on_stderr(usv, tmp_path):
+    r = usv("simulate", SCENARIOS / "env1-head-on.yaml", "--controller", exec_word(PY), "-o",
+            tmp_path / "trace.csv")  # fmt: skip
+    assert r.exit_code == 0, r.stderr
+    relayed = [line for line in r.stderr.splitlines() if "client.py" in line]
+    assert relayed[0].startswith("usvtool: exec: client.py: protocol 1, seed 0")
+    assert relayed[-1].startswith("usvtool: exec: client.py: end of input after")
+
+
+def test_a_failed_program_is_one_warning_line_and_a_result(usv, tmp_path):
+    pidfile = tmp_path / "pid"
+    command = [*script(tmp_path, "faulty.py", FAULTY), "crash", 7, pidfile]
+    r = usv("simulate", SCENARIOS / "env1-head-on.yaml", "--controller", exec_word(command),
+            "-o", tmp_path / "trace.csv", "--controller-log", tmp_path / "c.log")  # fmt: skip
+    assert r.exit_code == 0, r.stderr
+    assert r.stderr.count("\n") == 1
+    assert r.stderr.startswith(f"usvtool: {SCENARIOS / 'env1-head-on.yaml'}: controller failed "
+                               "at step 7 (t = 0.7 s): exec: the program exited with status 3 "
+                               "before its reply")  # fmt: skip
+    summary = json.loads(r.stdout)
+    assert not summary["arrived"] and summary["controller_failed"].startswith("step 7 ")
+    assert (tmp_path / "c.log").read_text() == "trouble ahead\n"
+    assert gone(int(pidfile.read_text()))
+
+
+def test_a_scenario_names_its_program(usv, tmp_path):
+    scenario = tmp_path / "s.yaml"
+    scenario.write_text((SCENARIOS / "env1-head-on.yaml").read_text().replace(
+        "controller: {name: gdwa}",
+        f"controller: {{name: exec, command: {json.dumps(list(map(str, PY)))}, deadline: 2, "
+        "label: py-client}"))  # fmt: skip
+    r = usv("simulate", scenario, "-o", tmp_path / "trace.csv")
+    assert r.exit_code == 0, r.stderr
+    summary = json.loads(r.stdout)
+    assert summary["controller"] == "py-client" and summary["arrived"]
+    assert summary["parameters"]["deadline"] == 2
+
+
+@pytest.mark.parametrize(("args", "why"), [
+    (["--controller", "exec:"], "exec: names no program"),
+    (["--controller", "exec:'client.py"], "No closing quotation"),
+])  # fmt: skip
+def test_a_bad_exec_word_is_a_usage_error(usv, tmp_path, args, why):
+    r = usv("simulate", SCENARIOS / "env1-head-on.yaml", *args, "-o", tmp_path / "t.csv")
+    assert r.exit_code == 2 and why in r.stderr
+    assert not (tmp_path / "t.csv").exists()
+
+
+def test_a_missing_program_is_one_error_line_and_no_output(usv, tmp_path):
+    r = usv("simulate", SCENARIOS / "env1-head-on.yaml", "--controller", "exec:no-such-client",
+            "-o", tmp_path / "t.csv")  # fmt: skip
+    assert r.exit_code == 1
+    assert r.stderr == ("Error: --controller: exec: command: program 'no-such-client' not found "
+                        "on PATH\n")  # fmt: skip
+    assert not (tmp_path / "t.csv").exists()
+
+
+IMAZU = ["05", "13", "22"]  # a head-on and a crossing; three ships; an overtaking and two more
+
+
+@pytest.mark.parametrize("which", ["python", "c"])
+def test_a_client_runs_imazu_cases(usv, tmp_path, which, request):
+    command = PY if which == "python" else [request.getfixturevalue("client_c")]
+    for kind in IMAZU:
+        out = tmp_path / kind
+        out.mkdir()
+        r = usv("simulate", "--family", "imazu", "--kind", kind, "--controller",
+                exec_word(command), "--seed", 1, "-o", out / "trace.csv", "--events",
+                out / "trace.events.json", "--scenario-out", out / "scene.yaml")  # fmt: skip
+        assert r.exit_code == 0, r.stderr
+        summary = json.loads(r.stdout)
+        assert summary["arrived"] and summary["collision"] is None, (kind, summary)
+        assert summary["closest_distance_m"] > 30  # 15 m ships: 15 m between centres is contact

@@ -27,6 +27,40 @@ from usvtool.sim.controllers import CONTROLLERS
 log = logging.getLogger(__name__)
 
 
+class ControllerChoice(click.Choice):
+    """A registered controller's name, or ``exec:PROGRAM [ARGS...]``: a program run as a
+    process (docs/protocol.md), its words split as a shell would (``shlex``), kept as given."""
+
+    def __init__(self) -> None:
+        super().__init__(list(CONTROLLERS))
+
+    def get_metavar(self, param, *args, **kwargs) -> str:
+        names = [c for c in self.choices if c != "exec"]
+        return f"[{'|'.join(names)}|exec:PROGRAM [ARGS...]]"
+
+    def convert(self, value, param, ctx):
+        if isinstance(value, str) and value.startswith("exec:"):
+            return value
+        return super().convert(value, param, ctx)
+
+
+def exec_words(controller: str | None) -> list[str] | None:
+    """The program and arguments of ``--controller exec:PROGRAM [ARGS...]`` (None for another
+    controller); a usage error for no program or unbalanced quotes."""
+    import shlex
+
+    if controller is None or not controller.startswith("exec:"):
+        return None
+    try:
+        words = shlex.split(controller.removeprefix("exec:"))
+    except ValueError as exc:
+        raise click.BadParameter(f"{controller!r}: {exc}", param_hint="'--controller'") from None
+    if not words:
+        raise click.BadParameter("exec: names no program (exec:PROGRAM [ARGS...])",
+                                 param_hint="'--controller'")  # fmt: skip
+    return words
+
+
 class FamilyChoice(click.Choice):
     """The scene families' names, their registry imported when first asked for (it brings the
     families' raster writers, which a scenario file's run does not need)."""
@@ -80,27 +114,33 @@ def make_family_scene(family: str | None, kind: str | None, scene: int, options:
 )
 @click.option(
     "--controller",
-    type=click.Choice(list(CONTROLLERS)),
-    help="The controller to run instead of the scenario's (its parameters are then dropped).",
+    type=ControllerChoice(),
+    help="The controller to run instead of the scenario's (its parameters are then dropped); "
+    "exec:PROGRAM [ARGS...] runs a program speaking docs/protocol.md (one word: quote it).",
 )
 @param_option("A controller parameter (repeatable), over the scenario's.")
 @seed_option
 @output_option("Trace CSV to write.")
 @click.option("--events", type=OutputPath(), help="Also write the events JSON.")
 @click.option("--tracks", type=OutputPath(), help="Also write the tracks GeoJSON.")
+@click.option("--controller-log", type=OutputPath(), metavar="FILE",
+              help="Write what the controller's program wrote on its stderr to FILE (with the "
+              "other outputs; empty for a built-in controller) instead of relaying it on "
+              "stderr.")  # fmt: skip
 @max_memory_option
 @summary_option
 def simulate(scenario_path: str | None, family: str | None, kind: str | None, scene_number: int,
              family_options: dict, scenario_out: str | None, controller: str | None,
              params: dict, seed: int, output: str, events: str | None, tracks: str | None,
-             max_memory: int | None, summary_path: str | None) -> None:  # fmt: skip
+             controller_log: str | None, max_memory: int | None,
+             summary_path: str | None) -> None:  # fmt: skip
     """Run SCENARIO.yaml (own ship, targets, weather, controller), or a scene of a --family,
     and write its trace to -o.
 
     All the outputs are written, or none (with --family, the scene is written first). The
     summary JSON goes to stdout.
     """
-    from usvtool.atomic import check_outputs, staged
+    from usvtool.atomic import check_outputs, staged, write_text
     from usvtool.errors import UsvError
     from usvtool.sim.controllers import make_controller
     from usvtool.sim.run import SimOptions
@@ -108,6 +148,9 @@ def simulate(scenario_path: str | None, family: str | None, kind: str | None, sc
     from usvtool.sim.scenario import controller_params, read_scenario
     from usvtool.trace import write_events, write_trace, write_tracks
 
+    program = exec_words(controller)
+    if program is not None:
+        controller, params = "exec", {**params, "command": program}
     if (scenario_path is None) == (family is None):
         raise click.UsageError("give SCENARIO.yaml or --family, one of them")
     if (scenario_out is None) != (family is None):
@@ -120,7 +163,7 @@ def simulate(scenario_path: str | None, family: str | None, kind: str | None, sc
         written = scene_files(scene, scenario_out)
     scene_outputs = [("--scenario-out", p) for p in written]
     outputs = [("-o", output), ("--events", events), ("--tracks", tracks),
-               ("--summary", summary_path)]  # fmt: skip
+               ("--controller-log", controller_log), ("--summary", summary_path)]  # fmt: skip
     check_outputs([*outputs, *scene_outputs])
     if scene is not None:
         write_scene(scene, scenario_out)
@@ -128,10 +171,15 @@ def simulate(scenario_path: str | None, family: str | None, kind: str | None, sc
     scenario = read_scenario(scenario_path)
     name = controller or scenario.controller["name"]
     controller_params(name, params, lambda key: f"--param {key}")
-    try:
-        make_controller(name, **params)  # the values, before the scenario's files are read
+    own = {k: v for k, v in scenario.controller.items() if k != "name"}
+    if name != scenario.controller["name"]:
+        own = {}  # the scenario's parameters belong to its own controller
+    try:  # the values, before the scenario's files are read
+        make_controller(name, **{**own, **params})
     except UsvError as exc:
-        raise UsvError(f"--param: {exc}") from None
+        where = "--controller" if program else "--param" if params else \
+            f"{scenario_path}: controller"  # fmt: skip
+        raise UsvError(f"{where}: {exc}") from None
     if controller and controller != scenario.controller["name"] and len(scenario.controller) > 1:
         log.info("%s: --controller %s: the parameters the scenario gives %s are not used",
                  scenario_path, controller, scenario.controller["name"])  # fmt: skip
@@ -148,15 +196,22 @@ def simulate(scenario_path: str | None, family: str | None, kind: str | None, sc
         extra["events"] = events
     if tracks:
         extra["tracks"] = tracks
-    targets = (output, events, tracks, summary_path)
-    with staged(*targets) as (trace_tmp, events_tmp, tracks_tmp, summary_tmp):
+    if controller_log:
+        extra["controller_log"] = controller_log
+    targets = (output, events, tracks, controller_log, summary_path)
+    with staged(*targets) as (trace_tmp, events_tmp, tracks_tmp, log_tmp, summary_tmp):
         write_trace(trace_tmp, result.trace)
         if events_tmp:
             write_events(events_tmp, result.events)
         if tracks_tmp:
             write_tracks(tracks_tmp, result.trace, result.crs)
+        if log_tmp:
+            write_text(log_tmp, result.controller_log or "")
         if summary_tmp:
             write_summary(summary_tmp, {**extra, **summary})
+    if not controller_log:
+        for line in (result.controller_log or "").splitlines():
+            log.warning("%s: %s", summary["controller"], line)
     if summary.get("collision"):
         log.warning("%s: the own ship collided with %s at t %g s", scenario_path,
                     summary["collision"], summary["time_s"])  # fmt: skip
