@@ -465,3 +465,17 @@ def test_the_claims_metrics_are_the_results_tables():
     assert set(CLAIM_METRICS["functions"]) == {"final_cost", "wall_time_s"}
     for metrics in CLAIM_METRICS.values():
         assert set(metrics) <= NUMBERS | BOOLEANS | {"collision"}
+
+
+def test_the_documented_claims_example_reads(tmp_path):
+    """docs/pipelines.md's example of claims is a pipeline that reads, each claim as it says."""
+    doc = (ROOT / "docs" / "pipelines.md").read_text(encoding="utf-8")
+    block = doc.split("## Claims", 1)[1].split("```yaml\n", 1)[1].split("```", 1)[0]
+    path = tmp_path / "claims.yaml"
+    path.write_text(block.replace("root: ..", f"root: {ROOT}").replace(
+        "include: report.yaml", f"include: {ROOT / 'pipelines' / 'report.yaml'}"))
+    guided, berth, safe, compliant = load(path, NAMES).claims
+    assert (guided.kind, guided.rivals, guided.statistic) == ("routes", ("iwso", "wso"), "median")
+    assert (berth.kind, berth.cases) == ("runs", ("emergency/head-on", "emergency/crossing"))
+    assert (safe.statistic, safe.target, safe.share) == ("every", 0.0, 1.0)
+    assert (compliant.target, compliant.share) == ("judged", 0.9)
