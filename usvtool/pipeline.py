@@ -55,7 +55,7 @@ RESERVED_PLAN_OPTIONS = {"seed", "attempts", "algo", "start", "goal", "start-lon
 CLAIM_METRICS: dict[str, tuple[str, ...]] = {
     "routes": ("length_m", "length_ratio", "turns", "mot", "fitness", "collision_free",
                "attempt", "planning_time_s", "wall_time_s"),
-    "runs": ("arrived", "collision", "length_m", "turns", "mot", "arrival_time_s",
+    "runs": ("arrived", "collision", "controller_failed", "length_m", "turns", "mot", "arrival_time_s",
              "closest_distance_m", "average_distance_m", "domain_intrusion_s", "encounters",
              "judged", "compliant", "compliant_excused", "noncompliant", "not_judged",
              "closest_distance_rate", "average_distance_rate", "wall_time_s"),

@@ -441,3 +441,25 @@ def test_a_client_runs_imazu_cases(usv, tmp_path, which, request):
         summary = json.loads(r.stdout)
         assert summary["arrived"] and summary["collision"] is None, (kind, summary)
         assert summary["closest_distance_m"] > 30  # 15 m ships: 15 m between centres is contact
+
+
+def test_a_failed_run_is_a_failure_in_the_metrics_table(usv, tmp_path):
+    """usvtool metrics: controller_failed True, not arrived, no arrival time, its encounters not
+    judged; a run whose program did its work has no controller_failed value."""
+    import csv
+    import io
+
+    runs = {"failed": [*script(tmp_path, "faulty.py", FAULTY), "garbage", 30, tmp_path / "pid"],
+            "fine": PY}  # fmt: skip
+    for name, command in runs.items():
+        r = usv("simulate", SCENARIOS / "env1-head-on.yaml", "--controller", exec_word(command),
+                "-o", tmp_path / f"{name}.csv", "--events", tmp_path / f"{name}.events.json")
+        assert r.exit_code == 0, r.stderr
+    r = usv("metrics", tmp_path / "failed.csv", tmp_path / "fine.csv")
+    assert r.exit_code == 0, r.stderr
+    rows = {Path(row["run"]).stem: row for row in csv.DictReader(io.StringIO(r.stdout))}
+    failed, fine = rows["failed"], rows["fine"]
+    assert (failed["controller_failed"], failed["arrived"], failed["arrival_time_s"]) == (
+        "True", "False", "")
+    assert failed["judged"] == "0" and failed["not_judged"] == failed["encounters"] == "1"
+    assert (fine["controller_failed"], fine["arrived"]) == ("", "True")

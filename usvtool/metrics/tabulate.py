@@ -37,7 +37,8 @@ from usvtool.trace import OWN, read_events, read_trace
 
 ROUTE_COLUMNS = ("chart", "algorithm", "length_m", "length_ratio", "turns", "mot", "fitness",
                  "planning_time_s", "collision_free", "attempt")  # fmt: skip
-RUN_COLUMNS = ("run", "scenario", "controller", "seed", "arrived", "collision", "length_m",
+RUN_COLUMNS = ("run", "scenario", "controller", "seed", "arrived", "collision",
+               "controller_failed", "length_m",
                "turns", "mot", "arrival_time_s", "closest_distance_m", "average_distance_m",
                "domain_intrusion_s", "encounters", "judged", "compliant", "compliant_excused",
                "noncompliant", "not_judged", "failed_rules", "excused_rules",
@@ -224,7 +225,7 @@ def _run_row(path: str, events_path: str) -> dict:
     track = np.column_stack([own_x, own_y])
     sampled = measures.track_samples(track, dt)
     arrived = run.get("arrived")
-    completed = bool(arrived) and not run.get("collision")
+    completed = bool(arrived) and not run.get("collision") and not run.get("controller_failed")
     return {
         "_kind": "run",
         "_path": path,
@@ -235,6 +236,7 @@ def _run_row(path: str, events_path: str) -> dict:
         "seed": run.get("seed"),
         "arrived": arrived,
         "collision": run.get("collision"),
+        "controller_failed": True if run.get("controller_failed") else None,
         "length_m": float(measures.path_length(track)),
         "turns": int(measures.turns(sampled)),
         "mot": float(measures.mot(sampled)),

@@ -53,7 +53,7 @@ ALPHA = 0.05
 #: The bootstrap's seed and resamples (inference.compare).
 SEED, RESAMPLES = 0, 2000
 #: Metrics with a row only when something happened (absent: 0).
-EVENTS = ("collision",)
+EVENTS = ("collision", "controller_failed")
 
 
 @dataclass(frozen=True)

@@ -31,7 +31,7 @@ NUMBERS = frozenset({
     "closest_distance_rate", "average_distance_rate",
     "final_cost", "wall_time_s", "seed",
 })  # fmt: skip
-BOOLEANS = frozenset({"collision_free", "arrived"})
+BOOLEANS = frozenset({"collision_free", "arrived", "controller_failed"})
 #: ``collision`` names what was hit (a target's name may be anything, ``12`` or ``nan``).
 WORDS = frozenset({"collision", "failed_rules", "excused_rules", "reference_controller",
                    "chart", "algorithm", "run", "scenario", "controller"})  # fmt: skip

@@ -16,9 +16,9 @@ from usvtool.report import values
 from usvtool.results import Row, read_results, timings_path
 
 #: Metrics whose row marks an event (its value names it): compared as a share of the jobs.
-EVENTS = ("collision",)
+EVENTS = ("collision", "controller_failed")
 #: Metrics whose absence from a job means "none" (no collision, no failed rule).
-ABSENT_IS_NONE = ("collision", "failed_rules")
+ABSENT_IS_NONE = ("collision", "controller_failed", "failed_rules")
 #: The distinct values an invalid group's figure shows at most.
 INVALID_SHOWN = 3
 

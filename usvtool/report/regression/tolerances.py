@@ -43,6 +43,7 @@ RULES: dict[str, Rule] = {
     # runs (RUN_COLUMNS)
     "arrived": Rule(HIGHER),
     "collision": Rule(LOWER),
+    "controller_failed": Rule(LOWER),
     "arrival_time_s": Rule(LOWER, 0.02, 0.1),
     "closest_distance_m": Rule(HIGHER, 0.02, 0.01),
     "average_distance_m": Rule(HIGHER, 0.02, 0.01),
