@@ -1,15 +1,19 @@
 """Plugins by entry points (usvtool/registry.py): a distribution installed beside usvtool (here a
 ``.dist-info`` folder and its module on PYTHONPATH, which is what ``pip install`` leaves) declares
-a controller and an optimizer under ``usvtool.controllers`` and ``usvtool.planners``; both run
-through the command line as built-in ones do, and each plugin that cannot be used (an import
+a controller, an optimizer, an exact planner and a scene family under ``usvtool.controllers``,
+``usvtool.planners`` and ``usvtool.families``; each runs through the command line as built-in
+ones do (simulate, plan with the variants, scene, a pipeline in batch -j 2 and on a Dask cluster
+of a scheduler and two workers, the same table), and each plugin that cannot be used (an import
 that fails, a class of the wrong kind, a name taken) is named in one line while the rest works."""
 
 from __future__ import annotations
 
 import json
 import os
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -22,7 +26,9 @@ GRID = ROOT / "charts" / "grid20.tif"
 
 MODULE = '''
 from usvtool.plan.optimizers.pso import PSO
+from usvtool.plan.planners import AStar
 from usvtool.sim.controllers.dwa import DWA
+from usvtool.sim.families.emergency import Emergency
 
 
 class SlowDWA(DWA):
@@ -32,6 +38,19 @@ class SlowDWA(DWA):
 
 class WidePSO(PSO):
     name = "wide-pso"
+
+
+class MyAStar(AStar):
+    """A* under another name: a plugin's exact planner, without the built-ins' +s."""
+    name = "my-astar"
+    variants = ()
+
+
+class MyEmergency(Emergency):
+    """The emergencies under another name (other scenes: the name seeds the draws), run by the
+    plugin's controller."""
+    name = "my-emergency"
+    controller = "slow-dwa"
 
 
 class NotAController:
@@ -49,6 +68,10 @@ taken = usvplug:Taken
 
 [usvtool.planners]
 wide-pso = usvplug:WidePSO
+my-astar = usvplug:MyAStar
+
+[usvtool.families]
+my-emergency = usvplug:MyEmergency
 """
 
 
@@ -194,3 +217,168 @@ def test_a_plugins_batch_jobs_run_in_workers_and_again_once_it_is_upgraded(tmp_p
     info.rename(site / "usvplug-1.3.dist-info")
     again = json.loads(usvtool(site, "batch", pipeline, "-j", 2, "-o", out).stdout)
     assert (again["done"], again["skipped"]) == (1, 1)  # the plugin's run again, dwa's kept
+
+
+def test_a_plugin_exact_planner_plans_without_a_seed_nor_variants(site, tmp_path):
+    args = ("plan", GRID, "--start", 0.5, 0.5, "--goal", 18.5, 18.5)
+    plugin = usvtool(site, *args, "--algo", "my-astar", "-o", tmp_path / "a.geojson")
+    built_in = usvtool(site, *args, "--algo", "astar", "-o", tmp_path / "b.geojson")
+    assert plugin.returncode == 0 and built_in.returncode == 0, plugin.stderr
+    a, b = (json.loads((tmp_path / f"{n}.geojson").read_text())["features"] for n in "ab")
+    assert a[0]["properties"]["algorithm"] == "my-astar" and a[0]["properties"]["seed"] is None
+    assert [f["geometry"] for f in a] == [f["geometry"] for f in b]  # A*'s route
+    for algo in ("my-astar+s", "my-astar+g"):
+        r = usvtool(site, *args, "--algo", algo, "-o", tmp_path / "c.geojson")
+        assert r.returncode == 1 and not (tmp_path / "c.geojson").exists()
+        assert r.stderr.splitlines()[-1] == (f"Error: {algo!r}: my-astar has no {algo[-2:]} "
+                                             "variant (its variants: none)")  # fmt: skip
+    listed = {m["name"]: m for m in json.loads(usvtool(site, "plugins").stdout)["methods"]}
+    mine = listed["my-astar"]
+    assert (mine["kind"], mine["distribution"], mine["parameters"]) == ("exact planner",
+                                                                        "usvplug", {})  # fmt: skip
+    assert (listed["my-emergency"]["kind"], listed["my-emergency"]["version"]) == (
+        "scene family", "1.2")  # fmt: skip
+
+
+def test_a_planners_plugin_of_neither_kind_is_named_with_both_bases(tmp_path):
+    (tmp_path / "oddplug.py").write_text("class Odd:\n    name = 'odd'\n")
+    info = tmp_path / "oddplug-0.1.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: oddplug\nVersion: 0.1\n")
+    (info / "entry_points.txt").write_text("[usvtool.planners]\nodd = oddplug:Odd\n")
+    r = usvtool(tmp_path, "plugins")
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["problems"] == [
+        "plugin odd = oddplug:Odd (oddplug 0.1, usvtool.planners): <class 'oddplug.Odd'> is not "
+        "a subclass of Optimizer or ExactPlanner"]  # fmt: skip
+
+
+PIPELINE = """root: {root}
+charts:
+  grid20: {{source: charts/grid20.geojson, options: {{cell-size: 1, no-swell: true,
+           occupancy: 0.5}}, start: [0.5, 0.5], goal: [19.5, 19.5]}}
+routes:
+  plugins:
+    charts: [grid20]
+    algorithms: [wide-pso, wide-pso+s, wide-pso+g, my-astar, astar]
+    seeds: [1]
+    options: {{pop: 10, iters: 10}}
+simulation:
+  scenarios: [tests/batch/scenarios/open-head-on.yaml]
+  controllers: [slow-dwa]
+  seeds: [1]
+families:
+  - family: my-emergency
+    kinds: [head-on]
+    scenes: [0]
+    controllers: [slow-dwa, dwa]
+    seeds: [1]
+    options: {{duration: 6}}
+functions:
+  functions: [F1]
+  algorithms: [wide-pso]
+  seeds: [1]
+  pop: 10
+  iters: 20
+  dim: 5
+"""
+#: The pipeline's jobs: the grid, 5 routes, a run, 2 family runs, a benchmark function.
+PIPELINE_JOBS = 1 + 5 + 1 + 2 + 1
+
+
+@pytest.fixture
+def dask_cluster(site, tmp_path):
+    """A ``dask scheduler`` and two ``dask worker`` processes (the dask.distributed command of
+    this environment) on this machine, on free ports, the workers with the plugin's distribution
+    on their PYTHONPATH (a plugin must be installed where the jobs run); its address. Every
+    process is stopped, its process group killed, however the test ends."""
+    distributed = pytest.importorskip("distributed", reason="dask[distributed] is not installed "
+                                      "(pip install 'usvtool[dask]')")  # fmt: skip
+    dask = Path(sys.executable).with_name("dask")
+    if not dask.exists():
+        pytest.skip(f"no {dask}")
+    env = {**os.environ, "PYTHONPATH": str(site), "DASK_DISTRIBUTED__WORKER__DAEMON": "False"}
+    where = tmp_path / "cluster"
+    where.mkdir()
+    file = where / "scheduler.json"
+    processes = []
+
+    def start(*args, log: str):
+        with open(where / log, "w") as out:
+            processes.append(subprocess.Popen([str(dask), *map(str, args)], env=env, cwd=where,
+                                              stdout=out, stderr=subprocess.STDOUT,
+                                              start_new_session=True))  # fmt: skip
+
+    try:
+        start("scheduler", "--host", "127.0.0.1", "--port", 0, "--no-dashboard",
+              "--scheduler-file", file, log="scheduler.log")  # fmt: skip
+        deadline = time.monotonic() + 30
+        while not (file.exists() and file.stat().st_size):
+            assert time.monotonic() < deadline, (where / "scheduler.log").read_text()
+            assert processes[0].poll() is None, (where / "scheduler.log").read_text()
+            time.sleep(0.1)
+        time.sleep(0.2)  # the file complete
+        address = json.loads(file.read_text())["address"]
+        for i in range(2):
+            start("worker", address, "--nworkers", 1, "--nthreads", 1, "--no-dashboard",
+                  "--host", "127.0.0.1", "--local-directory", where / f"w{i}",
+                  log=f"worker{i}.log")  # fmt: skip
+        with distributed.Client(address, timeout=30) as client:
+            client.wait_for_workers(2, timeout=30)
+        yield address
+    finally:
+        for p in processes:
+            try:
+                os.killpg(p.pid, signal.SIGTERM)
+            except ProcessLookupError:
+                pass
+        for p in processes:
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                try:
+                    os.killpg(p.pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
+                p.wait()
+
+
+def test_plugins_plan_with_their_variants_and_draw_and_run_scenes(site, tmp_path):
+    """The plugin's optimizer with its +s and +g, and its family's scene (a file), run by the
+    plugin's controller the family names."""
+    for algo in ("wide-pso", "wide-pso+s", "wide-pso+g"):
+        r = usvtool(site, "plan", GRID, "--start", 0.5, 0.5, "--goal", 18.5, 18.5, "--pop", 10,
+                    "--iters", 10, "--algo", algo, "-o", tmp_path / f"{algo}.geojson")  # fmt: skip
+        assert r.returncode in (0, 3) and json.loads(r.stdout)["algorithm"] == algo, r.stderr
+    r = usvtool(site, "scene", "--family", "my-emergency", "--kind", "head-on",
+                "--family-option", "duration=6", "-o", tmp_path / "s.yaml")  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    scene = json.loads(r.stdout)
+    assert (scene["family"], scene["name"]) == ("my-emergency",
+                                                "my-emergency-head-on-s000-duration=6")
+    r = usvtool(site, "simulate", tmp_path / "s.yaml", "-o", tmp_path / "s.csv")
+    assert r.returncode == 0 and json.loads(r.stdout)["controller"] == "slow-dwa", r.stderr
+
+
+def test_a_pipeline_of_plugins_gives_one_table_locally_and_on_a_dask_cluster(site, dask_cluster,
+                                                                             tmp_path):  # fmt: skip
+    """The plugin's controller, optimizer (and its +s, +g), exact planner and family in one
+    pipeline, in batch -j 2 and on a scheduler and two workers: the same results table, byte
+    for byte (the jobs' keys hash usvtool's code: run it on a tree nobody edits meanwhile)."""
+    pipeline = tmp_path / "plugins.yaml"
+    pipeline.write_text(PIPELINE.format(root=ROOT))
+    local = usvtool(site, "batch", pipeline, "-j", 2, "-o", tmp_path / "local")
+    assert local.returncode == 0, local.stderr
+    summary = json.loads(local.stdout)
+    assert (summary["done"], summary["failed"]) == (PIPELINE_JOBS, 0), local.stderr
+    table = (tmp_path / "local" / "metrics.csv").read_text()
+    for method in ("wide-pso", "wide-pso+s", "wide-pso+g", "my-astar", "slow-dwa"):
+        assert f",{method}," in table, method
+    assert ",my-emergency/head-on/s000," in table
+    remote = usvtool(site, "batch", pipeline, "--scheduler", dask_cluster, "-o",
+                     tmp_path / "dask")  # fmt: skip
+    assert remote.returncode == 0, remote.stderr
+    summary = json.loads(remote.stdout)
+    assert summary["executor"].startswith(f"dask {dask_cluster}, 2 worker threads")
+    assert (summary["done"], summary["failed"]) == (PIPELINE_JOBS, 0), remote.stderr
+    assert (tmp_path / "dask" / "metrics.csv").read_bytes() == table.encode()
