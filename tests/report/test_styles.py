@@ -1,7 +1,9 @@
 """The style registry (usvtool/report/figures/styles.py): every registered method distinct and
 colour-blind safe by construction, the 15 planning methods in three families, the same style for
-a method whatever its place in a figure, a deterministic fallback that never looks registered,
-and font sizes that print at >= 7 pt at the report's width."""
+a method whatever its place in a figure, a style of its own for every other method of the
+registries' order the report is given (a plugin's, and their variants), a deterministic
+fallback that never looks registered, and font sizes that print at >= 7 pt at the report's
+width."""
 
 from __future__ import annotations
 
@@ -54,6 +56,7 @@ def test_every_built_in_method_of_the_registries_has_a_style_of_its_own():
     shipped = {name for registry in (OPTIMIZERS, CONTROLLERS) for name in registry
                if registry.origin(name)[0] == BUILT_IN}  # fmt: skip
     shipped.discard("exec")  # a program's runs are named by its label, drawn as a plugin's
+    shipped.discard("policy")  # a trained policy (docs/gym.md), drawn as a plugin's, as exec
     assert shipped | set(EXACT) | {"iwso+s", "iwso+g"} <= set(S.REGISTRY)
 
 
@@ -132,3 +135,108 @@ def test_every_font_prints_at_least_7_pt(width):
     assert len(sizes) == len(S.PRINTED_PT)
     assert min(sizes) * printed / width >= S.MIN_FONT_PT - 0.01
     assert rc["savefig.dpi"] == S.DPI
+
+
+@pytest.fixture
+def order():
+    """The order usvtool report passes (the stages' registries) with a plugin's optimizer, exact
+    planner and controller in their places; the styles assigned from it, reset afterwards."""
+    from usvtool.cli.report import stage_methods
+
+    methods = list(stage_methods())
+    cut = methods.index("anyangle")
+    methods[cut:cut] = ["wide-pso"]  # a plugin optimizer: after the built-in ones
+    methods.insert(methods.index("dwa"), "my-astar")  # a plugin exact planner
+    methods.append("slow-dwa")  # a plugin controller
+    S.assign(methods)
+    yield methods
+    S.assign(())
+
+
+def test_a_method_without_a_hand_chosen_style_gets_one_of_its_own_from_the_order(order):
+    """No hand-written list to keep up: every method of the registries (a plugin's, exec) and
+    every optimizer's +s and +g has a style, distinct from every other and from the ships'."""
+    optimizers = order[:order.index("anyangle")]
+    names = [*order, *(f"{m}{v}" for m in optimizers for v in ("+s", "+g"))]
+    looks = {m: key(S.style(m)) for m in names}
+    ships = {key(S.style(f"target{k}")) for k in range(1, 7)} | {key(S.style("own"))}
+    assert len(set(looks.values())) == len(names) and not set(looks.values()) & ships
+    for m in ("wide-pso", "my-astar", "slow-dwa", "exec"):
+        s = S.style(m)
+        assert (s.family, s.label, s.linestyle) == (S.ASSIGNED_FAMILY, m, "-")
+        assert s.color in S.FALLBACK_COLOURS and s.marker in S.FALLBACK_MARKERS
+    # a plugin optimizer's variants: its colour and marker, a line of the variant's own
+    plain, short, guided = map(S.style, ("wide-pso", "wide-pso+s", "wide-pso+g"))
+    assert plain.color == short.color == guided.color and plain.marker == guided.marker
+    assert (short.linestyle, guided.linestyle) == (S.VARIANT_LINES["+s"], S.VARIANT_LINES["+g"])
+    assert S.ordered(["slow-dwa", "wide-pso+g", "dwa", "wide-pso", "iwso"]) == [
+        "iwso", "dwa", "wide-pso", "wide-pso+g", "slow-dwa"]  # fmt: skip
+    before = {m: S.style(m) for m in order}
+    S.assign(list(order))  # the same order: the same styles
+    assert {m: S.style(m) for m in order} == before
+
+
+def test_48_methods_of_the_order_are_told_apart_and_the_others_fall_back():
+    names = [f"plugin-{i}" for i in range(48)]
+    try:
+        S.assign(["iwso", *names, "dwa"])
+        looks = [key(S.style(m)) for m in names]
+        assert len(set(looks)) == 48 and not set(looks) & {key(s) for s in S.REGISTRY.values()}
+        assert [S.style(m).color for m in names[:8]] == list(S.FALLBACK_COLOURS)  # by place
+        stranger = S.style("a-label-of-exec")  # not of the order: the name's fallback
+        assert stranger.family == S.FALLBACK_FAMILY and key(stranger) not in looks
+    finally:
+        S.assign(())
+    assert S.style("plugin-0").family == S.FALLBACK_FAMILY  # dropped with the order
+
+
+def test_make_report_styles_the_methods_of_the_order_it_is_given(monkeypatch, tmp_path):
+    """ReportOptions.order (usvtool report gives the registries') decides the styles before
+    any figure is drawn."""
+    from types import SimpleNamespace
+
+    from usvtool.report import build
+
+    seen = {}
+
+    class Drawn(Exception):
+        pass
+
+    def sections(results, workers):
+        seen.update({m: S.style(m) for m in ("wide-pso", "slow-dwa")})
+        raise Drawn
+
+    monkeypatch.setattr(build, "load", lambda tables, order: SimpleNamespace(missing=[]))
+    monkeypatch.setattr(build.evidence, "check", lambda results, allow: [])
+    monkeypatch.setattr(build, "sections", sections)
+    try:
+        with pytest.raises(Drawn):
+            build.make_report(build.ReportOptions(("metrics.csv",), str(tmp_path / "report"),
+                                                  order=("iwso", "wide-pso", "dwa",
+                                                         "slow-dwa")))  # fmt: skip
+    finally:
+        S.assign(())
+    assert seen["wide-pso"].family == seen["slow-dwa"].family == S.ASSIGNED_FAMILY
+    assert key(seen["wide-pso"]) != key(seen["slow-dwa"])
+
+
+def test_a_figure_draws_a_plugin_method_in_its_style(order, monkeypatch):
+    import matplotlib.axes
+
+    from usvtool.report.figures.statistics import convergence
+
+    drawn = {}
+    plot = matplotlib.axes.Axes.plot
+
+    def spy(ax, *args, **kwargs):
+        drawn[kwargs.get("label", "").split(" (")[0]] = (kwargs.get("color"),
+                                                          kwargs.get("linestyle"),
+                                                          kwargs.get("marker"))  # fmt: skip
+        return plot(ax, *args, **kwargs)
+
+    monkeypatch.setattr(matplotlib.axes.Axes, "plot", spy)
+    curves = {m: [[3.0, 2.0, 1.0], [3.0, 2.5, 1.5]] for m in ("pso", "wide-pso", "wide-pso+s")}
+    convergence(curves, "plugins")
+    assert drawn == {m: (S.style(m).color, S.style(m).linestyle, S.style(m).marker)
+                     for m in curves}  # fmt: skip
+    assert len(set(drawn.values())) == 3

@@ -21,6 +21,7 @@ from usvtool.errors import UsvError
 from usvtool.report import evidence, manifest
 from usvtool.report.data import load
 from usvtool.report.document import Section
+from usvtool.report.figures import styles
 from usvtool.report.output import write_together
 from usvtool.report.page import PdfUnavailable, html, pdf
 from usvtool.report.sections import builders, claims, your_claims
@@ -117,6 +118,7 @@ def make_report(options: ReportOptions) -> ReportResult:
     before = manifest.previous(out)  # refused before the work when it is not the report's
     results = load(options.tables, options.order)
     results.missing = evidence.check(results, options.allow_missing)
+    styles.assign(options.order)  # a method without a hand-chosen style gets its own
     parts = sections(results, options.workers or min(os.cpu_count() or 1, 4))
     subtitle = (f"{len(results.jobs)} jobs from {len(results.tables)} results table(s): "
                 "every optimizer on every chart, every controller in every encounter, beside "

@@ -11,10 +11,18 @@ family first, in line style and marker (grey print keeps the family), then by co
 - our variants (of IWSO, and SSA's redraw): dashed, squares;
 - the exact planners: dash-dot, diamonds.
 
-A method not in the registry (a user's new optimizer) gets a style derived from its name's
-SHA-256: a colour of Tol's *light* scheme and a marker no registered method uses, on a
-dash-dot-dot line of its own, so it is the same in every run and never mistaken for a
-registered method.
+These hand-chosen styles are the built-in methods' (:data:`REGISTRY`). Every other method of
+the stages' registries (a plugin's optimizer, exact planner or controller; ``exec``) gets one
+from the order the report is given (``ReportOptions.order``, the registries' names:
+:func:`assign`, which :func:`usvtool.report.build.make_report` calls): the ``k``-th of them
+without a hand-chosen style takes colour ``k mod 8`` of Tol's *light* scheme (no hand-chosen
+style uses it) and marker ``k div 8`` of six no hand-chosen style uses, on a solid line, so 48
+such methods are told apart, and none is mistaken for a built-in one. A variant of a method
+(``NAME+s``, ``NAME+g``) without a hand-chosen style takes its method's colour and marker on a
+line of the variant's own (:data:`VARIANT_LINES`). A name the order does not hold (a program's
+label, a method of a plugin not installed here) gets a style derived from its name's SHA-256:
+the same palette on a dash-dot-dot line of its own, the same in every run. The report imports
+no other stage: the order is all it knows of the registries.
 
 Print size: the report's page (templates/style.css: A4, margins 16 mm x 14 mm) shows a figure
 ``max-width: 100%`` of the 182 mm text width, and WeasyPrint takes a PNG at 96 px an inch; a
@@ -26,6 +34,7 @@ figure ``w`` inches wide at :data:`DPI` prints ``min(w * DPI / 96, 182 mm)`` wid
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 #: Resolution of every figure's PNG (dots an inch of the figure's size).
@@ -96,13 +105,20 @@ CONTROLLERS = {
 #: (vermillion first, the papers' red obstacle ship).
 OWN_SHIP = "#0072B2"
 TARGETS = ("#D55E00", "#AA3377", "#CCBB44", "#66CCEE", "#BBBBBB", "#228833")
-#: The fallback: Tol's light scheme (no registered colour), markers no registered style uses,
-#: and a line style of its own.
+#: The methods without a hand-chosen style: Tol's light scheme (no hand-chosen colour), markers
+#: no hand-chosen style uses; a method of the order on a solid line (:func:`assign`), a name
+#: outside it on a line style of its own.
 FALLBACK_COLOURS = ("#77AADD", "#EE8866", "#EEDD88", "#FFAABB", "#99DDFF", "#44BB99",
                     "#BBCC33", "#AAAA00")  # fmt: skip
 FALLBACK_MARKERS = ("<", ">", "h", "p", "8", "H")
 FALLBACK_LINESTYLE = (0, (4, 1.5, 1, 1.5, 1, 1.5, 1, 1.5))
 FALLBACK_FAMILY = "unregistered"
+ASSIGNED_LINESTYLE = "-"
+ASSIGNED_FAMILY = "other method"
+#: The line of a variant without a hand-chosen style (its method's colour and marker), by its
+#: suffix; another suffix takes :data:`OTHER_VARIANT_LINE`. No hand-chosen style uses them.
+VARIANT_LINES = {"+s": (0, (6, 2)), "+g": (0, (1, 1.5))}
+OTHER_VARIANT_LINE = (0, (6, 2, 1, 2))
 
 
 def _registry() -> dict[str, Style]:
@@ -116,15 +132,45 @@ def _registry() -> dict[str, Style]:
     return styles
 
 
-#: Every registered method's style, by name.
+#: Every hand-chosen style (the built-in methods', the ships'), by name.
 REGISTRY: dict[str, Style] = _registry()
+#: The styles :func:`assign` gave the methods of the order without a hand-chosen one.
+_ASSIGNED: dict[str, Style] = {}
+
+
+def assign(order: Sequence[str]) -> None:
+    """Give each method of ``order`` (the stages' registries' names in their order, as
+    ``usvtool report`` passes them) without a hand-chosen style one of its own, by its place
+    among those (the module's docstring); the styles assigned before are dropped. Called once a
+    report, before its figures (drawn in forked processes, which inherit them).
+
+    >>> assign(["iwso", "mine", "astar", "yours"])
+    >>> [(s.color, s.marker) for s in map(style, ["mine", "yours"])]
+    [('#77AADD', '<'), ('#EE8866', '<')]
+    >>> assign(())
+    """
+    _ASSIGNED.clear()
+    others = [m for m in dict.fromkeys(order) if m not in REGISTRY]
+    n = len(FALLBACK_COLOURS)
+    for k, method in enumerate(others):
+        marker = FALLBACK_MARKERS[k // n % len(FALLBACK_MARKERS)]
+        _ASSIGNED[method] = Style(FALLBACK_COLOURS[k % n], ASSIGNED_LINESTYLE, marker,
+                                  ASSIGNED_FAMILY, method)  # fmt: skip
 
 
 def style(method: str) -> Style:
-    """The style of ``method``: its registered one, else the fallback derived from its name
-    (deterministic: the same name gives the same style in every process)."""
-    if method in REGISTRY:
-        return REGISTRY[method]
+    """The style of ``method``: its hand-chosen one, else the one :func:`assign` gave it, else,
+    for a variant ``NAME+x`` of a method with one of those, that method's colour and marker on
+    the variant's line, else the fallback derived from its name (deterministic: the same name
+    gives the same style in every process)."""
+    found = REGISTRY.get(method) or _ASSIGNED.get(method)
+    if found is not None:
+        return found
+    base, plus, suffix = method.rpartition("+")
+    inner = (REGISTRY.get(base) or _ASSIGNED.get(base)) if plus and base else None
+    if inner is not None:
+        line = VARIANT_LINES.get(plus + suffix, OTHER_VARIANT_LINE)
+        return Style(inner.color, line, inner.marker, inner.family, method)
     digest = int.from_bytes(hashlib.sha256(method.encode("utf-8")).digest()[:8], "big")
     colour = FALLBACK_COLOURS[digest % len(FALLBACK_COLOURS)]
     marker = FALLBACK_MARKERS[digest // len(FALLBACK_COLOURS) % len(FALLBACK_MARKERS)]
@@ -132,15 +178,25 @@ def style(method: str) -> Style:
 
 
 def ordered(methods) -> list[str]:
-    """``methods`` in the registry's order (families together: the papers' optimizers, our
-    variants, the exact planners, then the controllers), unregistered ones after, as given.
+    """``methods`` in the styles' order (families together: the papers' optimizers, our
+    variants, the exact planners, the controllers, then the methods :func:`assign` styled, each
+    variant without a style of its own after its method), the others after, as given.
 
-    >>> ordered(["astar", "mine", "iwso+s", "wso"])
-    ['wso', 'iwso+s', 'astar', 'mine']
+    >>> ordered(["astar", "mine", "iwso+s", "wso", "pso+g", "pso"])
+    ['wso', 'pso', 'pso+g', 'iwso+s', 'astar', 'mine']
     """
-    rank = {name: i for i, name in enumerate(REGISTRY)}
+    rank = {name: i for i, name in enumerate([*REGISTRY, *_ASSIGNED])}
     methods = list(methods)
-    return sorted(methods, key=lambda m: (rank.get(m, len(rank)), methods.index(m)))
+
+    def key(m: str) -> tuple:
+        if m in rank:
+            return (rank[m], "", methods.index(m))
+        base, plus, suffix = m.rpartition("+")
+        if plus and base in rank:
+            return (rank[base], plus + suffix, methods.index(m))
+        return (len(rank), "", methods.index(m))
+
+    return sorted(methods, key=key)
 
 
 def ship_styles(ships) -> dict[str, Style]:
