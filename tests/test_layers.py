@@ -13,8 +13,11 @@ from pathlib import Path
 import pytest
 
 PACKAGE = Path(__file__).resolve().parent.parent / "usvtool"
+#: The layers on top of the stages, which may import any of them: the command line, and the
+#: Gymnasium environment (the gym extra), which no module of usvtool imports.
+TOP = ("cli", "gym")
 STAGES = sorted(
-    p.name for p in PACKAGE.iterdir() if (p / "__init__.py").is_file() and p.name != "cli"
+    p.name for p in PACKAGE.iterdir() if (p / "__init__.py").is_file() and p.name not in TOP
 )
 
 
@@ -42,9 +45,22 @@ def test_a_stage_imports_no_other_stage_nor_the_cli(stage):
         f"{p.relative_to(PACKAGE.parent)} imports usvtool.{name}"
         for p in (PACKAGE / stage).rglob("*.py")
         for name in usvtool_imports(p)
-        if name != stage and (name in STAGES or name == "cli")
+        if name != stage and (name in STAGES or name in TOP)
     }
     assert not bad
+
+
+def test_nothing_imports_the_gymnasium_environment():
+    """usvtool.gym needs gymnasium (an optional extra): no other module imports it, so that
+    usvtool works without gymnasium (tests/gym/test_policy.py runs a policy without it)."""
+    bad = {
+        str(p.relative_to(PACKAGE.parent))
+        for p in PACKAGE.rglob("*.py")
+        if p.relative_to(PACKAGE).parts[0] != "gym" and "gym" in usvtool_imports(p)
+    }
+    assert not bad
+    used = {name for p in (PACKAGE / "gym").rglob("*.py") for name in usvtool_imports(p)}
+    assert used & {*STAGES, "cli"} == {"sim"}  # the scenes and the run, nothing else
 
 
 def test_the_contracts_import_no_stage():
@@ -52,6 +68,6 @@ def test_the_contracts_import_no_stage():
         f"{p.name} imports usvtool.{name}"
         for p in PACKAGE.glob("*.py")
         for name in usvtool_imports(p)
-        if name in STAGES or name == "cli"
+        if name in STAGES or name in TOP
     }
     assert not bad
