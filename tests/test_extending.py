@@ -1,7 +1,7 @@
-"""Extension in one place (docs/extending.md): an optimizer and a controller added through their
-registries' ``register`` functions alone, in this process, then seen to plan and run through
-the API and the command line, to be known to the pipelines and the report, and to appear in the
-report's tables built from a tiny results table holding them."""
+"""Extension in one place (docs/extending.md): an optimizer, an exact planner and a controller
+added through their registries' ``register`` functions alone, in this process, then seen to plan
+and run through the API and the command line, to be known to the pipelines and the report, and
+to appear in the report's tables built from a tiny results table holding them."""
 
 from __future__ import annotations
 
@@ -15,10 +15,13 @@ from affine import Affine
 from click.testing import CliRunner
 
 from usvtool.cli import cli
+from usvtool.errors import UsvError
 from usvtool.grid import Grid, write_grid
-from usvtool.plan import optimizers
-from usvtool.plan.optimizers.base import Optimizer, Range
+from usvtool.params import Param, Range
+from usvtool.plan import exact, optimizers
+from usvtool.plan.optimizers.base import Optimizer
 from usvtool.plan.planner import PlanOptions, plan_route
+from usvtool.plan.planners import EXACT, ExactPlanner, Planned
 from usvtool.results import Row, write_results
 from usvtool.sim import controllers
 from usvtool.sim.controllers.base import Controller, Decision
@@ -30,8 +33,8 @@ class RandomSearch(Optimizer):
     """Random search: every iteration draws a share of the population uniformly in the box."""
 
     name = "random"
-    defaults = {"share": 1.0}
-    ranges = {"share": Range(0.0, 1.0, open_low=True)}
+    parameters = {"share": Param(1.0, "the share of the population drawn each iteration",
+                                 Range(0.0, 1.0, open_low=True))}
 
     def _run(self) -> None:
         self.evaluate(self.uniform())
@@ -39,6 +42,18 @@ class RandomSearch(Optimizer):
         for t in range(self.iters):
             self.evaluate(self.uniform(drawn))
             self.record(t)
+
+
+class EightConnected(ExactPlanner):
+    """A* on the 8-connected grid, as usvtool's astar; a plugin's own search goes here."""
+
+    name = "my-astar"
+
+    def plan(self, request) -> Planned:
+        cells = exact.astar(request.problem.grid.blocked, request.start, request.goal)
+        if cells is None:
+            raise UsvError(f"{self.name}: no route found between start and goal")
+        return Planned(cells, {})
 
 
 class StraightToGoal(Controller):
@@ -69,9 +84,11 @@ SCENARIO = {
 @pytest.fixture(scope="module")
 def registered():
     optimizers.register(RandomSearch)
+    EXACT.register(EightConnected)
     controllers.register(StraightToGoal)
     yield
     optimizers.unregister("random")
+    EXACT.unregister("my-astar")
     controllers.unregister("straight")
 
 
@@ -115,6 +132,19 @@ def test_the_optimizer_plans_through_the_api(registered, files, reference, algo)
     assert route.collision_free == reference(grid.blocked).route_free(np.column_stack([col, row]))
     again = plan_route(grid, START, GOAL, options).route
     assert np.array_equal(again.points, route.points)  # the seed decides
+
+
+def test_the_exact_planner_plans_as_astar_without_a_seed_nor_variants(registered, files):
+    from usvtool.grid import read_grid
+
+    grid = read_grid(files / "grid.tif")
+    mine = plan_route(grid, START, GOAL, PlanOptions("my-astar", seed=4)).route
+    astar = plan_route(grid, START, GOAL, PlanOptions("astar")).route
+    assert mine.algorithm == "my-astar" and mine.seed is None and mine.collision_free
+    assert np.array_equal(mine.points, astar.points)
+    with pytest.raises(UsvError, match=r"^'my-astar\+s': my-astar has no \+s variant \(its "
+                                       r"variants: none\)$"):  # fmt: skip
+        plan_route(grid, START, GOAL, PlanOptions("my-astar+s"))
 
 
 def test_the_optimizer_plans_through_the_command_line(registered, files):
@@ -172,7 +202,7 @@ def test_the_pipelines_and_the_report_know_both(registered, files):
     assert p.function_jobs() == [("F1", "random", 1)]
     order = stage_methods()
     assert order.index("boa") < order.index("random") < order.index("anyangle")
-    assert order[-1] == "straight"
+    assert order.index("udwa+") < order.index("straight")  # after the built-in ones
 
 
 def test_the_report_tables_show_both(registered, files, tmp_path):
