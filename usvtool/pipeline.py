@@ -28,7 +28,9 @@ from __future__ import annotations
 import glob
 import json
 import math
+import os
 import re
+import shutil
 from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -50,15 +52,16 @@ RESERVED_PLAN_OPTIONS = {"seed", "attempts", "algo", "start", "goal", "start-lon
                          "goal-lonlat", "timing", "no-timing"}  # fmt: skip
 
 #: The metrics a claim may judge, per kind of job: the results table's (``usvtool metrics``'
-#: columns that are numbers or True/False, ``collision`` as an event: 1 when the run hit
-#: something, else 0; a function's ``final_cost``) and the timings (docs/metrics.md).
+#: columns that are numbers or True/False, ``collision`` and ``controller_failed`` as events:
+#: 1 when the run hit something or its controller failed, else 0; a function's
+#: ``final_cost``) and the timings (docs/metrics.md).
 CLAIM_METRICS: dict[str, tuple[str, ...]] = {
     "routes": ("length_m", "length_ratio", "turns", "mot", "fitness", "collision_free",
                "attempt", "planning_time_s", "wall_time_s"),
-    "runs": ("arrived", "collision", "controller_failed", "length_m", "turns", "mot", "arrival_time_s",
-             "closest_distance_m", "average_distance_m", "domain_intrusion_s", "encounters",
-             "judged", "compliant", "compliant_excused", "noncompliant", "not_judged",
-             "closest_distance_rate", "average_distance_rate", "wall_time_s"),
+    "runs": ("arrived", "collision", "controller_failed", "length_m", "turns", "mot",
+             "arrival_time_s", "closest_distance_m", "average_distance_m", "domain_intrusion_s",
+             "encounters", "judged", "compliant", "compliant_excused", "noncompliant",
+             "not_judged", "closest_distance_rate", "average_distance_rate", "wall_time_s"),
     "functions": ("final_cost", "wall_time_s"),
 }  # fmt: skip
 #: The statistics a relative claim may be stated by (judged by where the runs lie; a variance
@@ -72,6 +75,9 @@ CLAIM_FIELDS = {"id", "method", "rivals", "metric", "better", "statistic", "case
                 "target", "share"}  # fmt: skip
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
+#: The controller that runs a program (usvtool.sim.controllers.process): a list of controllers
+#: names the program instead (:class:`Program`).
+EXEC = "exec"
 _OPTION = re.compile(r"^[a-z][a-z0-9-]*$")
 _FAMILY_OPTION = re.compile(r"^[a-z][a-z0-9_]*$")
 #: Options as (name, value) pairs: a command's as written, a family's sorted.
@@ -194,6 +200,22 @@ def route_case(chart: str, label: str | None) -> str:
 
 
 @dataclass(frozen=True)
+class Program:
+    """A controller that is a program run as a process (``exec``, docs/protocol.md), given in a
+    list of controllers as ``{name: NAME, exec: [PROGRAM, ARGS...], params: {...}}``: ``name``,
+    its runs' method (the exec controller's label); ``command``, the program and its arguments,
+    a word naming a file relative to the root as that file's absolute :class:`Path` (the
+    program must be one when it holds a ``/``, else a name found on ``PATH``); ``params``, the
+    exec controller's further parameters (``deadline``, ...), sorted. A job's key holds the
+    content of every file of the command (a rebuilt program runs its jobs again:
+    docs/pipelines.md)."""
+
+    name: str
+    command: tuple[str | Path, ...]
+    params: OptionPairs = ()
+
+
+@dataclass(frozen=True)
 class SimulationMatrix:
     """Every scenario file with every controller at every seed."""
 
@@ -201,6 +223,7 @@ class SimulationMatrix:
     controllers: tuple[str, ...]
     seeds: tuple[int, ...]
     reference_controller: str | None = None  # the optimisation rates' reference
+    programs: tuple[Program, ...] = ()  # the controllers that are programs, by name
 
 
 @dataclass(frozen=True)
@@ -216,11 +239,13 @@ class FamilyEntry:
     seeds: tuple[int, ...]
     options: tuple[tuple[str, object], ...] = ()  # the family's options as given, sorted; a
     # file it reads: its absolute Path
+    programs: tuple[Program, ...] = ()  # the controllers that are programs, by name
 
 
 @dataclass(frozen=True)
 class FamilyJob:
-    """One run of a scene of a family: ``usvtool simulate --family ...``."""
+    """One run of a scene of a family: ``usvtool simulate --family ...``; ``program`` when its
+    controller is a program (:class:`Program`)."""
 
     entry: str
     family: str
@@ -229,6 +254,7 @@ class FamilyJob:
     controller: str
     seed: int
     options: tuple[tuple[str, object], ...]
+    program: Program | None = None
 
     @property
     def case(self) -> str:
@@ -414,10 +440,17 @@ class Pipeline:
             if not e.kinds:
                 raise UsvError(f"{self.path}: families.{e.name}: its kinds are not known (read "
                                "the pipeline with the stages' names)")  # fmt: skip
-            jobs += [FamilyJob(e.name, e.family, kind, scene, c, seed, e.options)
+            programs = {p.name: p for p in e.programs}
+            jobs += [FamilyJob(e.name, e.family, kind, scene, c, seed, e.options,
+                               programs.get(c))
                      for kind in e.kinds for scene in e.scenes for c in e.controllers
                      for seed in e.seeds]  # fmt: skip
         return jobs
+
+    def program(self, controller: str) -> Program | None:
+        """The program a controller of the simulation matrix is (None: a registered one)."""
+        s = self.simulation
+        return next((p for p in (s.programs if s else ()) if p.name == controller), None)
 
     def function_jobs(self) -> list[tuple[str, str, int]]:
         """(function, algorithm, seed) for every cell of the function matrix."""
@@ -582,6 +615,13 @@ def _load(path: Path, names: Names | None, including: tuple[Path, ...]) -> Pipel
                                                                   names)  # fmt: skip
     if not including and not (routes or simulation or functions or families):
         r.fail("routes", "missing: a pipeline needs routes, simulation, families or functions")
+    programs = {}  # one program a name, through the whole pipeline
+    for where, entry in [("simulation", simulation)] * bool(simulation) + [
+            (f"families[{i}]", e) for i, e in enumerate(families)]:  # fmt: skip
+        for program in entry.programs:
+            if programs.setdefault(program.name, program) != program:
+                r.fail(f"{where}.controllers", f"{program.name!r} names another program "
+                       "elsewhere in the pipeline (give it a name of its own)")  # fmt: skip
     pipeline = Pipeline(path, root, charts, routes, simulation, functions, families)
     if data.get("claims") is None:
         return pipeline
@@ -702,14 +742,14 @@ def _simulation(r: _Reader, root: Path, entry, names) -> SimulationMatrix:
         if stem in stems:
             r.fail("simulation.scenarios", f"{f} and {stems[stem]} share the name {stem!r}")
         stems[stem] = f
-    controllers = r.names(sm["controllers"], "simulation.controllers", "controller",
-                          _known(names, "controller"))  # fmt: skip
+    controllers, programs = _controllers(r, sm["controllers"], "simulation.controllers", root,
+                                         names)  # fmt: skip
     reference = sm.get("reference_controller")
     if reference is not None and reference not in controllers:
         r.fail("simulation.reference_controller", f"{_show(reference)} is not one of the "
                f"controllers ({', '.join(controllers)})")  # fmt: skip
     sim_seeds = r.seeds(sm["seeds"], "simulation.seeds")
-    return SimulationMatrix(files, controllers, sim_seeds, reference)
+    return SimulationMatrix(files, controllers, sim_seeds, reference, programs)
 
 
 def _functions(r: _Reader, entry, names) -> FunctionMatrix:
@@ -763,12 +803,70 @@ def _families(r: _Reader, root: Path, value,
             r.fail(f"{where}.scenes", "missing (the scenes' seeds: a list or {first: F, count: N})")
         else:
             scenes = (0,)
-        controllers = r.names(e["controllers"], f"{where}.controllers", "controller",
-                              _known(names, "controller"))  # fmt: skip
+        controllers, programs = _controllers(r, e["controllers"], f"{where}.controllers", root,
+                                             names)  # fmt: skip
         seeds = r.seeds(e["seeds"], f"{where}.seeds")
         options = _family_options(r, e.get("options"), f"{where}.options", spec, root)
-        entries[name] = FamilyEntry(name, family, kinds, scenes, controllers, seeds, options)
+        entries[name] = FamilyEntry(name, family, kinds, scenes, controllers, seeds, options,
+                                    programs)  # fmt: skip
     return tuple(entries.values())
+
+
+def _controllers(r: _Reader, value, field: str, root: Path,
+                 names: Names | None) -> tuple[tuple[str, ...], tuple[Program, ...]]:  # fmt: skip
+    """A list of controllers: registered names, and programs (:class:`Program`, a mapping
+    each), whose names join the others'; ``exec`` itself is no method."""
+    if isinstance(value, str) or not isinstance(value, list) or not value:
+        r.fail(field, f"expected a non-empty list, got {_show(value)}")
+    words, programs = [], []
+    for i, item in enumerate(value):
+        if isinstance(item, dict):
+            programs.append(_program(r, item, f"{field}[{i}]", root, names))
+            item = programs[-1].name
+        elif item == EXEC:
+            r.fail(f"{field}[{i}]", "exec runs a program: give it as {name: NAME, exec: [PROGRAM, "
+                   "ARGS...]} (docs/pipelines.md)")  # fmt: skip
+        words.append(item)
+    known = _known(names, "controller")
+    if known is not None:
+        mine = {p.name for p in programs}
+        known = (lambda a, check=known[0]: a in mine or check(a), known[1])
+    return r.names(words, field, "controller", known), tuple(programs)
+
+
+def _program(r: _Reader, item: dict, where: str, root: Path, names: Names | None) -> Program:
+    """A controller that is a program: ``{name, exec, params}`` (:class:`Program`)."""
+    e = r.mapping(item, where, {"name", "exec", "params"}, {"name", "exec"})
+    name = e["name"]
+    if not isinstance(name, str) or not _NAME.match(name):
+        r.fail(f"{where}.name", f"not a valid name (letters, digits, _ . + -): {_show(name)}")
+    if name == EXEC or names is not None and name in names.controllers:
+        r.fail(f"{where}.name", f"{name!r} is a controller's name: a program's runs need a "
+               "name of their own")  # fmt: skip
+    words = e["exec"]
+    if (isinstance(words, str) or not isinstance(words, list) or not words
+            or not all(isinstance(w, str) and w for w in words)):  # fmt: skip
+        r.fail(f"{where}.exec", f"expected the program and its arguments, a list of words, got "
+               f"{_show(words)}")  # fmt: skip
+    program, *args = words
+    if "/" in program:
+        found = r.files(root, [program], f"{where}.exec[0]", glob_ok=False)[0]
+        command: list[str | Path] = [Path(os.path.abspath(root / found))]
+    elif shutil.which(program) is None:
+        r.fail(f"{where}.exec[0]", f"{program}: not found on PATH")
+    else:
+        command = [program]
+    command += [Path(os.path.abspath(root / w)) if (root / w).is_file() else w for w in args]
+    params = e.get("params") or {}
+    if not isinstance(params, dict):
+        r.fail(f"{where}.params", f"expected a mapping of parameter: value, got {_show(params)}")
+    for key, v in params.items():
+        if key in ("command", "label"):
+            given = "exec" if key == "command" else "name"
+            r.fail(f"{where}.params.{key}", f"given by the entry's {given}")
+        if isinstance(v, bool) or not isinstance(v, int | float | str) or not str(v):
+            r.fail(f"{where}.params.{key}", f"expected a number or a word, got {_show(v)}")
+    return Program(name, tuple(command), tuple(sorted(params.items())))
 
 
 def _family_options(r: _Reader, value, field: str, spec: FamilySpec | None, root: Path):

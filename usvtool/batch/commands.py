@@ -15,11 +15,12 @@ path by default, its content for a key, its path relative to the root in the Mak
 from __future__ import annotations
 
 import os
+import shlex
 from collections.abc import Callable
 from pathlib import Path
 
 from usvtool.companions import companions
-from usvtool.pipeline import Chart, Ends, FamilyJob, OptionPairs, RouteJob
+from usvtool.pipeline import Chart, Ends, FamilyJob, OptionPairs, Program, RouteJob
 
 #: A grid job's output, in its directory (a route reads ``../../grids/<key>/grid.tif``).
 GRID = "grid.tif"
@@ -27,6 +28,8 @@ GRID = "grid.tif"
 SCENE = "scenario.yaml"
 #: How a file an option names is given (:func:`option_args`).
 FileWord = Callable[[Path], str]
+#: A program's standard error, in its run's directory (:func:`controller_args`).
+CONTROLLER_LOG = "controller.log"
 
 
 def word(value: object) -> str:
@@ -84,18 +87,38 @@ def plan_command(grid_key: str, route: RouteJob) -> tuple[str, ...]:
             "-o", "route.geojson")  # fmt: skip
 
 
-def simulate_command(scenario: Path, controller: str, seed: int) -> tuple[str, ...]:
-    """A run job's ``usvtool simulate`` command line."""
-    return ("simulate", str(scenario), "--controller", controller, "--seed", str(seed),
-            "-o", "trace.csv", "--events", "trace.events.json")  # fmt: skip
+def controller_args(controller: str, program: Program | None = None) -> list[str]:
+    """``--controller NAME``; for a program (:class:`~usvtool.pipeline.Program`), ``--controller
+    exec:PROGRAM ARGS...`` (its words quoted as a shell would), its name as the exec controller's
+    label, its parameters, and its stderr to :data:`CONTROLLER_LOG`.
+
+    >>> controller_args("c-client", Program("c-client", (Path("/x/client"), "--course"),
+    ...                                     (("deadline", 2),)))  # doctest: +NORMALIZE_WHITESPACE
+    ['--controller', 'exec:/x/client --course', '--param', 'label=c-client',
+     '--param', 'deadline=2', '--controller-log', 'controller.log']
+    """
+    if program is None:
+        return ["--controller", controller]
+    words = shlex.join(str(w) for w in program.command)
+    params = [w for key, value in program.params for w in ("--param", f"{key}={word(value)}")]
+    return ["--controller", f"exec:{words}", "--param", f"label={program.name}", *params,
+            "--controller-log", CONTROLLER_LOG]  # fmt: skip
+
+
+def simulate_command(scenario: Path, controller: str, seed: int,
+                     program: Program | None = None) -> tuple[str, ...]:  # fmt: skip
+    """A run job's ``usvtool simulate`` command line (``program``: the controller's, when it
+    is one)."""
+    return ("simulate", str(scenario), *controller_args(controller, program), "--seed",
+            str(seed), "-o", "trace.csv", "--events", "trace.events.json")  # fmt: skip
 
 
 def family_command(job: FamilyJob) -> tuple[str, ...]:
     """A family run's ``usvtool simulate --family`` command line: it writes the scene to
     :data:`SCENE` in the job's directory and runs it."""
     return ("simulate", "--family", job.family, "--kind", job.kind, "--scene", str(job.scene),
-            *family_option_args(job.options), "--controller", job.controller, "--seed",
-            str(job.seed), "-o", "trace.csv", "--events", "trace.events.json",
+            *family_option_args(job.options), *controller_args(job.controller, job.program),
+            "--seed", str(job.seed), "-o", "trace.csv", "--events", "trace.events.json",
             "--scenario-out", SCENE)  # fmt: skip
 
 

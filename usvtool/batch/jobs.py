@@ -22,6 +22,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import shutil
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cache
@@ -41,7 +42,7 @@ from usvtool.batch.commands import (
 from usvtool.budget import require
 from usvtool.digest import sha256
 from usvtool.errors import UsvError
-from usvtool.pipeline import Names, Pipeline
+from usvtool.pipeline import Names, Pipeline, Program
 
 PACKAGE = Path(__file__).resolve().parent.parent
 #: The stage and the command of each kind of job.
@@ -177,23 +178,27 @@ def expand(pipeline: Pipeline, names: Names,
         path = root / scenario
         if scenario not in scenarios:
             scenarios[scenario] = _scenario_content(path, scenario_files, content)
+        program = pipeline.program(controller)
         key = _key({"kind": "runs", "scenario": scenarios[scenario], "controller": controller,
-                    "seed": seed}, names, controller)  # fmt: skip
+                    "seed": seed, **_program_key(program, content)}, names,
+                   controller)  # fmt: skip
         jobs.setdefault(key, Job("runs", key, Path(scenario).stem, controller, seed,
-                                 simulate_command(path, controller, seed),
-                                 info={"scenario": str(path)}))  # fmt: skip
+                                 simulate_command(path, controller, seed, program),
+                                 info={"scenario": str(path), **_program_info(program)}))
     for j in pipeline.family_jobs():
         scene = {"family": j.family, "kind": j.kind, "scene": j.scene,
                  "options": {k: str(v) if isinstance(v, Path) else v for k, v in j.options}}
         read = {k: content(v) if isinstance(v, Path) else v for k, v in j.options}
         key = _key({"kind": "runs", "scene": {**scene, "options": read},
-                    "controller": j.controller, "seed": j.seed}, names, j.controller,
+                    "controller": j.controller, "seed": j.seed,
+                    **_program_key(j.program, content)}, names, j.controller,
                    j.family)  # fmt: skip
         _claim(pipeline, owners, ("runs", j.case, j.controller, j.seed), key,
                f"families.{j.entry}")  # fmt: skip
         # the files' own SHA-256 in job.json, for a reader to check it reads what the run did
         digests = {k: file_sha256(v) for k, v in j.options if isinstance(v, Path)}
-        info = {"scene": {**scene, "sha256": digests} if digests else scene}
+        info = {"scene": {**scene, "sha256": digests} if digests else scene,
+                **_program_info(j.program)}
         jobs.setdefault(key, Job("runs", key, j.case, j.controller, j.seed, family_command(j),
                                  info=info))  # fmt: skip
     f = pipeline.functions
@@ -205,6 +210,29 @@ def expand(pipeline: Pipeline, names: Names,
                                  functions_command(function, algorithm, seed, sizes),
                                  info=sizes))  # fmt: skip
     return list(jobs.values())
+
+
+def _program_key(program: Program | None, content) -> dict:
+    """What a run's key holds of its controller's program (nothing for a registered controller,
+    whose keys are as they were): its command with the content of every file in it, that of the
+    program found on ``PATH`` for a bare name (``python3``), and its parameters; so a rebuilt
+    program, or an edited script it runs, runs its jobs again."""
+    if program is None:
+        return {}
+    command = [{"file": content(w)} if isinstance(w, Path) else w for w in program.command]
+    found = None
+    if not isinstance(program.command[0], Path):
+        where = shutil.which(program.command[0])
+        found = content(Path(where)) if where else None
+    return {"program": {"command": command, "found": found, "params": dict(program.params)}}
+
+
+def _program_info(program: Program | None) -> dict:
+    """A run's ``job.json`` fields of its program: its command and parameters."""
+    if program is None:
+        return {}
+    return {"program": {"command": [str(w) for w in program.command],
+                        "params": dict(program.params)}}  # fmt: skip
 
 
 def _scenario_content(path: Path, scenario_files: ScenarioFiles | None, content) -> dict:
