@@ -221,3 +221,13 @@ def test_reset_options_and_bad_actions(tmp_path):
         UsvEnv(family="imazu", kind="23")
     with pytest.raises(Exception, match="a scenario file"):
         UsvEnv()
+
+
+def test_the_example_of_docs_gym_runs(capsys):
+    import re
+
+    text = (ROOT / "docs" / "gym.md").read_text(encoding="utf-8")
+    (block,) = re.findall(r"^```python\n(.*?)^```", text, re.S | re.M)
+    exec(compile(block, "docs/gym.md", "exec"), {})
+    time_s, arrived, collision, *_ = capsys.readouterr().out.split()
+    assert float(time_s) > 0 and arrived in ("True", "False")
