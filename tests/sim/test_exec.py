@@ -287,7 +287,8 @@ def test_a_program_that_cannot_start_is_an_error_before_the_run(tmp_path):
 @pytest.mark.parametrize(("params", "why"), [
     ({"command": []}, "command must be a non-empty list of"),
     ({"command": "python3 client.py"}, "command must be a non-empty list"),
-    ({"command": ["python3"], "deadline": 0}, "deadline must be a finite number > 0, not 0"),
+    ({"command": ["python3"], "deadline": 0}, "deadline must be > 0 for exec, not 0"),
+    ({"command": ["python3", ""]}, "command must be a non-empty list of non-empty strings"),
     ({"command": ["python3"], "label": "udwa"}, "label 'udwa' is another controller's name"),
     ({"command": ["python3"], "label": "a b"}, "label must be a name"),
 ])  # fmt: skip

@@ -43,6 +43,7 @@ import time
 import numpy as np
 
 from usvtool.errors import UsvError
+from usvtool.params import POSITIVE, Param
 from usvtool.sim.controllers.base import (
     Controller,
     ControllerFailed,
@@ -83,8 +84,16 @@ class ProcessController(Controller):
     """
 
     name = "exec"
-    defaults = {"command": [], "deadline": 1.0, "hello_deadline": 10.0, "heading_gain": 0.5,
-                "label": "exec"}  # fmt: skip
+    parameters = {
+        "command": Param([], "the program and its arguments (--controller exec:PROGRAM "
+                         "ARGS...)", required=True),
+        "deadline": Param(1.0, "seconds for each step's reply", POSITIVE),
+        "hello_deadline": Param(10.0, "seconds for the hello's acknowledgement, the program's "
+                                "start-up included", POSITIVE),
+        "heading_gain": Param(0.5, "the autopilot's proportional gain (1/s) for course-and-"
+                              "speed replies", POSITIVE),
+        "label": Param("exec", "the runs' controller name: the method in the results"),
+    }  # fmt: skip
 
     def __init__(self, **params):
         super().__init__(**params)
@@ -95,11 +104,6 @@ class ProcessController(Controller):
             raise UsvError(f"exec: command must be a non-empty list of non-empty strings, not "
                            f"{show(command)} (--controller exec:PROGRAM ARGS...)")  # fmt: skip
         p["command"] = list(command)
-        for key in ("deadline", "hello_deadline", "heading_gain"):
-            value = p[key]
-            if isinstance(value, bool) or not isinstance(value, int | float) \
-                    or not math.isfinite(value) or value <= 0:  # fmt: skip
-                raise UsvError(f"exec: {key} must be a finite number > 0, not {show(value)}")
         label = p["label"]
         if not isinstance(label, str) or not _LABEL.match(label):
             raise UsvError(f"exec: label must be a name (letters, digits, _ . + -), not "
