@@ -272,7 +272,22 @@ class ProcessController(Controller):
                 from None  # fmt: skip
 
     def _command(self, reply, own: Own) -> tuple[float, float]:
-        """(v, omega) of a reply, checked against the vessel's limits."""
+        """(v, omega) of a reply, checked against the vessel's limits: a velocity pair of
+        floats strictly within them at once, anything else by :meth:`_checked`."""
+        if type(reply) is dict and len(reply) == 2:
+            v, omega = reply.get("v"), reply.get("omega")
+            if type(v) is float and type(omega) is float:
+                vessel, dt = self.world.vessel, self.world.period
+                reach = vessel.max_yaw_accel * dt
+                if (max(vessel.min_speed, own.v - vessel.max_decel * dt) <= v
+                        <= min(vessel.max_speed, own.v + vessel.max_accel * dt)
+                        and max(-vessel.max_yaw_rate, own.omega - reach) <= omega
+                        <= min(vessel.max_yaw_rate, own.omega + reach)):  # fmt: skip
+                    return v, omega
+        return self._checked(reply, own)
+
+    def _checked(self, reply, own: Own) -> tuple[float, float]:
+        """(v, omega) of any reply, each check in turn, naming what is wrong."""
         if not isinstance(reply, dict):
             raise ControllerFailed(f"{self.name}: its reply is not a JSON object: "
                                    f"{_excerpt(reply)}")  # fmt: skip
