@@ -12,13 +12,16 @@ built-in controllers' step time.
 3. Whole runs: the Imazu case 13 (three targets) and the bundled env1-head-on, each with the C
    and the Python client steering (their rule, not trivial), and with udwa: the summary's
    ``step_time_ms`` (the mean ``decide`` of the run) and the wall time.
+4. The 22 Imazu cases (``--imazu``; the family's defaults, seed 1) with the C client, the Python
+   client and udwa: arrived, collision, closest centre distance (the outcomes docs/protocol.md
+   gives), and whether the two clients' traces are the same.
 
 Each figure of 1 and 2 is the best of ``--runs`` runs of ``--steps`` steps (this shared 2-core
 machine's timings vary by up to two times between runs; the best is the repeatable one), in
 milliseconds per period. Targets (issue 32): at most 0.1 ms with the C client, 0.3 ms with the
 Python client.
 
-Usage: python benchmarks/bench_protocol.py [--runs 5] [--steps 2000] [--no-runs]
+Usage: python benchmarks/bench_protocol.py [--runs 5] [--steps 2000] [--no-runs] [--imazu]
 """
 
 from __future__ import annotations
@@ -137,11 +140,40 @@ def whole_runs(client_c: Path | None, tmp: Path) -> list[tuple[str, str, dict, f
     return rows
 
 
+def imazu(client_c: Path | None, tmp: Path) -> None:
+    from usvtool.sim.families import make_scene, write_scene
+    from usvtool.sim.families.imazu import CASES
+
+    controllers = [("C", "exec", {"command": [str(client_c)]})] if client_c else []
+    controllers += [("Python", "exec", {"command": [sys.executable, str(EXAMPLES / "client.py")]}),
+                    ("udwa", "udwa", {})]  # fmt: skip
+    tally = {label: [0, 0] for label, _, _ in controllers}
+    for kind in CASES:
+        write_scene(make_scene("imazu", kind, 0, {}, lambda key: key), tmp / f"{kind}.yaml")
+        scenario = read_scenario(tmp / f"{kind}.yaml")
+        cells, traces = [], []
+        for label, name, params in controllers:
+            r = simulate(scenario, SimOptions(controller=name, params=params, seed=1))
+            s = r.summary()
+            tally[label][0] += bool(s["arrived"])
+            tally[label][1] += s["collision"] is not None
+            cells.append(f"{label} {'arrived' if s['arrived'] else 'not arrived'}"
+                         f"{', collided' if s['collision'] else ''} {s['closest_distance_m']} m")
+            if name == "exec":
+                traces.append((r.trace.x, r.trace.y))
+        same = len(traces) < 2 or all(np.array_equal(a, b)
+                                      for a, b in zip(traces[0], traces[1], strict=True))
+        print(f"  {kind}: " + "; ".join(cells) + ("" if same else "  (the clients differ)"))
+    for label, (arrived, collided) in tally.items():
+        print(f"  {label}: {arrived} of {len(CASES)} arrived, {collided} collided")
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--no-runs", action="store_true", help="skip the whole runs (3)")
+    ap.add_argument("--imazu", action="store_true", help="the 22 Imazu cases (4)")
     args = ap.parse_args(argv)
     global WORLD
     WORLD = world()
@@ -159,6 +191,9 @@ def main(argv=None) -> None:
                 print(f"  {case:<13} {label:<14} {s['step_time_ms']:8.4f} ms  "
                       f"{round(s['time_s'] / 0.1):5d} steps  {wall:6.2f} s  "
                       f"arrived {s['arrived']}, closest {s['closest_distance_m']} m")
+        if args.imazu:
+            print("4. the 22 Imazu cases, seed 1")
+            imazu(client_c, Path(tmp))
 
 
 WORLD: World | None = None
