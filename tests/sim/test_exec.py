@@ -76,6 +76,14 @@ def test_a_client_runs_a_bundled_scenario_to_its_goal(which, request):
     assert lines[-1] == f"{name}: end of input after {round(s['time_s'] / 0.1)} steps"
 
 
+@pytest.mark.parametrize("which", ["python", "c"])
+def test_a_client_follows_the_route_of_the_hello_through_a_map(which, request):
+    """env1-static: the straight line to the goal crosses the islands; the route does not."""
+    command = PY if which == "python" else [request.getfixturevalue("client_c")]
+    s = run(read_scenario(SCENARIOS / "env1-static.yaml"), command).summary()
+    assert s["arrived"] and s["collision"] is None and s["controller_failed"] is None
+
+
 def test_both_clients_and_both_reply_forms_steer_alike(client_c):
     """The Python client's course-and-speed replies through usvtool's autopilot and the C
     client's own velocity pairs (the autopilot's formula) give the same run, to the bit."""
