@@ -192,6 +192,11 @@ def test_your_claims_come_before_the_papers_and_are_counted_apart(tmp_path):
     page1 = next(s for s in parts if s.id == "summary")
     yours = next(t for t in page1.tables() if t.id == "summary-your-verdicts")
     assert yours.title == "Your 2 claims: 1 holds, 1 does not hold"
+    assert yours.placement == "html"  # page 1 stays the papers'; a line counts the user's
+    assert any(
+        p.startswith("Your 2 claims (") and p.endswith(": 1 holds, 1 does not hold.")
+        for p in page1.paragraphs
+    )
     assert claims.counts(parts, your_claims.TABLE) == {
         judging.HOLDS: 1, judging.FAILS: 1, judging.INCONCLUSIVE: 0, judging.UNTESTABLE: 0,
         judging.UNTESTED: 0}  # fmt: skip
@@ -202,7 +207,9 @@ def test_your_claims_come_before_the_papers_and_are_counted_apart(tmp_path):
     # no claims: no section, no table on page 1
     plain = load([_table(tmp_path / "plain", SEPARATED)])
     assert your_claims.section(plain) is None
-    assert "summary-your-verdicts" not in {t.id for t in summary.section(plain).tables()}
+    page1 = summary.section(plain)
+    assert "summary-your-verdicts" not in {t.id for t in page1.tables()}
+    assert not any(p.startswith("Your ") for p in page1.paragraphs)
 
 
 def test_two_tables_with_one_claim_two_ways_are_refused_in_one_line(tmp_path):

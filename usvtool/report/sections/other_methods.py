@@ -150,12 +150,20 @@ def outcomes(results: Results, kind: str, method: str,
                "against the papers' methods"]  # fmt: skip
     what = {"routes": "routes", "runs": "runs", "functions": "benchmark-function runs"}[kind]
     return Table(f"other-{file_name(method)}-{kind}", f"{method}: its {what}",
-                 f"Per chart, scene family ({BUNDLED} together) or function: the runs, the "
-                 "failures (a route through an obstacle; a run that collided or did not "
-                 "arrive), the medians (IQR) over the runs that did not fail, and how many of "
-                 f"the papers' methods it is better or worse than (effect > 0 or < 0 with "
-                 f"uncorrected p < {ALPHA}; each comparison is in the appendix).",
-                 columns, rows)  # fmt: skip
+                 CAPTIONS[kind] + " Against the papers' methods: how many of those that ran "
+                 "the same cases it is better or worse than (effect > 0 or < 0 with uncorrected "
+                 f"p < {ALPHA}; each comparison in the appendix).", columns, rows)  # fmt: skip
+
+
+#: What an outcomes table shows, per kind.
+CAPTIONS = {
+    "routes": "Per chart: the routes, those through an obstacle (failures), the medians (IQR) "
+    "over the collision-free routes.",
+    "runs": f"Per scene family ({BUNDLED} together): the runs, their outcomes (a run that "
+    "collided or did not arrive is a failure) and their encounters' COLREGs counts, the "
+    "medians (IQR) over the runs that arrived without collision.",
+    "functions": "Per function: the runs and the median (IQR) of the final cost.",
+}
 
 
 def effects(method: str, kind: str, tests: dict[str, list]) -> Table | None:

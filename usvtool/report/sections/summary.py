@@ -10,7 +10,7 @@ from collections import Counter
 
 from usvtool.report import judging
 from usvtool.report.data import Results
-from usvtool.report.document import Cell, Section, Table
+from usvtool.report.document import HTML, Cell, Section, Table
 from usvtool.report.papers import IWSO_DWA_TABLE_1, PAPERS
 from usvtool.report.sections import claims
 
@@ -148,6 +148,9 @@ def section(results: Results) -> Section:
     if yours := judging.user_verdicts(results):
         counts = Counter(v.verdict for v in yours)
         tally = ", ".join(f"{counts[k]} {k}" for k in judging.VERDICTS if counts[k])
+        s.paragraphs.append(
+            f"Your {len(yours)} claims (the pipelines' own, judged as the papers' are, in a "
+            f"Holm family of their own; the section Your claims gives each): {tally}.")
         s.blocks.append(Table(
             "summary-your-verdicts", f"Your {len(yours)} claims: {tally}",
             "The claims of the pipelines behind these results, judged as the papers' are, "
@@ -155,6 +158,6 @@ def section(results: Results) -> Section:
             "the tests): ours as above and the verdict.",
             ["claim", "ours", "verdict"],
             [[Cell(v.claim.id), Cell(claims.headline(v)), Cell(v.verdict, claims.CSS[v.verdict])]
-             for v in yours]))  # fmt: skip
+             for v in yours], placement=HTML))  # fmt: skip
     s.paragraphs.append("Caveats. " + " ".join(caveats(results, verdicts)))
     return s

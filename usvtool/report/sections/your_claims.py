@@ -27,7 +27,7 @@ def statement(c: Claim) -> str:
     'udwa+ against udwa: closest_distance_m higher (median) in emergency'
     >>> statement(as_claim(ClaimSpec("b", "runs", "udwa+", (), "collision", "lower", "every",
     ...                              ("imazu", "wind/halves"), 0.0, 0.9)))
-    'udwa+: collision 0 or lower in 90 % of the runs of imazu, wind/halves'
+    'udwa+: collision at most 0 in 90 % of the runs of imazu, wind/halves'
     """
     cases = ", ".join(c.cases)
     if c.rivals:
@@ -35,7 +35,8 @@ def statement(c: Claim) -> str:
                 f"({c.statistic}) in {cases}")  # fmt: skip
     target = c.target if isinstance(c.target, str) else f"{c.target:g}"
     runs = "every run" if c.share >= 1 else f"{100 * c.share:g} % of the runs"
-    return f"{c.method}: {c.metric} {target} or {c.better} in {runs} of {cases}"
+    bound = "at most" if c.better == "lower" else "at least"
+    return f"{c.method}: {c.metric} {bound} {target} in {runs} of {cases}"
 
 
 def row(v: Verdict) -> list[Cell]:
