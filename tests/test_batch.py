@@ -336,8 +336,8 @@ def test_a_run_key_covers_the_files_its_scenario_names(tmp_path):
 
 def test_a_job_over_the_timeout_is_stopped_and_fails_alone(tmp_path):
     """--timeout 12: the run the failpoint ``hang`` makes sleep for ever is stopped and fails
-    with the reason; the other run (well under a second; 3.7 s on a machine at a load of 11, three times
-    less than the limit) completes, and no temporary is left."""
+    with the reason; the other run (well under a second; 3.7 s on a machine at a load of 11,
+    a third of the limit) completes, and no temporary is left."""
     good = SCENARIO.read_text()
     (tmp_path / "s").mkdir()
     (tmp_path / "s" / "good.yaml").write_text(good)
