@@ -8,8 +8,13 @@ The reference: a segment collides when it intersects the closed unit square of a
 
 import contextlib
 import importlib.util
+import json
 import os
 import shutil
+import signal
+import subprocess
+import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -163,3 +168,61 @@ def one_cell() -> np.ndarray:
     blocked = np.zeros((10, 10), bool)
     blocked[5, 5] = True
     return blocked
+
+
+@pytest.fixture
+def dask_cluster(site, tmp_path):
+    """A ``dask scheduler`` and two ``dask worker`` processes (the dask.distributed command of
+    this environment) on this machine, on free ports, the workers with the requesting module's
+    ``site`` (a folder holding a plugin's distribution) on their PYTHONPATH (a plugin must be
+    installed where the jobs run); its address. Every
+    process is stopped, its process group killed, however the test ends."""
+    distributed = pytest.importorskip("distributed", reason="dask[distributed] is not installed "
+                                      "(pip install 'usvtool[dask]')")  # fmt: skip
+    dask = Path(sys.executable).with_name("dask")
+    if not dask.exists():
+        pytest.skip(f"no {dask}")
+    env = {**os.environ, "PYTHONPATH": str(site), "DASK_DISTRIBUTED__WORKER__DAEMON": "False"}
+    where = tmp_path / "cluster"
+    where.mkdir()
+    file = where / "scheduler.json"
+    processes = []
+
+    def start(*args, log: str):
+        with open(where / log, "w") as out:
+            processes.append(subprocess.Popen([str(dask), *map(str, args)], env=env, cwd=where,
+                                              stdout=out, stderr=subprocess.STDOUT,
+                                              start_new_session=True))  # fmt: skip
+
+    try:
+        start("scheduler", "--host", "127.0.0.1", "--port", 0, "--no-dashboard",
+              "--scheduler-file", file, log="scheduler.log")  # fmt: skip
+        deadline = time.monotonic() + 30
+        while not (file.exists() and file.stat().st_size):
+            assert time.monotonic() < deadline, (where / "scheduler.log").read_text()
+            assert processes[0].poll() is None, (where / "scheduler.log").read_text()
+            time.sleep(0.1)
+        time.sleep(0.2)  # the file complete
+        address = json.loads(file.read_text())["address"]
+        for i in range(2):
+            start("worker", address, "--nworkers", 1, "--nthreads", 1, "--no-dashboard",
+                  "--host", "127.0.0.1", "--local-directory", where / f"w{i}",
+                  log=f"worker{i}.log")  # fmt: skip
+        with distributed.Client(address, timeout=30) as client:
+            client.wait_for_workers(2, timeout=30)
+        yield address
+    finally:
+        for p in processes:
+            try:
+                os.killpg(p.pid, signal.SIGTERM)
+            except ProcessLookupError:
+                pass
+        for p in processes:
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                try:
+                    os.killpg(p.pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
+                p.wait()

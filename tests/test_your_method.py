@@ -115,3 +115,62 @@ def test_de_keeps_a_trial_only_when_it_is_no_worse(example):
     )
     assert np.all(np.diff(r.history) <= 0)
     assert r.history[-1] < r.history[0] / 100
+
+
+PIPELINE = """root: {root}
+charts:
+  grid20: {{source: charts/grid20.geojson, options: {{cell-size: 1, no-swell: true,
+           occupancy: 0.5}}, start: [0.5, 0.5], goal: [19.5, 19.5]}}
+routes:
+  example:
+    charts: [grid20]
+    algorithms: [de, de+g, pso]
+    seeds: [1, 2]
+    options: {{pop: 10, iters: 20}}
+families:
+  - family: emergency
+    kinds: [head-on]
+    scenes: [0, 1]
+    controllers: [apf, udwa]
+    seeds: [1]
+claims:
+  - id: apf-hits-nothing
+    method: apf
+    metric: collision
+    better: lower
+    target: 0
+    cases: [emergency/head-on]
+"""
+#: The grid, 6 routes, 4 family runs.
+JOBS = 1 + 6 + 4
+
+
+def test_the_example_gives_one_table_in_local_workers_and_on_a_dask_cluster(site, dask_cluster,
+                                                                            tmp_path):  # fmt: skip
+    """The pip-installed example's planner (with its +g) and controller in a pipeline with a
+    claim, in batch -j 2 and on a scheduler with two workers (the example on their PYTHONPATH):
+    the same results table and claims, byte for byte; the report judges the claim."""
+    env = {**os.environ, "PYTHONPATH": str(site)}
+    pipeline = tmp_path / "example.yaml"
+    pipeline.write_text(PIPELINE.format(root=ROOT))
+
+    def usvtool(*args):
+        return subprocess.run([sys.executable, "-m", "usvtool.cli", *map(str, args)], env=env,
+                              capture_output=True, text=True)  # fmt: skip
+
+    local = usvtool("batch", pipeline, "-j", 2, "-o", tmp_path / "local")
+    assert local.returncode == 0, local.stderr
+    assert (json.loads(local.stdout)["done"], json.loads(local.stdout)["failed"]) == (JOBS, 0)
+    table = (tmp_path / "local" / "metrics.csv").read_bytes()
+    for method in (b",de,", b",de+g,", b",apf,"):
+        assert method in table, method
+    remote = usvtool("batch", pipeline, "--scheduler", dask_cluster, "-o", tmp_path / "dask")
+    assert remote.returncode == 0, remote.stderr
+    assert json.loads(remote.stdout)["done"] == JOBS
+    for name in ("metrics.csv", "claims.json"):
+        assert (tmp_path / "dask" / name).read_bytes() == (tmp_path / "local" / name).read_bytes()
+    report = usvtool("report", tmp_path / "local" / "metrics.csv", "--no-pdf", "-o",
+                     tmp_path / "report")  # fmt: skip
+    assert report.returncode == 0, report.stderr
+    summary = json.loads(report.stdout)
+    assert "your-claims" in summary["sections"] and sum(summary["your_claims"].values()) == 1
