@@ -230,6 +230,14 @@ def test_a_plugin_exact_planner_plans_without_a_seed_nor_variants(site, tmp_path
         assert r.returncode == 1 and not (tmp_path / "c.geojson").exists()
         assert r.stderr.splitlines()[-1] == (f"Error: {algo!r}: my-astar has no {algo[-2:]} "
                                              "variant (its variants: none)")  # fmt: skip
+    # and a pipeline naming one is refused when it loads, before any job runs
+    pipeline = tmp_path / "p.yaml"
+    pipeline.write_text(f"root: {ROOT}\ncharts: {{g: {{source: charts/grid20.geojson, start: "
+                        "[0.5, 0.5], goal: [18.5, 18.5]}}\nroutes: {r: {charts: [g], "
+                        "algorithms: [astar+s, my-astar, my-astar+s], seeds: [1]}}\n")  # fmt: skip
+    r = usvtool(site, "batch", pipeline, "-o", tmp_path / "out")
+    assert r.returncode == 1 and not (tmp_path / "out").exists()
+    assert "routes.r.algorithms[2]: unknown algorithm 'my-astar+s'" in r.stderr, r.stderr
     listed = {m["name"]: m for m in json.loads(usvtool(site, "plugins").stdout)["methods"]}
     mine = listed["my-astar"]
     assert (mine["kind"], mine["distribution"], mine["parameters"]) == ("exact planner",

@@ -134,7 +134,9 @@ class Names:
     benchmark functions; ``files``, the file options of the commands a pipeline gives
     options to (``preprocess``, ``plan``), as the commands declare them; ``families``, the
     scene families by name; ``plugins``, the distribution and version (``"usvplug 1.2"``) of
-    each method an installed plugin gives (usvtool.registry), which the batch's keys hold."""
+    each method an installed plugin gives (usvtool.registry), which the batch's keys hold;
+    ``variants``, the suffixes each exact planner takes (an optimizer takes ``+s`` and ``+g``;
+    an exact planner not listed, ``+s``)."""
 
     optimizers: Collection[str]
     exact: Collection[str]
@@ -143,6 +145,7 @@ class Names:
     files: Mapping[str, FileOptions] = field(default_factory=dict)
     families: Mapping[str, FamilySpec] = field(default_factory=dict)
     plugins: Mapping[str, str] = field(default_factory=dict)
+    variants: Mapping[str, Collection[str]] = field(default_factory=dict)
 
     def is_exact(self, algorithm: str) -> bool:
         """``anyangle``, ``astar+s``: an exact planner, with or without shortening."""
@@ -682,8 +685,12 @@ def _known(names: Names | None, kind: str):
     if kind == "route":
         known = sorted({*names.optimizers, *names.exact})
 
-        def accepted(a: str) -> bool:  # +s for every algorithm, +g for the optimizers
-            return a.removesuffix("+s") in known or a.removesuffix("+g") in names.optimizers
+        def accepted(a: str) -> bool:  # +s and +g for the optimizers, the exact's own
+            base, plus, suffix = a.partition("+")
+            if base in names.optimizers:
+                return suffix in ("", "s", "g")
+            return base in names.exact and (not plus or f"+{suffix}" in
+                                            names.variants.get(base, ("+s",)))  # fmt: skip
 
         return (accepted, ", ".join(known) + "; +s for shortening, +g (optimizers) route-guided")
     pool = {"optimizer": names.optimizers, "controller": names.controllers,

@@ -72,8 +72,9 @@ def stage_names() -> Names:
     families = {name: FamilySpec(cls.kinds, cls.seeded, cls().check_options,
                                  frozenset(k for k, o in cls.declarations().items() if o.file))
                 for name, cls in FAMILIES.items()}  # fmt: skip
+    variants = {name: tuple(cls.variants) for name, cls in EXACT.items()}
     return Names(tuple(OPTIMIZERS), tuple(EXACT), tuple(CONTROLLERS), tuple(FUNCTIONS), files,
-                 families, plugins)  # fmt: skip
+                 families, plugins, variants)  # fmt: skip
 
 
 def scenario_files(path: Path) -> list[Path]:
