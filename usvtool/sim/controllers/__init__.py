@@ -22,6 +22,7 @@ from usvtool.sim.controllers.gdwa import GDWA
 from usvtool.sim.controllers.process import ProcessController
 from usvtool.sim.controllers.udwa import UDWA
 from usvtool.sim.controllers.udwa_plus import UDWAPlus
+from usvtool.sim.controllers.vo import VelocityObstacle
 
 #: Every controller: the built-ins, then the ``usvtool.controllers`` plugins (docs/extending.md).
 CONTROLLERS = Registry("controller", Controller, "usvtool.controllers")
@@ -29,7 +30,7 @@ CONTROLLERS = Registry("controller", Controller, "usvtool.controllers")
 register = CONTROLLERS.register
 #: Remove the controller registered under a name (``KeyError`` when there is none).
 unregister = CONTROLLERS.unregister
-for _cls in (DWA, GDWA, CCDWA, UDWA, UDWAPlus, ProcessController):
+for _cls in (DWA, GDWA, CCDWA, UDWA, UDWAPlus, VelocityObstacle, ProcessController):
     register(_cls)
 
 
