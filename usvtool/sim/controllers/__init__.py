@@ -20,6 +20,7 @@ from usvtool.sim.controllers.ccdwa import CCDWA
 from usvtool.sim.controllers.dwa import DWA
 from usvtool.sim.controllers.gdwa import GDWA
 from usvtool.sim.controllers.process import ProcessController
+from usvtool.sim.controllers.sbmpc import SBMPC
 from usvtool.sim.controllers.udwa import UDWA
 from usvtool.sim.controllers.udwa_plus import UDWAPlus
 from usvtool.sim.controllers.vo import VelocityObstacle
@@ -30,7 +31,7 @@ CONTROLLERS = Registry("controller", Controller, "usvtool.controllers")
 register = CONTROLLERS.register
 #: Remove the controller registered under a name (``KeyError`` when there is none).
 unregister = CONTROLLERS.unregister
-for _cls in (DWA, GDWA, CCDWA, UDWA, UDWAPlus, VelocityObstacle, ProcessController):
+for _cls in (DWA, GDWA, CCDWA, UDWA, UDWAPlus, VelocityObstacle, SBMPC, ProcessController):
     register(_cls)
 
 
