@@ -11,6 +11,7 @@ import pytest
 from affine import Affine
 
 from usvtool.clearance import Clearance
+from usvtool.encounter import CROSSING_GIVE_WAY, HEAD_ON, OVERTAKING, assess
 from usvtool.grid import Grid
 from usvtool.sim.controllers import Own, Targets, World, make_controller
 from usvtool.sim.controllers.vo import first_contact, passes_to_port
@@ -59,7 +60,7 @@ def test_the_cone_is_shifted_by_the_targets_velocity():
     c = controller(margin=0.0, uncertainty=0.0)
     own = Own(0.0, 0.0, 0.0, 5.0, 0.0)
     tg = Targets(np.array([[100.0, 0.0]]), np.array([[0.0, 3.0]]), np.array([5.0]))  # 10 m radius
-    contact, _ = c.obstacles(own, tg, np.array([[5.0, 3.0], [5.0, 0.0]]))
+    contact, _ = c.obstacles(own, tg, np.array([5.0, 5.0]), np.array([3.0, 0.0]))
     assert contact[0] == pytest.approx(18.0) and contact[1] == np.inf
 
 
@@ -162,6 +163,26 @@ def test_the_hysteresis_holds_the_mode_for_its_time():
     assert c.colregs(own, clear).tolist() == [False] and c.mode(0) is None
 
 
+def test_the_modes_classes_are_those_of_usvtool_encounter():
+    """The controller's own bearings (radians, the components) give the classes of
+    :func:`usvtool.encounter.assess` for targets all round on near-collision courses."""
+    rng = np.random.default_rng(5)
+    own = Own(10.0, -20.0, 0.7, 5.0, 0.0)
+    bearing = rng.uniform(-math.pi, math.pi, 200)
+    pos = np.stack([own.x + 200 * np.cos(bearing), own.y + 200 * np.sin(bearing)], axis=1)
+    course = rng.uniform(-math.pi, math.pi, 200)
+    vel = 4.0 * np.stack([np.cos(course), np.sin(course)], axis=1)
+    c = controller(colregs_distance=1e6, colregs_time=1e6, hold=0.0)
+    tg = Targets(pos, vel, np.full(200, 15.0))
+    c.colregs(own, tg)
+    want = assess((own.x, own.y), (90 - math.degrees(own.psi)) % 360, own.v, pos,
+                  (90 - np.degrees(course)) % 360, np.full(200, 4.0)).cls  # fmt: skip
+    got = [c.mode(j) if c.mode(j) is not None else -1 for j in range(200)]
+    constrained = np.isin(want, (HEAD_ON, CROSSING_GIVE_WAY, OVERTAKING))
+    assert np.array_equal(np.where(constrained, want, -1), got)
+    assert constrained.sum() > 30
+
+
 def test_no_mode_for_the_stand_on_vessel():
     """A crossing from port (the own ship stands on): no COLREGs constraint, only the VO."""
     c = controller()
@@ -181,7 +202,8 @@ def test_on_a_grid_a_candidate_toward_land_is_refused():
     field = Clearance(Grid(cells, Affine(1, 0, -100, 0, -1, 200)))
     c = controller(World(SHIP, np.array([0.0, -50.0]), field))
     own = Own(0.0, 100.0, NORTH, 5.0, 0.0)
-    refused = c.grounds(own, np.array([5.0, 3.0, 5.0]), np.array([NORTH, NORTH, -NORTH]))
+    heads = np.array([NORTH, -NORTH])
+    refused = c.grounds(own, np.array([5.0, 3.0, 5.0]), heads, np.array([0, 0, 1]))
     assert refused.tolist() == [True, False, False]
 
 

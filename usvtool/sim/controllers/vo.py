@@ -62,7 +62,14 @@ import math
 
 import numpy as np
 
-from usvtool.encounter import CROSSING_GIVE_WAY, HEAD_ON, NONE, OVERTAKING, assess
+from usvtool.encounter import (
+    CROSSING_GIVE_WAY,
+    HEAD_ON,
+    NONE,
+    OVERTAKING,
+    VEL_EPS,
+    classify_angles,
+)
 from usvtool.params import NON_NEGATIVE, POSITIVE, Param, Range
 from usvtool.sim.controllers.base import Controller, Decision, Encounter, Own, Targets, World
 from usvtool.sim.controllers.critics import RouteProgress
@@ -80,25 +87,27 @@ def first_contact(p: np.ndarray, w: np.ndarray, radius: np.ndarray, spread: floa
     relative velocities (own minus target).
 
     >>> p = np.array([[100.0, 0.0]])
-    >>> w = np.array([[[10.0, 0.0]], [[10.0, 2.0]], [[0.0, 10.0]]])
+    >>> w = np.array([[[10.0, 0.0]], [[10.0, 1.0]], [[10.0, 2.0]], [[0.0, 10.0]]])
     >>> first_contact(p, w, np.array([10.0]), 0.0, 60.0)[:, 0].round(6).tolist()
-    [9.0, 9.258343, inf]
+    [9.0, 9.80198, inf, inf]
     """
-    px, py = p[:, 0], p[:, 1]
-    wx, wy = w[..., 0], w[..., 1]
+    return _first_contact(p[:, 0], p[:, 1], w[..., 0], w[..., 1], radius, spread, horizon)
+
+
+def _first_contact(px, py, wx, wy, radius, spread: float, horizon: float) -> np.ndarray:
+    """:func:`first_contact` on the components (``px``, ``py``: (K,); ``wx``, ``wy``: (N, K)):
+    the smaller root of ``(|w|^2 - u^2) t^2 - 2 (p.w + R u) t + |p|^2 - R^2 = 0``."""
     a = wx * wx + wy * wy - spread * spread
     half_b = px * wx + py * wy + radius * spread  # -b / 2
     c = px * px + py * py - radius * radius
-    inside = c <= 0.0
     disc = half_b * half_b - a * c
-    with np.errstate(divide="ignore", invalid="ignore"):
-        root = np.sqrt(np.maximum(disc, 0.0))
-        # the smaller root, in the form that stays accurate when a is small (c / (hb + root))
-        t = np.where(half_b > 0, c / (half_b + root), np.inf)
-    t = np.where((disc >= 0.0) & (half_b > 0) & (t <= horizon), t, np.inf)
-    # a <= 0 (the spread outruns the relative speed): the grown disc swallows the own ship at
-    # t = c / (2 half_b) at the latest when half_b > 0; the formula above covers it
-    return np.where(inside, 0.0, t)
+    # a contact ahead: closing (hb > 0), or the spread outrunning the relative speed (a < 0:
+    # the grown disc swallows the own ship in the end); its time is the smaller positive root,
+    # c / (hb + sqrt(disc)) (accurate when a is small), whose denominator is then positive
+    ok = (disc >= 0.0) & ((half_b > 0.0) | (a < 0.0))
+    t = c / np.where(ok, half_b + np.sqrt(np.where(ok, disc, 0.0)), 1.0)
+    t = np.where(ok & (t <= horizon), t, np.inf)
+    return np.where(c <= 0.0, 0.0, t)  # already inside
 
 
 def passes_to_port(p: np.ndarray, w: np.ndarray) -> np.ndarray:
@@ -171,10 +180,11 @@ class VelocityObstacle(Controller):
         self.offsets = offsets[:n]
         self.radius = 0.5 * ship.length
         if world.clearance is not None:
-            step = 0.5 * world.clearance.grid.cell_size
+            # a point every cell (or every ship radius, when less): every cell the track
+            # crosses lies within its threshold of some point
+            step = min(float(world.clearance.grid.cell_size), self.radius)
             far = ship.max_speed * float(p["ground_time"])
             self.ray = np.arange(step, far + step, step)  # distances along a course
-        self._fixed = None
 
     # -- the step ----------------------------------------------------------------------------
 
@@ -182,15 +192,15 @@ class VelocityObstacle(Controller):
         world, p, ship = self.world, self.params, self.world.vessel
         self.time += world.period
         goal = self.progress.subgoal(own)
-        to = goal - (own.x, own.y)
-        pref_course = math.atan2(to[1], to[0]) if np.any(to) else own.psi
-        pref = ship.max_speed * np.array([math.cos(pref_course), math.sin(pref_course)])
-        speed, course = self.candidates(own, pref_course)
-        vel = np.stack([speed * np.cos(course), speed * np.sin(course)], axis=-1)  # (N, 2)
-        cost = np.hypot(vel[:, 0] - pref[0], vel[:, 1] - pref[1])
-        grounded = self.grounds(own, speed, course)
-        contact, wrong_side = self.obstacles(own, targets, vel)
-        free = ~grounded & ~np.isfinite(contact)
+        dx, dy = float(goal[0]) - own.x, float(goal[1]) - own.y
+        pref_course = math.atan2(dy, dx) if dx or dy else own.psi
+        speed, course, heads, index = self.candidates(own, pref_course)
+        vx, vy = speed * np.cos(course), speed * np.sin(course)
+        cost = np.hypot(vx - ship.max_speed * math.cos(pref_course),
+                        vy - ship.max_speed * math.sin(pref_course))  # fmt: skip
+        grounded = self.grounds(own, speed, heads, index)
+        contact, wrong_side = self.obstacles(own, targets, vx, vy)
+        free = ~grounded & (contact == np.inf)
         ok = free & ~wrong_side
         events = []
         if not ok.any() and free.any():
@@ -202,8 +212,7 @@ class VelocityObstacle(Controller):
             with np.errstate(divide="ignore"):
                 penalised = cost + float(p["w_time"]) / contact
             if not grounded.all():
-                penalised = np.where(grounded, np.inf, penalised)
-                best = int(np.argmin(penalised))
+                best = int(np.argmin(np.where(grounded, np.inf, penalised)))
             else:  # every course meets the grid within the look-ahead: the slowest, then cost
                 best = int(np.lexsort((cost, speed))[0])
             events.append({"kind": "all-candidates-in-vo", "candidates": int(speed.size),
@@ -213,80 +222,100 @@ class VelocityObstacle(Controller):
                              float(p["heading_gain"]))  # fmt: skip
         return Decision(v, omega, events)
 
-    def candidates(self, own: Own, pref_course: float) -> tuple[np.ndarray, np.ndarray]:
-        """(N,) speeds and courses: the grid within reach, the present velocity, and the
-        preferred course at each speed when it is within reach."""
+    def candidates(self, own: Own, pref_course: float):
+        """(N,) speeds and courses: the grid of speeds x courses within reach, the present
+        velocity, and the preferred course at each speed when it is within reach; and the
+        courses (H,) with each candidate's index among them."""
         p, ship = self.params, self.world.vessel
         t = float(p["reach"])
         lo = max(ship.min_speed, own.v - ship.max_decel * t)
         hi = min(ship.max_speed, own.v + ship.max_accel * t)
         speeds = np.linspace(lo, hi, int(p["speeds"]))
         off = math.remainder(pref_course - own.psi, 2 * math.pi)
-        offsets = self.offsets
-        if abs(off) <= self.turn:
-            offsets = np.append(offsets, off)
-        courses = own.psi + np.append(offsets, 0.0)
-        speed = np.append(np.repeat(speeds, courses.size), own.v)
-        course = np.append(np.tile(courses, speeds.size), own.psi)
-        return speed, course
+        extra = [0.0, off] if abs(off) <= self.turn else [0.0]
+        heads = own.psi + np.concatenate((self.offsets, extra))
+        h = heads.size
+        speed = np.empty(speeds.size * h + 1)
+        speed[:-1] = np.repeat(speeds, h)
+        speed[-1] = own.v
+        index = np.empty(speed.size, np.intp)
+        index[:-1] = np.tile(np.arange(h), speeds.size)
+        index[-1] = self.offsets.size  # the present course
+        return speed, heads[index], heads, index
 
-    def grounds(self, own: Own, speed: np.ndarray, course: np.ndarray) -> np.ndarray:
-        """(N,) bool: the straight track over ``ground_time`` meets the grid (a clearance at
-        most half the own ship's length), or the ship is already there."""
+    def grounds(self, own: Own, speed: np.ndarray, heads: np.ndarray, index: np.ndarray
+                ) -> np.ndarray:  # fmt: skip
+        """(N,) bool: the straight track of candidate ``n`` (course ``heads[index[n]]``) over
+        ``ground_time`` meets the grid (a clearance at most half the own ship's length), or the
+        ship is already there. Each course's first such distance along it is found once."""
         clearance = self.world.clearance
         if clearance is None:
             return np.zeros(speed.size, bool)
-        heads, index = np.unique(course, return_inverse=True)
         ray = self.ray
-        x = own.x + np.cos(heads)[:, None] * ray
-        y = own.y + np.sin(heads)[:, None] * ray
-        blocked = clearance.at(x, y) <= self.radius
+        blocked = clearance.at(own.x + np.cos(heads)[:, None] * ray,
+                               own.y + np.sin(heads)[:, None] * ray) <= self.radius  # fmt: skip
         first = np.where(blocked.any(axis=1), ray[np.argmax(blocked, axis=1)], np.inf)
-        return speed * float(self.params["ground_time"]) >= first[index.ravel()]
+        return speed * float(self.params["ground_time"]) >= first[index]
 
-    def obstacles(self, own: Own, targets: Targets, vel: np.ndarray
+    def obstacles(self, own: Own, targets: Targets, vx: np.ndarray, vy: np.ndarray
                   ) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
         """(N,) the first contact time within the horizon over every target's worst-case VO
         (inf outside them all), and (N,) bool: in region V3 of a target whose COLREGs mode
         applies (with the hysteresis)."""
-        n = vel.shape[0]
-        k = targets.pos.shape[0]
+        n, k = vx.size, targets.pos.shape[0]
         if k == 0:
             return np.full(n, np.inf), np.zeros(n, bool)
         p, ship = self.params, self.world.vessel
-        rel = targets.pos - (own.x, own.y)  # (K, 2)
+        px, py = targets.pos[:, 0] - own.x, targets.pos[:, 1] - own.y  # (K,)
         radius = 0.5 * (ship.length + targets.length) + float(p["margin"]) * ship.length
-        w = vel[:, None, :] - targets.vel[None, :, :]  # (N, K, 2)
-        contact = first_contact(rel, w, radius, float(p["uncertainty"]), float(p["horizon"]))
+        wx = vx[:, None] - targets.vel[:, 0]  # (N, K)
+        wy = vy[:, None] - targets.vel[:, 1]
+        contact = _first_contact(px, py, wx, wy, radius, float(p["uncertainty"]),
+                                 float(p["horizon"])).min(axis=1)  # fmt: skip
         active = self.colregs(own, targets)
-        if active.any():
-            wrong = passes_to_port(rel[active], w[:, active]).any(axis=1)
-        else:
-            wrong = np.zeros(n, bool)
-        return contact.min(axis=1), wrong
+        if not active.any():
+            return contact, np.zeros(n, bool)
+        px, py, wx, wy = px[active], py[active], wx[:, active], wy[:, active]
+        wrong = (px * wy - py * wx > 0.0) & (px * wx + py * wy >= 0.0)  # V3 (passes_to_port)
+        return contact, wrong.any(axis=1)
 
     def colregs(self, own: Own, targets: Targets) -> np.ndarray:
         """(K,) bool: the targets whose COLREGs constraint applies now: entered (class in
         :data:`CONSTRAINED`, ``0 < t_CPA <= colregs_time``, ``d_CPA <= colregs_distance``
-        lengths) or held by the hysteresis (``hold`` s after the entry last held)."""
+        lengths) or held by the hysteresis (``hold`` s after the entry last held). The CPA is
+        tested first; only the targets it admits are classified."""
         p, ship = self.params, self.world.vessel
-        speed = np.hypot(targets.vel[:, 0], targets.vel[:, 1])
-        heading = np.degrees(np.arctan2(targets.vel[:, 0], targets.vel[:, 1])) % 360.0
-        s = assess((own.x, own.y), (90.0 - math.degrees(own.psi)) % 360.0, own.v, targets.pos,
-                   heading, speed)  # fmt: skip
-        entry = (np.isin(s.cls, CONSTRAINED) & (s.tcpa > 0) & (s.tcpa <= p["colregs_time"])
-                 & (s.dcpa <= p["colregs_distance"] * ship.length))  # fmt: skip
-        active = np.zeros(entry.size, bool)
-        for j in range(entry.size):  # per target (a handful), not per candidate
+        k = targets.pos.shape[0]
+        rel = targets.pos - (own.x, own.y)
+        wx = targets.vel[:, 0] - own.v * math.cos(own.psi)  # the targets' relative velocity
+        wy = targets.vel[:, 1] - own.v * math.sin(own.psi)
+        ww = wx * wx + wy * wy
+        moving = ww > VEL_EPS * VEL_EPS  # usvtool.encounter.cpa's, in the components
+        tcpa = np.where(moving, -(rel[:, 0] * wx + rel[:, 1] * wy) / np.where(moving, ww, 1.0),
+                        0.0)  # fmt: skip
+        dcpa = np.hypot(rel[:, 0] + tcpa * wx, rel[:, 1] + tcpa * wy)
+        near = (tcpa > 0) & (tcpa <= p["colregs_time"]) & (dcpa <= p["colregs_distance"]
+                                                             * ship.length)  # fmt: skip
+        cls = np.full(k, NONE, np.int8)
+        if near.any():  # the relative bearings of usvtool.encounter (compass degrees)
+            px, py = rel[near, 0], rel[near, 1]
+            tx, ty = targets.vel[near, 0], targets.vel[near, 1]
+            beta = np.degrees(own.psi - np.arctan2(py, px)) % 360.0
+            alpha = np.degrees(np.arctan2(ty, tx) - np.arctan2(-py, -px)) % 360.0
+            cls[near] = classify_angles(beta, alpha, True)
+        entry = near & ((cls == HEAD_ON) | (cls == CROSSING_GIVE_WAY) | (cls == OVERTAKING))
+        active = np.zeros(k, bool)
+        if not entry.any() and not self.modes:
+            return active
+        for j in range(k):  # per target (a handful), not per candidate
             if entry[j]:
                 held = self.modes.get(j)
                 # a mode held keeps its class; a fresh entry takes the present one
-                cls = held[0] if held and self.time - held[1] <= p["hold"] else int(s.cls[j])
-                self.modes[j] = (cls, self.time)
+                mode = held[0] if held and self.time - held[1] <= p["hold"] else int(cls[j])
+                self.modes[j] = (mode, self.time)
                 active[j] = True
             elif j in self.modes:
-                cls, last = self.modes[j]
-                if self.time - last <= p["hold"] and cls != NONE:
+                if self.time - self.modes[j][1] <= p["hold"]:
                     active[j] = True
                 else:
                     del self.modes[j]
