@@ -1,14 +1,15 @@
 """Encounter simulation: the cost of one control step, against the number of targets, numba's
 start-up, and the wall time of the bundled scenarios.
 
-1. One control step of each controller with three targets close by, on env1's grid: the dynamic
+1. One control step of each DWA controller with three targets close by, on env1's grid: the dynamic
    window sampled at 21 x 21 (+ the current values: 462 pairs; udwa+ 441), at the defaults
    (a 10 s horizon at 0.2 s) and at 3 s at 0.1 s. Beside it, in the same process and
    alternating, the previous revision's NumPy core (``--base``, loaded by benchmarks/revision.py
    with its own vessel module) and the ratio; then the plain way, the same objective one sample
    at a time in Python (tests/sim/plain_dwa.py, PythonRobotics' style). Each figure is the best
    of ``--runs`` runs of 50 steps (this shared 2-core machine's timings vary by up to two times
-   between runs; the best is the repeatable one).
+   between runs; the best is the repeatable one). Then the field's baselines (``vo``, issue
+   33) beside dwa at the defaults, now only (they have no base revision).
 2. One udwa step at the defaults against the number of targets (1, 3, 10, 30, 50, 100, 300),
    now and at ``--base``: targets within 100 m (every one within reach of the rollouts: the
    worst case) and spread over a 2 km disc (most beyond reach, skipped by the distance bound).
@@ -47,7 +48,14 @@ import yaml
 from usvtool.clearance import Clearance
 from usvtool.grid import read_grid
 from usvtool.sim import memory
-from usvtool.sim.controllers import CONTROLLERS, Own, Targets, World, make_controller
+from usvtool.sim.controllers import (
+    CONTROLLERS,
+    DynamicWindow,
+    Own,
+    Targets,
+    World,
+    make_controller,
+)
 from usvtool.sim.run import SimOptions, simulate
 from usvtool.sim.scenario import read_scenario
 from usvtool.sim.vessel import preset
@@ -142,6 +150,24 @@ class Step:
                             runs)  # fmt: skip
 
 
+#: The controllers with a base revision to compare with: the DWA family.
+DWA_CONTROLLERS = tuple(n for n, cls in CONTROLLERS.items() if issubclass(cls, DynamicWindow))
+#: The field's baselines (issue 33), timed beside dwa at the same step; no base revision.
+BASELINES = ("vo",)
+
+
+def baselines(runs: int) -> None:
+    """One step of each baseline controller beside dwa's: 3 targets, env1's grid, defaults."""
+    field = Clearance(read_grid(ROOT / "charts" / "env1.tif"))
+    ship, goal = preset("iwso-dwa-usv"), np.array([250.0, 480.0])
+    print("\nthe baselines beside dwa, one control step: 3 targets, env1's grid, defaults (ms, "
+          "best of runs of 50 steps)")  # fmt: skip
+    for name in ("dwa", *(b for b in BASELINES if b in CONTROLLERS)):
+        c = make_controller(name)
+        c.reset(World(ship, goal, field))
+        print(f"{name:10} {best_ms(lambda c=c: c.decide(OWN, TARGETS), runs):7.3f}")
+
+
 def steps(prev, runs: int) -> None:
     field = Clearance(read_grid(ROOT / "charts" / "env1.tif"))
     ship, goal = preset("iwso-dwa-usv"), np.array([250.0, 480.0])
@@ -149,7 +175,7 @@ def steps(prev, runs: int) -> None:
           "base revision's NumPy core in the same process, and the ratio)")  # fmt: skip
     print(f"{'controller':10} {'samples':>7} | {'defaults: now':>13} {'before':>7} {'x':>5} | "
           f"{'3 s at 0.1 s: now':>17} {'before':>7} {'x':>5} | same choice")  # fmt: skip
-    for name in CONTROLLERS:
+    for name in DWA_CONTROLLERS:
         cells, same = [], True
         for params in ({}, SPEC):
             step = Step(prev, name, params, field, ship, goal, TARGETS)
@@ -364,6 +390,7 @@ def main(argv=None) -> None:
             else None  # fmt: skip
         if not args.no_steps:
             steps(prev, args.runs)
+            baselines(args.runs)
         if args.targets:
             many_targets(prev, args.runs)
     if args.startup:
