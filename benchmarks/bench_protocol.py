@@ -9,12 +9,13 @@ built-in controllers' step time.
    Beside it, the parts done in this process alone: encoding one step message, and decoding
    and checking one reply. The C client is built with ``cc -O2`` into a temporary folder.
 2. The built-in controllers' decision on the same step (dwa, udwa at their defaults).
-3. Whole runs: the Imazu case 13 (three targets) and the bundled env1-head-on, each with the C
-   and the Python client steering (their rule, not trivial), and with udwa: the summary's
-   ``step_time_ms`` (the mean ``decide`` of the run) and the wall time.
-4. The 22 Imazu cases (``--imazu``; the family's defaults, seed 1) with the C client, the Python
-   client and udwa: arrived, collision, closest centre distance (the outcomes docs/protocol.md
-   gives), and whether the two clients' traces are the same.
+3. Whole runs: the Imazu case 13 (three targets; at the family's compressed scale, 15 m ships
+   at 7 m/s) and the bundled env1-head-on, each with the C and the Python client steering
+   (their rule, not trivial), and with udwa: the summary's ``step_time_ms`` (the mean
+   ``decide`` of the run) and the wall time.
+4. The 22 Imazu cases (``--imazu``; at the compressed scale, ``imazu.COMPRESSED``; seed 1) with
+   the C client, the Python client and udwa: arrived, collision, closest centre distance (the
+   outcomes docs/protocol.md gives), and whether the two clients' traces are the same.
 
 Each figure of 1 and 2 is the best of ``--runs`` runs of ``--steps`` steps (this shared 2-core
 machine's timings vary by up to two times between runs; the best is the repeatable one), in
@@ -121,8 +122,9 @@ def round_trips(client_c: Path | None, steps: int, runs: int) -> list[tuple[str,
 
 def whole_runs(client_c: Path | None, tmp: Path) -> list[tuple[str, str, dict, float]]:
     from usvtool.sim.families import make_scene, write_scene
+    from usvtool.sim.families.imazu import COMPRESSED
 
-    scene = make_scene("imazu", "13", 0, {}, lambda key: key)
+    scene = make_scene("imazu", "13", 0, dict(COMPRESSED), lambda key: key)
     write_scene(scene, tmp / "imazu-13.yaml")
     scenarios = [("imazu 13", read_scenario(tmp / "imazu-13.yaml")),
                  ("env1-head-on", read_scenario(ROOT / "charts" / "scenarios" /
@@ -142,14 +144,15 @@ def whole_runs(client_c: Path | None, tmp: Path) -> list[tuple[str, str, dict, f
 
 def imazu(client_c: Path | None, tmp: Path) -> None:
     from usvtool.sim.families import make_scene, write_scene
-    from usvtool.sim.families.imazu import CASES
+    from usvtool.sim.families.imazu import CASES, COMPRESSED
 
     controllers = [("C", "exec", {"command": [str(client_c)]})] if client_c else []
     controllers += [("Python", "exec", {"command": [sys.executable, str(EXAMPLES / "client.py")]}),
                     ("udwa", "udwa", {})]  # fmt: skip
     tally = {label: [0, 0] for label, _, _ in controllers}
     for kind in CASES:
-        write_scene(make_scene("imazu", kind, 0, {}, lambda key: key), tmp / f"{kind}.yaml")
+        scene = make_scene("imazu", kind, 0, dict(COMPRESSED), lambda key: key)
+        write_scene(scene, tmp / f"{kind}.yaml")
         scenario = read_scenario(tmp / f"{kind}.yaml")
         cells, traces = [], []
         for label, name, params in controllers:

@@ -21,6 +21,7 @@ from usvtool.errors import UsvError
 from usvtool.sim import vessel as vessel_model
 from usvtool.sim.controllers import Own, make_controller
 from usvtool.sim.controllers.process import PROTOCOL, autopilot
+from usvtool.sim.families import imazu
 from usvtool.sim.run import SimOptions, simulate
 from usvtool.sim.scenario import parse, read_scenario
 
@@ -435,6 +436,8 @@ def test_a_missing_program_is_one_error_line_and_no_output(usv, tmp_path):
 
 
 IMAZU = ["05", "13", "22"]  # a head-on and a crossing; three ships; an overtaking and two more
+#: The Imazu family's compressed scale (15 m ships at 7 m/s, docs/families.md), as options.
+COMPRESSED = [a for k, v in imazu.COMPRESSED.items() for a in ("--family-option", f"{k}={v:g}")]
 
 
 @pytest.mark.parametrize("which", ["python", "c"])
@@ -443,7 +446,7 @@ def test_a_client_runs_imazu_cases(usv, tmp_path, which, request):
     for kind in IMAZU:
         out = tmp_path / kind
         out.mkdir()
-        r = usv("simulate", "--family", "imazu", "--kind", kind, "--controller",
+        r = usv("simulate", "--family", "imazu", "--kind", kind, *COMPRESSED, "--controller",
                 exec_word(command), "--seed", 1, "-o", out / "trace.csv", "--events",
                 out / "trace.events.json", "--scenario-out", out / "scene.yaml")  # fmt: skip
         assert r.exit_code == 0, r.stderr

@@ -23,7 +23,7 @@ from usvtool.sim.families import (
     unregister,
     write_scene,
 )
-from usvtool.sim.families.imazu import CASES
+from usvtool.sim.families.imazu import CASES, COMPRESSED
 from usvtool.sim.scenario import read_scenario
 from usvtool.sim.vessel import PRESETS
 from usvtool.sim.weather import beaufort
@@ -56,7 +56,7 @@ def cpa_distance(s: dict, i: int) -> float:
 def assert_clear(s: dict) -> None:
     """No target in the own ship's 7 L x 3 L ellipse; hulls half their mean length apart."""
     own, ts = s["own"], s.get("targets", [])
-    length = PRESETS[own["vessel"]]["length"]
+    length = own.get("length", PRESETS[own["vessel"]]["length"])  # the override, if any
     h = math.radians(own["heading"])
     for t in ts:
         dx, dy = np.subtract(t["start"], own["start"])
@@ -155,11 +155,31 @@ def test_imazu_cases_are_tabulated_and_keep_their_promise():
         assert len(s["targets"]) == (1 if n <= 4 else 2 if n <= 12 else 3)
         assert classes(s) == [c[2] for c in CASES[case]]
         assert_clear(s)
-        # every ship reaches (0, 420) after 60 s: 7 m/s x 60 s
+        # every ship reaches (0, 600) after 150 s: 4 m/s x 150 s, 120 lengths of 5 m
         for t in s["targets"]:
-            end = np.add(t["start"], 60.0 * velocity(t["heading"], t["speed"]))
-            assert end == pytest.approx([0.0, 420.0], abs=1e-5)
-        assert s["own"]["goal"] == [0.0, 840.0]
+            end = np.add(t["start"], 150.0 * velocity(t["heading"], t["speed"]))
+            assert end == pytest.approx([0.0, 600.0], abs=1e-5)
+            assert t["length"] == 5.0
+        assert s["own"]["goal"] == [0.0, 1200.0] and s["sim"]["duration"] == 450.0
+        # the own ship 5 m long, its top speed its 4 m/s (udwa-usv's: 15 m, 7 m/s)
+        assert s["own"]["length"] == 5.0 and s["own"]["max_speed"] == 4.0
+
+
+def test_imazu_compressed_scale_is_the_earlier_scene():
+    # udwa-usv at its own 7 m/s and 15 m, the CPA 60 s ahead: no vessel override is written,
+    # every ship reaches (0, 420) after 60 s, the goal (0, 840), 180 s
+    s = make_scene("imazu", "14", options=COMPRESSED).draw.scenario
+    assert s["own"] == {"start": [0.0, 0.0], "goal": [0.0, 840.0], "heading": 0.0,
+                        "speed": 7.0, "vessel": "udwa-usv"}  # fmt: skip
+    assert s["sim"]["duration"] == 180.0
+    for t in s["targets"]:
+        end = np.add(t["start"], 60.0 * velocity(t["heading"], t["speed"]))
+        assert end == pytest.approx([0.0, 420.0], abs=1e-5) and t["length"] == 15.0
+    # case 14's first target, course 350: 2 v T sin(5 deg) = 840 x 0.0872 = 73.2 m off
+    assert np.hypot(*s["targets"][0]["start"]) == pytest.approx(73.21, abs=0.01)
+    # top_speed: the own ship may speed up to 1.75 x 4 = 7 m/s, the preset's (not written)
+    s = make_scene("imazu", "01", options={"top_speed": 1.75}).draw.scenario
+    assert "max_speed" not in s["own"] and s["own"]["length"] == 5.0
 
 
 @pytest.mark.parametrize("case, target, bearing, course", [
@@ -275,7 +295,7 @@ def test_real_families_fail_in_one_line_when_options_break_the_promise():
     with pytest.raises(UsvError, match=r"no draw of 100 keeps its promise \(100 forces"):
         make_scene("wind", "halves", 0, {"ramp": 300})  # 50 m off the line is on the ramp
     with pytest.raises(UsvError, match=r"no draw of 1 keeps its promise \(1 target"):
-        make_scene("imazu", "01", 0, {"tcpa": 1})  # the target starts 14 m ahead
+        make_scene("imazu", "01", 0, {"tcpa": 1})  # the target starts 8 m ahead
 
 
 def test_options_kinds_and_scenes_are_checked():

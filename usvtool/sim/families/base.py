@@ -241,13 +241,14 @@ def class_names(s: dict) -> list[str]:
 
 def crowding(s: dict) -> str | None:
     """Why the targets do not start clear: one inside the own ship's domain (7 L x 3 L,
-    :func:`usvtool.encounter.in_domain`), or two whose hulls are less than half their mean
-    length apart (centres closer than 3/4 of the sum of their lengths)."""
+    :func:`usvtool.encounter.in_domain`, L the own length: its override, else its preset's),
+    or two whose hulls are less than half their mean length apart (centres closer than 3/4 of
+    the sum of their lengths)."""
     own, targets = s["own"], s.get("targets", [])
     if not targets:
         return None
     xy = np.array([t["start"] for t in targets], float)
-    length = PRESETS[own["vessel"]]["length"]
+    length = own.get("length", PRESETS[own["vessel"]]["length"])  # a vessel override, if any
     if encounter.in_domain(own["start"], own["heading"], xy, length).any():
         return "target in the own ship's domain"
     lengths = np.array([t["length"] for t in targets], float)

@@ -1,13 +1,19 @@
 """``imazu``: the 22 encounters of the Imazu problem (Imazu 1987, as tabulated by Sawada, Sato
-and Majima 2021, J. Mar. Sci. Technol. 26, Table 4), at a USV scale (docs/families.md gives
-the table, its sources and this reading of them).
+and Majima 2021, J. Mar. Sci. Technol. 26, Table 4), at the published proportions by default
+(docs/families.md gives the table, its sources, this reading of them and the two scales).
 
 Every ship meets the own ship at one point, the CPA, after ``tcpa`` seconds: the own ship from
 (0, 0) heading north at ``own_speed`` (CPA at (0, own_speed x tcpa), goal as far beyond it),
 each target on its course at the own ship's speed, but a target ahead on the own course (the
 one being overtaken), at ``overtaken_speed`` times it, so it starts between the own ship and
-the CPA. Targets are ``length`` m long and keep course and speed. Not seeded: each case is one
-scene.
+the CPA. Targets are ``length`` m long and keep course and speed; the own ship
+is ``own_length`` m long, its top speed ``top_speed`` times ``own_speed`` (each written as a
+vessel override where it differs from the preset's). Not seeded: each case is one scene.
+
+The defaults keep the published proportions (:data:`PUBLISHED`): 5 m ships at 4 m/s, the CPA
+150 s ahead (beyond the verdicts' onset, a TCPA of 120 s, as the published 30 min are beyond a
+ship's), the CPA 600 m = 120 lengths off; :data:`COMPRESSED` gives the earlier USV scale (15 m at
+7 m/s, 60 s, every encounter starting inside the onset).
 
 Promise: every target is of its tabulated class at the start (:data:`CASES`), on a collision
 course (CPA under 1 m, at ``tcpa``), and clear (:func:`~.base.crowding`).
@@ -31,6 +37,7 @@ from usvtool.sim.families.base import (
     toward,
     vessel_option,
 )
+from usvtool.sim.vessel import PRESETS
 
 HO, GW, SO, OT = "head-on", "crossing-give-way", "crossing-stand-on", "overtaking"
 #: Case -> its targets: (compass course, overtaken, the class at the start). Courses of the
@@ -61,6 +68,14 @@ CASES: dict[str, tuple[tuple[float, bool, str], ...]] = {
 }
 
 
+#: The defaults: the published proportions (docs/families.md).
+PUBLISHED = {"own_speed": 4.0, "tcpa": 150.0, "length": 5.0, "own_length": 5.0, "duration": 450.0}
+#: The compressed scale the family had before (udwa-usv at its 7 m/s and length, 60 s to the CPA):
+#: ``--family-option`` each of these.
+COMPRESSED = {"own_speed": 7.0, "tcpa": 60.0, "length": 15.0, "own_length": 15.0,
+              "duration": 180.0}  # fmt: skip
+
+
 class Imazu(Family):
     name = "imazu"
     kinds = tuple(CASES)
@@ -68,14 +83,17 @@ class Imazu(Family):
     max_draws = 1  # one scene per case: a second draw would be the same
     controller = "udwa"
     parameters = {
-        "own_speed": Param(
-            7.0, "the own ship's speed, m/s (every target's but the overtaken)", POSITIVE
-        ),
-        "tcpa": Param(60.0, "the time at which every ship reaches the CPA, s", POSITIVE),
+        "own_speed": Param(PUBLISHED["own_speed"], "the own ship's speed, m/s "
+                           "(every target's but the overtaken)", POSITIVE),
+        "tcpa": Param(PUBLISHED["tcpa"], "the time at which every ship reaches the CPA, s",
+                      POSITIVE),
         "overtaken_speed": Param(0.7, "the overtaken target's speed over the own ship's", POSITIVE),
-        "length": Param(15.0, "the targets' length, m", POSITIVE),
+        "length": Param(PUBLISHED["length"], "the targets' length, m", POSITIVE),
+        "own_length": Param(PUBLISHED["own_length"], "the own ship's length, m", POSITIVE),
+        "top_speed": Param(1.0, "the own ship's top speed over own_speed (1: it cannot speed "
+                           "up, so it meets the targets as tabulated)", POSITIVE),
         "vessel": vessel_option("udwa-usv"),
-        "duration": duration_option(180.0),
+        "duration": duration_option(PUBLISHED["duration"]),
     }
     about = {case: ", ".join(f"{c[2]} (course {c[0]:g})" for c in ships)
              for case, ships in CASES.items()}  # fmt: skip
@@ -89,6 +107,10 @@ class Imazu(Family):
             x, y = (round(float(c), 6) + 0.0 for c in toward(cpa, course, -speed * tcpa))
             targets.append(ship(f"ts{i + 1}", x, y, course, speed, opts["length"]))
         own = own_ship((0.0, 0.0), (0.0, 2 * v * tcpa), 0.0, v, opts["vessel"])
+        preset = PRESETS[opts["vessel"]]
+        for key, value in (("length", opts["own_length"]), ("max_speed", v * opts["top_speed"])):
+            if value != preset[key]:  # the preset's own figures are not repeated
+                own[key] = float(value)
         return Draw(scenario(own, targets, opts["duration"], self.controller))
 
     def reject(self, kind: str, draw: Draw, opts: dict) -> str | None:
