@@ -52,8 +52,10 @@ One control step, every candidate at once (numpy, no per-candidate loop):
    horizon), the penalty of an imminent contact (event ``all-candidates-in-vo``).
 
 The readings where the paper leaves a figure or a detail open: docs/controllers.md, section
-"vo". Angles inside are mathematical radians (counter-clockwise from east), as everywhere in the
-controllers.
+"vo". Only the paper's abstract and introduction could be read through the stored-text search:
+the equation numbers cited are its order as recalled, and its own figures could not be checked
+(docs/controllers.md says which figures are usvtool's and why). Angles inside are mathematical
+radians (counter-clockwise from east), as everywhere in the controllers.
 """
 
 from __future__ import annotations
