@@ -219,6 +219,7 @@ class SBMPC(Controller):
         vessel = self.world.vessel
         t = self.times[None, :]
         command0 = course - self.chi  # (B,) math rad
+        self._command0 = command0
         error = np.remainder(command0 - own.psi + math.pi, 2 * math.pi) - math.pi
         rate = vessel.max_yaw_rate
         turn = self.route_turn()
@@ -280,7 +281,10 @@ class SBMPC(Controller):
                               + (vy[:, None] - wy[None, :, None]) ** 2)
         # the situations at each predicted time
         lx, ly = rx / d, ry / d
-        uxx, uyy = ux[:, None], uy[:, None]
+        # the sides and "ahead" from the behaviour's commanded course (its heading once the turn
+        # is made: the predicate judges the manoeuvre, not the instants of its turn)
+        settled = self._command0
+        uxx, uyy = np.cos(settled)[:, None, None], np.sin(settled)[:, None, None]
         ahead = uxx * lx + uyy * ly  # cosine of the obstacle's bearing from the bow
         starboard = (uxx * ly - uyy * lx < 0) & (ahead > FORWARD_COS)
         sp_t = np.hypot(wx, wy)[None, :, None]
@@ -288,21 +292,30 @@ class SBMPC(Controller):
         dot = vx[:, None] * wx[None, :, None] + vy[:, None] * wy[None, :, None]
         norm = sp_o * sp_t
         moving = (sp_o > 0.05) & (sp_t > 0.05)
-        head_on = moving & (dot < -HEAD_ON_COS * norm) & (ahead > AHEAD_COS)
-        crossed = moving & (dot < CROSSED_COS * norm) & ~(dot < -HEAD_ON_COS * norm)
         close = d <= d_cl
-        mu = close & starboard & (head_on | crossed)
-        # the transitional cost: crossing ahead of a close obstacle not met head-on (Rule 15),
-        # and the stand-on ship of a close crossing turning to port (Rule 17(c))
+        # ... and closing (the range falling): a ship drawing away holds no risk of collision,
+        # Rule 7 (our reading: the paper's predicates alone flag a ship that crossed ahead)
+        closing = ((wx[None, :, None] - vx[:, None]) * lx
+                   + (wy[None, :, None] - vy[:, None]) * ly) < 0
+        # a crossing is the give-way ship's (Rule 15) only if the obstacle is on the starboard
+        # side now (t0): one that crossed ahead from port does not make her give way
         r0x, r0y = px - own.x, py - own.y
         d0 = np.maximum(np.hypot(r0x, r0y), 1e-6)
         h0x, h0y = math.cos(own.psi), math.sin(own.psi)
-        v0x, v0y = own.v * h0x, own.v * h0y
         ahead0 = (h0x * r0x + h0y * r0y) / d0
+        starboard0 = (h0x * r0y - h0y * r0x < 0) & (ahead0 > FORWARD_COS)
+        # likewise a head-on situation is the one met ahead at t0 (Rule 14: "ahead or nearly
+        # ahead"); either is then judged at t on courses crossing or reciprocal
+        ho0 = self._head_on0(own, targets)
+        meeting = moving & (dot < CROSSED_COS * norm)
+        mu = close & closing & starboard & meeting & (ho0 | starboard0)[None, :, None]
+        # the transitional cost: crossing ahead of a close obstacle not met head-on (Rule 15),
+        # and the stand-on ship of a close crossing turning to port (Rule 17(c))
+        v0x, v0y = own.v * h0x, own.v * h0y
         dot0 = v0x * wx + v0y * wy
         norm0 = own.v * np.hypot(wx, wy)
         moving0 = (own.v > 0.05) & (np.hypot(wx, wy) > 0.05)
-        head_on0 = moving0 & (dot0 < -HEAD_ON_COS * norm0) & (ahead0 > AHEAD_COS)
+        head_on0 = ho0
         crossed0 = moving0 & (dot0 < CROSSED_COS * norm0) & ~(dot0 < -HEAD_ON_COS * norm0)
         port0 = (h0x * r0y - h0y * r0x > 0) & (ahead0 > FORWARD_COS)
         close0 = d0 <= d_cl[0, :, 0]
@@ -312,8 +325,24 @@ class SBMPC(Controller):
         in_front = (wx[None, :, None] * -rx + wy[None, :, None] * -ry) > 0
         crosses = (side * side0[None, :, None] < 0) & in_front & ~head_on0[None, :, None]
         tau = close & (crosses | stand_on_port[:, :, None])
-        term = cost * risk + p["kappa"] * mu + p["lam"] * tau
-        return term.max(axis=(1, 2))
+        # per obstacle: the largest collision term, plus kappa if a violation and lambda if a
+        # transition occurs anywhere in the prediction; then the worst obstacle
+        term = ((cost * risk).max(axis=2) + p["kappa"] * mu.any(axis=2)
+                + p["lam"] * tau.any(axis=2))
+        return term.max(axis=1)
+
+    @staticmethod
+    def _head_on0(own: Own, targets: Targets) -> np.ndarray:
+        """(K,) HEAD-ON at t0: moving on courses within 22.5 deg of reciprocal, the obstacle
+        within 22.5 deg of the own ship's heading."""
+        r = targets.pos - [own.x, own.y]
+        d = np.maximum(np.hypot(r[:, 0], r[:, 1]), 1e-6)
+        h = np.array([math.cos(own.psi), math.sin(own.psi)])
+        w = targets.vel
+        sp = np.hypot(w[:, 0], w[:, 1])
+        dot = own.v * (w @ h)
+        return ((own.v > 0.05) & (sp > 0.05) & (dot < -HEAD_ON_COS * own.v * sp)
+                & ((r @ h) / d > AHEAD_COS))
 
     def grounding(self, x, y, v) -> np.ndarray:
         """(B,) the grounding term G(k): the grid as an obstacle at rest (our addition)."""
@@ -341,7 +370,11 @@ class SBMPC(Controller):
         self._clock += w.period
         chi, prop = self.chi[self.held], self.prop[self.held]
         vessel = w.vessel
-        speed = min(max(prop * self.nominal, vessel.min_speed), vessel.max_speed)
+        # the guidance slows on its last metres so that the autopilot's turn (radius about
+        # speed / gain) fits within the distance left: no orbit round the goal
+        left = math.hypot(w.goal[0] - own.x, w.goal[1] - own.y)
+        speed = min(prop * self.nominal, 0.5 * p["heading_gain"] * left)
+        speed = min(max(speed, vessel.min_speed), vessel.max_speed)
         v, omega = autopilot(own, course - chi, speed, vessel, w.period, p["heading_gain"])
         return Decision(v, omega)
 
