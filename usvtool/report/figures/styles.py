@@ -101,6 +101,7 @@ CONTROLLERS = {
     "udwa": ("controller", "#009E73", ":", "v"),
     "udwa+": ("our controller variant", "#CC79A7", (0, (5, 1.5, 1, 1.5, 1, 1.5)), "P"),
     "vo": ("baseline controller", "#4477AA", (0, (1, 1)), "*"),
+    "sbmpc": ("controller", "#EE6677", (0, (3, 1, 1, 1)), "d"),
 }
 #: The own ship (Okabe-Ito blue, the papers' blue boat) and the other ships in their order
 #: (vermillion first, the papers' red obstacle ship).
