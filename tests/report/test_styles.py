@@ -20,7 +20,7 @@ from usvtool.report.figures import styles as S
 ROOT = Path(__file__).resolve().parents[2]
 PLANNERS = ("wso", "iwso", "ssa", "issa", "pso", "pso-issa", "gwo", "woa", "mrfo", "boa",
             "iwso+s", "iwso+g", "ssa-redraw", "anyangle", "astar")  # fmt: skip
-CONTROLLERS = ("dwa", "gdwa", "ccdwa", "udwa", "udwa+", "vo")
+CONTROLLERS = ("dwa", "gdwa", "ccdwa", "udwa", "udwa+", "vo", "sbmpc")
 #: Okabe-Ito (2008) and Paul Tol's bright, muted, vibrant and light schemes (2021), by hand.
 SAFE = {"#000000", "#E69F00", "#56B4E9", "#009E73", "#F0E442", "#0072B2", "#D55E00", "#CC79A7",
         "#4477AA", "#EE6677", "#228833", "#CCBB44", "#66CCEE", "#AA3377", "#BBBBBB",
