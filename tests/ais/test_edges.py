@@ -307,7 +307,7 @@ def test_an_mmsi_written_as_a_whole_decimal_is_that_integer(usv, tmp_path):
 
 @pytest.mark.parametrize("option, known", [
     ("--vessel", "(iwso-dwa-usv, udwa-usv)"),
-    ("--controller", "(ccdwa, dwa, exec, gdwa, policy, udwa, udwa+, vo)")])  # fmt: skip
+    ("--controller", "(ccdwa, dwa, exec, gdwa, policy, sbmpc, udwa, udwa+, vo)")])  # fmt: skip
 def test_scenario_refuses_an_unknown_vessel_or_controller(usv, ny, tmp_path, option, known):
     tracks, enc = ny
     result = usv("ais", "scenario", tracks, "--encounters", enc, "--encounter", 1, option,

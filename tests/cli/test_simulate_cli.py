@@ -173,8 +173,8 @@ BAD = [  # (id, changes to the scenario, extra arguments, exit status, words of 
     ("unknown-field", [edit("own.sped", 3)], [], 1, "s.yaml: own.sped is not a field"),
     ("bad-point", [edit("own.start", [1, 2, 3])], [], 1, "s.yaml: own.start must be [x, y]"),
     ("unknown-controller", [edit("controller.name", "apf")], [], 1,
-     "s.yaml: controller.name must be one of dwa, gdwa, ccdwa, udwa, udwa+, vo, exec, policy, "
-     "not 'apf'"),
+     "s.yaml: controller.name must be one of dwa, gdwa, ccdwa, udwa, udwa+, vo, sbmpc, exec, "
+     "policy, not 'apf'"),
     ("unknown-scenario-param", [edit("controller.gain", 2)], [], 1,
      "s.yaml: controller.gain is not a parameter of udwa"),
     ("bad-scenario-param", [edit("controller.horizon", 0)], [], 1,
