@@ -133,7 +133,8 @@ def test_window_and_own_ship_refused_in_one_line(usv, ny_files, tmp_path):
 @pytest.mark.slow
 @pytest.mark.parametrize("controller, on_map", [("dwa", False), ("gdwa", False), ("ccdwa", False),
                                                 ("udwa", False), ("udwa+", False),
-                                                ("udwa", True)])  # fmt: skip
+                                                ("udwa", True), ("vo", False),
+                                                ("vo", True)])  # fmt: skip
 def test_every_controller_runs_the_sample_scenario(usv, ny_files, tmp_path, controller, on_map):
     """A minute of the sample around the ferries' head-on passing, in the local frame with every
     controller and on a map with one."""
