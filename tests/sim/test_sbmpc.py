@@ -65,7 +65,7 @@ def test_hazard_of_two_behaviours_by_hand():
     1.5 and 0.5 m/s over 0.5 s) 0.75 m and 1.0 m. Only t = 0.5 s has a relative speed:
     C = 1 * 1^2, R = 0.5^-0.5 (30 / 19.25)^4 = 8.342...; then f = 2.5 (1 - 0), g = 0.5 |0 - 1|
     from the held (0 deg, nominal): H = 8.3424 + 2.5 + 0.5."""
-    c = controller(goal=(1000.0, 0.0), speed=2.0, d_safe=30.0)
+    c = controller(goal=(1000.0, 0.0), speed=2.0, d_safe=30.0, step=0.5)
     own = Own(0.0, 0.0, EAST, 2.0, 0.0)
     targets = ships((20.0, 0.0, 0.0, 0.0, 15.0))
     h = c.hazard(own, targets, 0.0)

@@ -90,7 +90,7 @@ class SBMPC(Controller):
     name = "sbmpc"
     parameters = {
         "horizon": Param(60.0, "the prediction horizon T, s", POSITIVE),
-        "step": Param(0.5, "the prediction's time step, s", POSITIVE),
+        "step": Param(1.0, "the prediction's time step, s", POSITIVE),
         "update": Param(1.0, "seconds a chosen behaviour is held before re-evaluation",
                         NON_NEGATIVE),
         "speed": Param(None, "the nominal speed, m/s (null: the vessel's max_speed)"),
@@ -262,74 +262,82 @@ class SBMPC(Controller):
         return total
 
     def ships(self, own, targets, x, y, ux, uy, vx, vy, v) -> np.ndarray:
-        """(B,) max over targets and times of C R + kappa mu + lambda tau."""
+        """(B,) max over targets of [max over times of C R, plus kappa if a violation and
+        lambda if a transition occurs anywhere in the prediction].
+
+        Only the (behaviour, target, time) triples within reach (d <= max(d_safe, d_close):
+        beyond, R, mu and tau are all zero) are looked at, compressed to a flat list."""
         p = self.params
         t = self.times
+        n_b = x.shape[0]
+        n_k = targets.pos.shape[0]
         px, py = targets.pos[:, 0], targets.pos[:, 1]
         wx, wy = targets.vel[:, 0], targets.vel[:, 1]
-        tx = px[:, None] + wx[:, None] * t  # (K, N)
-        ty = py[:, None] + wy[:, None] * t
-        rx = tx[None] - x[:, None]  # (B, K, N) own -> obstacle
-        ry = ty[None] - y[:, None]
-        d = np.hypot(rx, ry)
-        d = np.maximum(d, 1e-6)
-        d_safe = self.d_safe(np.asarray(targets.length, float))[None, :, None]
+        sp_t = np.hypot(wx, wy)
+        d_safe = self.d_safe(np.asarray(targets.length, float))  # (K,)
         d_cl = self.d_close(d_safe)
+        reach = np.maximum(d_safe, d_cl)
+        rx = (px[:, None] + wx[:, None] * t)[None] - x[:, None]  # (B, K, N) own -> obstacle
+        ry = (py[:, None] + wy[:, None] * t)[None] - y[:, None]
+        d2 = rx * rx + ry * ry
+        bi, ki, ni = np.nonzero(d2 <= (reach * reach)[None, :, None])
+        if not bi.size:
+            return np.zeros(n_b)
+        rx, ry = rx[bi, ki, ni], ry[bi, ki, ni]
+        d = np.maximum(np.sqrt(d2[bi, ki, ni]), 1e-6)
+        vxs, vys, vs = vx[bi, ni], vy[bi, ni], v[bi, ni]
+        wxs, wys = wx[ki], wy[ki]
         # the collision risk factor R and the collision cost C
-        risk = np.where(d <= d_safe, self.discount * (d_safe / d) ** p["q"], 0.0)
-        cost = p["k_coll"] * ((vx[:, None] - wx[None, :, None]) ** 2
-                              + (vy[:, None] - wy[None, :, None]) ** 2)
-        # the situations at each predicted time
+        ds = d_safe[ki]
+        inside = d <= ds
+        cr = np.zeros(d.size)
+        cr[inside] = (p["k_coll"] * ((vxs - wxs)[inside] ** 2 + (vys - wys)[inside] ** 2)
+                      * self.discount[ni[inside]] * (ds[inside] / d[inside]) ** p["q"])
+        # the situations at each predicted time: the sides and "ahead" from the behaviour's
+        # commanded course (its heading once the turn is made: the predicate judges the
+        # manoeuvre, not the instants of its turn)
         lx, ly = rx / d, ry / d
-        # the sides and "ahead" from the behaviour's commanded course (its heading once the turn
-        # is made: the predicate judges the manoeuvre, not the instants of its turn)
-        settled = self._command0
-        uxx, uyy = np.cos(settled)[:, None, None], np.sin(settled)[:, None, None]
-        ahead = uxx * lx + uyy * ly  # cosine of the obstacle's bearing from the bow
-        starboard = (uxx * ly - uyy * lx < 0) & (ahead > FORWARD_COS)
-        sp_t = np.hypot(wx, wy)[None, :, None]
-        sp_o = v[:, None]
-        dot = vx[:, None] * wx[None, :, None] + vy[:, None] * wy[None, :, None]
-        norm = sp_o * sp_t
-        moving = (sp_o > 0.05) & (sp_t > 0.05)
-        close = d <= d_cl
+        settled = self._command0[bi]
+        cx, cy = np.cos(settled), np.sin(settled)
+        ahead = cx * lx + cy * ly  # cosine of the obstacle's bearing from the bow
+        starboard = (cx * ly - cy * lx < 0) & (ahead > FORWARD_COS)
+        dot = vxs * wxs + vys * wys
+        meeting = (vs > 0.05) & (sp_t[ki] > 0.05) & (dot < CROSSED_COS * vs * sp_t[ki])
+        close = d <= d_cl[ki]
         # ... and closing (the range falling): a ship drawing away holds no risk of collision,
         # Rule 7 (our reading: the paper's predicates alone flag a ship that crossed ahead)
-        closing = ((wx[None, :, None] - vx[:, None]) * lx
-                   + (wy[None, :, None] - vy[:, None]) * ly) < 0
+        closing = (wxs - vxs) * lx + (wys - vys) * ly < 0
         # a crossing is the give-way ship's (Rule 15) only if the obstacle is on the starboard
-        # side now (t0): one that crossed ahead from port does not make her give way
+        # side now (t0): one that crossed ahead from port does not make her give way; likewise
+        # a head-on situation is the one met ahead at t0 (Rule 14: "ahead or nearly ahead");
+        # either is then judged at t on courses crossing or reciprocal
         r0x, r0y = px - own.x, py - own.y
         d0 = np.maximum(np.hypot(r0x, r0y), 1e-6)
         h0x, h0y = math.cos(own.psi), math.sin(own.psi)
         ahead0 = (h0x * r0x + h0y * r0y) / d0
         starboard0 = (h0x * r0y - h0y * r0x < 0) & (ahead0 > FORWARD_COS)
-        # likewise a head-on situation is the one met ahead at t0 (Rule 14: "ahead or nearly
-        # ahead"); either is then judged at t on courses crossing or reciprocal
-        ho0 = self._head_on0(own, targets)
-        meeting = moving & (dot < CROSSED_COS * norm)
-        mu = close & closing & starboard & meeting & (ho0 | starboard0)[None, :, None]
+        head_on0 = self._head_on0(own, targets)
+        mu = close & closing & starboard & meeting & (head_on0 | starboard0)[ki]
         # the transitional cost: crossing ahead of a close obstacle not met head-on (Rule 15),
         # and the stand-on ship of a close crossing turning to port (Rule 17(c))
-        v0x, v0y = own.v * h0x, own.v * h0y
-        dot0 = v0x * wx + v0y * wy
-        norm0 = own.v * np.hypot(wx, wy)
-        moving0 = (own.v > 0.05) & (np.hypot(wx, wy) > 0.05)
-        head_on0 = ho0
+        dot0 = own.v * (h0x * wx + h0y * wy)
+        norm0 = own.v * sp_t
+        moving0 = (own.v > 0.05) & (sp_t > 0.05)
         crossed0 = moving0 & (dot0 < CROSSED_COS * norm0) & ~(dot0 < -HEAD_ON_COS * norm0)
         port0 = (h0x * r0y - h0y * r0x > 0) & (ahead0 > FORWARD_COS)
-        close0 = d0 <= d_cl[0, :, 0]
-        stand_on_port = (close0 & port0 & crossed0)[None, :] & (self.chi < 0)[:, None]  # (B, K)
-        side0 = wx * (-r0y) - wy * (-r0x)  # cross(w, own - obstacle) at t0, (K,)
-        side = wx[None, :, None] * (-ry) - wy[None, :, None] * (-rx)
-        in_front = (wx[None, :, None] * -rx + wy[None, :, None] * -ry) > 0
-        crosses = (side * side0[None, :, None] < 0) & in_front & ~head_on0[None, :, None]
-        tau = close & (crosses | stand_on_port[:, :, None])
-        # per obstacle: the largest collision term, plus kappa if a violation and lambda if a
-        # transition occurs anywhere in the prediction; then the worst obstacle
-        term = ((cost * risk).max(axis=2) + p["kappa"] * mu.any(axis=2)
-                + p["lam"] * tau.any(axis=2))
-        return term.max(axis=1)
+        stand_on0 = (d0 <= d_cl) & port0 & crossed0  # (K,)
+        side0 = wy * r0x - wx * r0y  # cross(w, own - obstacle) at t0, (K,)
+        side = wys * rx - wxs * ry  # cross(w, own - obstacle) at t
+        in_front = wxs * rx + wys * ry < 0  # the own ship ahead of the obstacle
+        crosses = (side * side0[ki] < 0) & in_front & ~head_on0[ki]
+        tau = close & (crosses | (stand_on0[ki] & (self.chi[bi] < 0)))
+        # per (behaviour, obstacle), then the worst obstacle
+        flat = bi * n_k + ki
+        worst = np.zeros(n_b * n_k)
+        np.maximum.at(worst, flat, cr)
+        worst[np.unique(flat[mu])] += p["kappa"]
+        worst[np.unique(flat[tau])] += p["lam"]
+        return worst.reshape(n_b, n_k).max(axis=1)
 
     @staticmethod
     def _head_on0(own: Own, targets: Targets) -> np.ndarray:
