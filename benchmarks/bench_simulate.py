@@ -9,7 +9,8 @@ start-up, and the wall time of the bundled scenarios.
    at a time in Python (tests/sim/plain_dwa.py, PythonRobotics' style). Each figure is the best
    of ``--runs`` runs of 50 steps (this shared 2-core machine's timings vary by up to two times
    between runs; the best is the repeatable one). Then the field's baselines (``vo``, issue
-   33) beside dwa at the defaults, now only (they have no base revision).
+   33) beside dwa at the defaults, now only (they have no base revision); and sbmpc's
+   re-evaluation step and its mean step (one re-evaluation a second) beside dwa.
 2. One udwa step at the defaults against the number of targets (1, 3, 10, 30, 50, 100, 300),
    now and at ``--base``: targets within 100 m (every one within reach of the rollouts: the
    worst case) and spread over a 2 km disc (most beyond reach, skipped by the distance bound).
@@ -166,6 +167,24 @@ def baselines(runs: int) -> None:
         c = make_controller(name)
         c.reset(World(ship, goal, field))
         print(f"{name:10} {best_ms(lambda c=c: c.decide(OWN, TARGETS), runs):7.3f}")
+
+
+def sbmpc_steps(runs: int) -> None:
+    """sbmpc (issue 33) beside dwa: its re-evaluation step (every call evaluates the 52
+    behaviours over the horizon: ``update=0``) and its mean step at the defaults (one
+    re-evaluation a second, the behaviour held between: 1 in 10 steps at 0.1 s)."""
+    if "sbmpc" not in CONTROLLERS:
+        return
+    field = Clearance(read_grid(ROOT / "charts" / "env1.tif"))
+    ship, goal = preset("iwso-dwa-usv"), np.array([250.0, 480.0])
+    print("\nsbmpc beside dwa, one control step: 3 targets, env1's grid (ms, best of runs of 50 "
+          "steps)")  # fmt: skip
+    for label, name, params in (("dwa", "dwa", {}),
+                                ("sbmpc re-evaluation", "sbmpc", {"update": 0.0}),
+                                ("sbmpc mean (1 s hold)", "sbmpc", {})):  # fmt: skip
+        c = make_controller(name, **params)
+        c.reset(World(ship, goal, field))
+        print(f"{label:22} {best_ms(lambda c=c: c.decide(OWN, TARGETS), runs):7.3f}")
 
 
 def steps(prev, runs: int) -> None:
@@ -391,6 +410,7 @@ def main(argv=None) -> None:
         if not args.no_steps:
             steps(prev, args.runs)
             baselines(args.runs)
+            sbmpc_steps(args.runs)
         if args.targets:
             many_targets(prev, args.runs)
     if args.startup:
