@@ -110,9 +110,9 @@ class SBMPC(Controller):
         "k_chi_port": Param(1.6, "the cost of a course offset to port, per rad^2",
                             NON_NEGATIVE),
         "k_dp": Param(0.5, "the cost of a change of the propulsion factor", NON_NEGATIVE),
-        "k_dchi": Param(0.3, "the cost of a change of the offset to starboard, per rad",
+        "k_dchi": Param(0.2, "the cost of a change of the offset to starboard, per rad",
                         NON_NEGATIVE),
-        "k_dchi_port": Param(0.45, "the cost of a change of the offset to port, per rad",
+        "k_dchi_port": Param(0.3, "the cost of a change of the offset to port, per rad",
                              NON_NEGATIVE),
         "d_ground": Param(None, "the grounding term's safe clearance, m (null: the own "
                                 "length, twice the hull's half length)"),
