@@ -18,20 +18,22 @@ The paper's behaviours (its section on control behaviours):
   full reverse is then commanded as stop (``min_speed``), and both stay in the set (52
   behaviours, as the paper's 13 x 4).
 
-The hazard of behaviour k at t0 (the paper's hazard, a max over obstacles i and predicted
-times t in D(t0) = {t0 + dt, ..., t0 + T}):
+The hazard of behaviour k at t0 (the paper's hazard; predicted times t in D(t0) = {t0 + dt,
+..., t0 + T}; the paper's equation numbers are not cited: its body could not be re-read in this
+round, docs/controllers.md):
 
-    H(k) = max_i max_t [ C_i^k(t) R_i^k(t) + kappa mu_i^k(t) + lambda tau_i^k(t) ]
+    H(k) = max_i [ max_t C_i^k(t) R_i^k(t) + kappa [mu_i^k] + lambda [tau_i^k] ]
            + f(P_k, chi_k) + g(P_k, chi_k) + G(k)
 
 - R_i^k(t) = (t - t0)^-p (d_safe / d_0i^k(t))^q when d_0i^k(t) <= d_safe, else 0: the
   collision risk factor, discounted in time (p) and growing as the distance falls (q);
 - C_i^k(t) = K_coll |v_0^k(t) - v_i(t)|^2: the cost of a collision, proportional to the kinetic
   energy of the relative motion;
-- mu_i^k(t) in {0, 1}: a COLREGS violation, the obstacle CLOSE (d <= d_close) and on the own
-  ship's STARBOARD side (forward of 22.5 deg abaft her beam, our reading) while HEAD-ON or
-  CROSSED (:meth:`SBMPC.ships`);
-- tau_i^k(t) in {0, 1}: the transitional cost of a behaviour that takes the ship out of a
+- [mu_i^k] in {0, 1}: a COLREGS violation somewhere in the prediction: the obstacle CLOSE
+  (d <= d_close), closing, on the own ship's STARBOARD side (forward of 22.5 deg abaft her
+  beam, of her commanded course), courses crossing or reciprocal, in a situation that made her
+  give way at t0 (HEAD-ON, or the obstacle on her starboard side) (:meth:`SBMPC.ships`);
+- [tau_i^k] in {0, 1}: the transitional cost of a behaviour that takes the ship out of a
   COLREGS-compliant course of events (our reading, the paper's ~COLREGS: crossing ahead of a
   close obstacle that is not head-on, Rule 15; the stand-on ship of a close crossing turning to
   port, Rule 17(c));
