@@ -13,17 +13,17 @@ One control step, every candidate at once (numpy, no per-candidate loop):
    courses, within what the vessel reaches in ``reach`` seconds (the speed by its
    accelerations, the course by its yaw rate and yaw acceleration, at most all round), plus
    the present velocity and ``v_pref`` when within reach.
-3. **Velocity obstacles** (the paper's eqs. 1-2): for a target B of velocity ``v_B`` at
-   ``p_B`` and the own ship A at ``p_A``, the VO is the set of ``v_A`` whose relative ray
-   ``lambda(p_A, v_A - v_B) = {p_A + t (v_A - v_B), t >= 0}`` meets the disc of radius ``R``
-   about ``p_B`` (``B (+) -A``, both hulls as discs of half their lengths, plus a safety
-   ``margin``): the collision cone of the relative position, shifted by ``v_B``. The paper
-   treats only collisions that matter soon: the ray is cut at ``horizon`` seconds (a
-   collision beyond it does not bar the velocity). The worst-case VO for a target velocity
-   known to within ``uncertainty`` m/s (the union of the VOs of every ``v_B`` in that disc) is
-   the VO grown by ``uncertainty`` in velocity space: ``|p - w t| <= R + u t`` for some
-   ``t`` in ``[0, horizon]``, ``w = v_A - v_B``, ``p = p_B - p_A``, which is a quadratic in
-   ``t`` solved for every candidate (:func:`first_contact`).
+3. **Velocity obstacles** (the paper's VO, in Fiorini and Shiller's form): for a target B of
+   velocity ``v_B`` at ``p_B`` and the own ship A at ``p_A``, the VO is the set of ``v_A`` whose
+   relative ray ``lambda(p_A, v_A - v_B) = {p_A + t (v_A - v_B), t >= 0}`` meets the disc of radius
+   ``R`` about ``p_B`` (``B (+) -A``, both hulls as discs of half their lengths, plus a safety
+   ``margin``): the collision cone of the relative position, shifted by ``v_B``. The paper treats
+   only collisions that matter soon: the ray is cut at ``horizon`` seconds (a collision beyond it
+   does not bar the velocity). The worst-case VO for a target velocity known to within
+   ``uncertainty`` m/s (the union of the VOs of every ``v_B`` in that disc) is the VO grown by
+   ``uncertainty`` in velocity space: ``|p - w t| <= R + u t`` for some ``t`` in ``[0, horizon]``,
+   ``w = v_A - v_B``, ``p = p_B - p_A``, which is a quadratic in ``t`` solved for every candidate
+   (:func:`first_contact`).
 4. **COLREGs constraints** (the paper's section on COLREGs, its regions V1, V2, V3 about the
    VO): outside the VO, a velocity passes the target with her on the own ship's port side (V1:
    the relative velocity to the right of the line of sight, ``[p x w]_z < 0`` with ``z`` up),
@@ -53,7 +53,7 @@ One control step, every candidate at once (numpy, no per-candidate loop):
 
 The readings where the paper leaves a figure or a detail open: docs/controllers.md, section
 "vo". Only the paper's abstract and introduction could be read through the stored-text search:
-the equation numbers cited are its order as recalled, and its own figures could not be checked
+no equation number is cited, and its own figures could not be checked
 (docs/controllers.md says which figures are usvtool's and why). Angles inside are mathematical
 radians (counter-clockwise from east), as everywhere in the controllers.
 """
