@@ -187,7 +187,7 @@ def test_scene_writes_a_scene_and_lists_the_families(tmp_path):
     assert "map: x.map.tif" in out.read_text()
     r = CliRunner().invoke(cli, ["scene", "--list"])
     listing = json.loads(r.stdout)
-    assert set(listing) == {"emergency", "iwso", "imazu", "wind", "ais"}
+    assert set(listing) == {"emergency", "iwso", "imazu", "wind", "ais", "trafficgen"}
     assert listing["imazu"]["seeded"] is False and len(listing["imazu"]["kinds"]) == 22
     assert listing["emergency"]["options"]["own_speed"]["default"] == 7.0
 

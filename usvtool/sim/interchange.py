@@ -200,14 +200,16 @@ def _tg_ship(r: _Reader, value, where: str, project) -> dict:
             "sog_min": static.get("sogMin"), "sog_max": static.get("sogMax")}  # fmt: skip
 
 
-def read_trafficgen(path: Path, origin: tuple[float, float] | None):
-    """(title, description, own ship, targets, notes, dropped) of a trafficgen situation."""
+def read_trafficgen(path: Path, origin: tuple[float, float] | None, data=None):
+    """(title, description, own ship, targets, notes, dropped) of a trafficgen situation: the
+    file ``path``, or ``data``, its JSON already read (``path`` then names it)."""
     from usvtool.geodesy import lonlat_to_map
 
-    try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
-        raise UsvError(f"{path}: not JSON: {exc}") from None
+    if data is None:
+        try:
+            data = json.loads(path.read_text(encoding="utf-8"))
+        except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+            raise UsvError(f"{path}: not JSON: {exc}") from None
     r = _Reader(path, "trafficgen")
     top = r.fields(data, "", _TG_TOP, camel=True)
     if "ownShip" not in top:
@@ -352,17 +354,19 @@ def read_colav(path: Path, data: dict):
 
 def import_scene(path, *, vessel: str = "udwa-usv", controller: str = "udwa",
                  origin: tuple[float, float] | None = None, length: float | None = None,
-                 duration: float | None = None) -> tuple[dict, list[str], list[str]]:  # fmt: skip
+                 duration: float | None = None,
+                 data: dict | None = None) -> tuple[dict, list[str], list[str]]:  # fmt: skip
     """The usvtool scenario (a mapping, docs/scenario.md) of the trafficgen JSON or
     colav-simulator YAML ``path``, with its header notes and the fields not imported.
     ``origin`` (lat, lon): trafficgen's projection centre; ``length``: a ship's length where the
     file has none; ``duration``: sim.duration where the file has none (by default 1.5 times the
-    own ship's straight run to its goal, rounded up to 10 s)."""
+    own ship's straight run to its goal, rounded up to 10 s). ``data``: a trafficgen situation
+    already read (``path`` then only names it)."""
     path = Path(path)
     sim: dict = {}
-    if path.suffix.lower() == ".json":
+    if data is not None or path.suffix.lower() == ".json":
         fmt = "trafficgen"
-        name, description, own, targets, notes, dropped = read_trafficgen(path, origin)
+        name, description, own, targets, notes, dropped = read_trafficgen(path, origin, data)
     elif path.suffix.lower() in (".yaml", ".yml"):
         fmt = "colav-simulator"
         name, description, own, targets, notes, dropped, sim = read_colav(path, read_yaml(path))

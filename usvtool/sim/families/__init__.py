@@ -24,6 +24,7 @@ from usvtool.sim.families.emergency import Emergency
 from usvtool.sim.families.imazu import Imazu
 from usvtool.sim.families.iwso import Iwso
 from usvtool.sim.families.scenefile import scene_files, scene_text, write_scene
+from usvtool.sim.families.trafficgen import Trafficgen
 from usvtool.sim.families.wind import Wind
 
 #: Every scene family: the built-ins below, then the ``usvtool.families`` plugins.
@@ -35,7 +36,7 @@ register = FAMILIES.register
 #: Remove the family registered under a name (``KeyError`` when there is none).
 unregister = FAMILIES.unregister
 
-for _cls in (Emergency, Iwso, Imazu, Wind, Ais):
+for _cls in (Emergency, Iwso, Imazu, Wind, Ais, Trafficgen):
     register(_cls)
 
 
