@@ -14,7 +14,7 @@ BUILD := build
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test,gym]'
+	$(BIN)/python -m pip install --quiet -e '.[test,gym,trafficgen]'
 	touch $(STAMP)
 
 # Debian packages the tests use: Chromium (the report's browser test) and Pango (WeasyPrint's PDF).
