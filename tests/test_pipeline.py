@@ -18,6 +18,7 @@ from usvtool.pipeline import (
     ClaimSpec,
     Ends,
     Names,
+    Variant,
     claims_text,
     load,
     read_claims,
@@ -479,3 +480,64 @@ def test_the_documented_claims_example_reads(tmp_path):
     assert (berth.kind, berth.cases) == ("runs", ("emergency/head-on", "emergency/crossing"))
     assert (safe.statistic, safe.target, safe.share) == ("every", 0.0, 1.0)
     assert (compliant.target, compliant.share) == ("judged", 0.9)
+
+
+CALM = {"name": "udwa-calm", "controller": "udwa", "params": {"weather": False}}
+
+
+def test_a_variant_names_a_registered_controller_with_parameters(tmp_path):
+    data = minimal()
+    data["simulation"] = dict(SIM, controllers=["udwa", CALM], reference_controller="udwa-calm")
+    p = load(write(tmp_path, data), NAMES)
+    variant = Variant("udwa-calm", "udwa", (("weather", False),))
+    assert p.simulation.controllers == ("udwa", "udwa-calm")
+    assert p.simulation.programs == (variant,)
+    assert p.program("udwa-calm") == variant and p.program("udwa") is None
+    assert [c for _, c, _ in p.simulation_jobs()] == ["udwa", "udwa-calm"]
+    assert load(write(tmp_path, data)).simulation.programs == (variant,)  # without the names
+
+
+@pytest.mark.parametrize(
+    "entry, field, words",
+    [
+        (dict(CALM, controller="xdwa"), "controller", "unknown controller 'xdwa' (known: "),
+        (dict(CALM, controller="exec"), "controller", "exec runs a program"),
+        (dict(CALM, controller=3), "controller", "not a controller's name: 3"),
+        (dict(CALM, params={"wether": False}), "params.wether",
+         "is not a parameter of udwa (known: "),
+        (dict(CALM, params={"horizon": "far"}), "params.horizon", "must be a finite number"),
+        (dict(CALM, params={"horizon": 0}), "params.horizon", "must be > 0 for udwa"),
+        (dict(CALM, params={"horizon": [1]}), "params.horizon", "expected a number, true"),
+        (dict(CALM, params=[1]), "params", "expected a mapping of parameter: value"),
+        (dict(CALM, name="dwa"), "name", "'dwa' is a controller's name"),
+        (dict(CALM, name="udwa calm"), "name", "not a valid name"),
+        (dict(CALM, speed=2), "speed", "unknown field"),
+        ({"name": "c"}, "exec", "missing"),
+    ],
+)  # fmt: skip
+def test_a_bad_variant_is_refused_in_one_line_naming_its_field(tmp_path, entry, field, words):
+    data = minimal()
+    data["simulation"] = dict(SIM, controllers=["dwa", entry])
+    path = write(tmp_path, data)
+    with pytest.raises(UsvError) as info:
+        load(path, NAMES)
+    message = str(info.value)
+    assert "\n" not in message
+    assert message.startswith(f"{path}: simulation.controllers[1].{field}"), message
+    assert words in message, message
+
+
+def test_a_variant_s_name_is_its_own_through_the_pipeline(tmp_path):
+    data = minimal()
+    data["simulation"] = dict(SIM, controllers=["dwa", CALM, CALM])
+    path = write(tmp_path, data)
+    with pytest.raises(UsvError, match="simulation.controllers: named twice: udwa-calm"):
+        load(path, NAMES)
+    data["simulation"] = dict(SIM, controllers=[CALM])
+    data["families"] = [{"family": "imazu", "kinds": ["01"], "seeds": [1], "controllers": [
+        dict(CALM, params={"weather": True})]}]  # fmt: skip
+    path = write(tmp_path, data)
+    with pytest.raises(UsvError) as info:
+        load(path, NAMES)
+    assert str(info.value) == (f"{path}: families[0].controllers: 'udwa-calm' names another "
+                               "variant elsewhere in the pipeline (give it a name of its own)")

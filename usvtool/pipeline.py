@@ -136,7 +136,9 @@ class Names:
     scene families by name; ``plugins``, the distribution and version (``"usvplug 1.2"``) of
     each method an installed plugin gives (usvtool.registry), which the batch's keys hold;
     ``variants``, the suffixes each exact planner takes (an optimizer takes ``+s`` and ``+g``;
-    an exact planner not listed, ``+s``)."""
+    an exact planner not listed, ``+s``); ``controller_params``, each controller's check of
+    its parameters, ``check(params, where)``, which returns them checked or raises a
+    :class:`UsvError` naming the parameter as ``where(name)`` does (a :class:`Variant`'s)."""
 
     optimizers: Collection[str]
     exact: Collection[str]
@@ -146,6 +148,8 @@ class Names:
     families: Mapping[str, FamilySpec] = field(default_factory=dict)
     plugins: Mapping[str, str] = field(default_factory=dict)
     variants: Mapping[str, Collection[str]] = field(default_factory=dict)
+    controller_params: Mapping[str, Callable[[Mapping, Callable[[str], str]], dict]] = field(
+        default_factory=dict)
 
     def is_exact(self, algorithm: str) -> bool:
         """``anyangle``, ``astar+s``: an exact planner, with or without shortening."""
@@ -219,6 +223,24 @@ class Program:
 
 
 @dataclass(frozen=True)
+class Variant:
+    """A registered controller with parameters under a name of its own, given in a list of
+    controllers as ``{name: NAME, controller: REGISTERED, params: {...}}`` (a study compares a
+    controller with a variant of itself): ``name``, its runs' method (``usvtool simulate
+    --label``); ``controller``, the registered controller that runs; ``params``, its
+    parameters as given, sorted. A job's key holds the controller, its parameters and its
+    plugin origin."""
+
+    name: str
+    controller: str
+    params: OptionPairs = ()
+
+
+#: A controller of a list given a name of its own: a program or a variant.
+Named = Program | Variant
+
+
+@dataclass(frozen=True)
 class SimulationMatrix:
     """Every scenario file with every controller at every seed."""
 
@@ -226,7 +248,7 @@ class SimulationMatrix:
     controllers: tuple[str, ...]
     seeds: tuple[int, ...]
     reference_controller: str | None = None  # the optimisation rates' reference
-    programs: tuple[Program, ...] = ()  # the controllers that are programs, by name
+    programs: tuple[Named, ...] = ()  # the controllers that are programs or variants
 
 
 @dataclass(frozen=True)
@@ -242,13 +264,13 @@ class FamilyEntry:
     seeds: tuple[int, ...]
     options: tuple[tuple[str, object], ...] = ()  # the family's options as given, sorted; a
     # file it reads: its absolute Path
-    programs: tuple[Program, ...] = ()  # the controllers that are programs, by name
+    programs: tuple[Named, ...] = ()  # the controllers that are programs or variants
 
 
 @dataclass(frozen=True)
 class FamilyJob:
     """One run of a scene of a family: ``usvtool simulate --family ...``; ``program`` when its
-    controller is a program (:class:`Program`)."""
+    controller is a program or a variant (:class:`Program`, :class:`Variant`)."""
 
     entry: str
     family: str
@@ -257,7 +279,7 @@ class FamilyJob:
     controller: str
     seed: int
     options: tuple[tuple[str, object], ...]
-    program: Program | None = None
+    program: Named | None = None
 
     @property
     def case(self) -> str:
@@ -450,8 +472,9 @@ class Pipeline:
                      for seed in e.seeds]  # fmt: skip
         return jobs
 
-    def program(self, controller: str) -> Program | None:
-        """The program a controller of the simulation matrix is (None: a registered one)."""
+    def program(self, controller: str) -> Named | None:
+        """The program or variant a controller of the simulation matrix is (None: a registered
+        one)."""
         s = self.simulation
         return next((p for p in (s.programs if s else ()) if p.name == controller), None)
 
@@ -623,7 +646,8 @@ def _load(path: Path, names: Names | None, including: tuple[Path, ...]) -> Pipel
             (f"families[{i}]", e) for i, e in enumerate(families)]:  # fmt: skip
         for program in entry.programs:
             if programs.setdefault(program.name, program) != program:
-                r.fail(f"{where}.controllers", f"{program.name!r} names another program "
+                what = "program" if isinstance(program, Program) else "variant"
+                r.fail(f"{where}.controllers", f"{program.name!r} names another {what} "
                        "elsewhere in the pipeline (give it a name of its own)")  # fmt: skip
     pipeline = Pipeline(path, root, charts, routes, simulation, functions, families)
     if data.get("claims") is None:
@@ -820,14 +844,19 @@ def _families(r: _Reader, root: Path, value,
 
 
 def _controllers(r: _Reader, value, field: str, root: Path,
-                 names: Names | None) -> tuple[tuple[str, ...], tuple[Program, ...]]:  # fmt: skip
-    """A list of controllers: registered names, and programs (:class:`Program`, a mapping
-    each), whose names join the others'; ``exec`` itself is no method."""
+                 names: Names | None) -> tuple[tuple[str, ...], tuple[Named, ...]]:  # fmt: skip
+    """A list of controllers: registered names, programs (:class:`Program`) and variants
+    (:class:`Variant`), a mapping each, whose names join the others'; ``exec`` itself is no
+    method."""
     if isinstance(value, str) or not isinstance(value, list) or not value:
         r.fail(field, f"expected a non-empty list, got {_show(value)}")
-    words, programs = [], []
+    words: list = []
+    programs: list[Named] = []
     for i, item in enumerate(value):
-        if isinstance(item, dict):
+        if isinstance(item, dict) and "controller" in item:
+            programs.append(_variant(r, item, f"{field}[{i}]", names))
+            item = programs[-1].name
+        elif isinstance(item, dict):
             programs.append(_program(r, item, f"{field}[{i}]", root, names))
             item = programs[-1].name
         elif item == EXEC:
@@ -839,6 +868,43 @@ def _controllers(r: _Reader, value, field: str, root: Path,
         mine = {p.name for p in programs}
         known = (lambda a, check=known[0]: a in mine or check(a), known[1])
     return r.names(words, field, "controller", known), tuple(programs)
+
+
+def _variant(r: _Reader, item: dict, where: str, names: Names | None) -> Variant:
+    """A registered controller with parameters under a name of its own: ``{name, controller,
+    params}`` (:class:`Variant`); its parameters checked by the controller's own check."""
+    e = r.mapping(item, where, {"name", "controller", "params"}, {"name", "controller"})
+    name = e["name"]
+    if not isinstance(name, str) or not _NAME.match(name):
+        r.fail(f"{where}.name", f"not a valid name (letters, digits, _ . + -): {_show(name)}")
+    if name == EXEC or names is not None and name in names.controllers:
+        r.fail(f"{where}.name", f"{name!r} is a controller's name: a variant's runs need a "
+               "name of their own")  # fmt: skip
+    controller = e["controller"]
+    if not isinstance(controller, str) or not _NAME.match(controller):
+        r.fail(f"{where}.controller", f"not a controller's name: {_show(controller)}")
+    if controller == EXEC:
+        r.fail(f"{where}.controller", "exec runs a program: give it as {name: NAME, exec: "
+               "[PROGRAM, ARGS...]} (docs/pipelines.md)")  # fmt: skip
+    if names is not None and controller not in names.controllers:
+        r.fail(f"{where}.controller", f"unknown controller {controller!r} (known: "
+               f"{', '.join(names.controllers)})")  # fmt: skip
+    params = e.get("params") or {}
+    if not isinstance(params, dict):
+        r.fail(f"{where}.params", f"expected a mapping of parameter: value, got {_show(params)}")
+    for key, v in params.items():
+        if not isinstance(key, str) or not key:
+            r.fail(f"{where}.params", f"not a parameter's name: {_show(key)}")
+        if v is not None and not isinstance(v, bool | int | float | str):
+            r.fail(f"{where}.params.{key}", f"expected a number, true, false, null or a word, "
+                   f"got {_show(v)}")  # fmt: skip
+    check = names.controller_params.get(controller) if names is not None else None
+    if check is not None:
+        try:
+            check(dict(params), lambda key: f"{where}.params.{key}")
+        except UsvError as exc:
+            raise UsvError(f"{r.path}: {exc}") from None
+    return Variant(name, controller, tuple(sorted(params.items())))
 
 
 def _program(r: _Reader, item: dict, where: str, root: Path, names: Names | None) -> Program:

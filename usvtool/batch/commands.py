@@ -14,13 +14,14 @@ path by default, its content for a key, its path relative to the root in the Mak
 
 from __future__ import annotations
 
+import json
 import os
 import shlex
 from collections.abc import Callable
 from pathlib import Path
 
 from usvtool.companions import companions
-from usvtool.pipeline import Chart, Ends, FamilyJob, OptionPairs, Program, RouteJob
+from usvtool.pipeline import Chart, Ends, FamilyJob, Named, OptionPairs, Program, RouteJob
 
 #: A grid job's output, in its directory (a route reads ``../../grids/<key>/grid.tif``).
 GRID = "grid.tif"
@@ -35,6 +36,16 @@ CONTROLLER_LOG = "controller.log"
 def word(value: object) -> str:
     """A YAML scalar as a command-line word: 10 -> '10', 0.5 -> '0.5' (shortest repr)."""
     return repr(value) if isinstance(value, float) else str(value)
+
+
+def param_word(value: object) -> str:
+    """A controller parameter as ``--param NAME=VALUE`` reads it back: true, false and null as
+    JSON, a number as :func:`word` gives it, a word itself.
+
+    >>> [param_word(v) for v in (False, None, 2, 0.5, "calm")]
+    ['false', 'null', '2', '0.5', 'calm']
+    """
+    return json.dumps(value) if value is None or isinstance(value, bool) else word(value)
 
 
 def family_option_args(options: OptionPairs) -> list[str]:
@@ -87,10 +98,16 @@ def plan_command(grid_key: str, route: RouteJob) -> tuple[str, ...]:
             "-o", "route.geojson")  # fmt: skip
 
 
-def controller_args(controller: str, program: Program | None = None) -> list[str]:
+def controller_args(controller: str, program: Named | None = None) -> list[str]:
     """``--controller NAME``; for a program (:class:`~usvtool.pipeline.Program`), ``--controller
     exec:PROGRAM ARGS...`` (its words quoted as a shell would), its name as the exec controller's
-    label, its parameters, and its stderr to :data:`CONTROLLER_LOG`.
+    label, its parameters, and its stderr to :data:`CONTROLLER_LOG`; for a variant
+    (:class:`~usvtool.pipeline.Variant`), its registered controller, its parameters and its
+    name as the run's ``--label``.
+
+    >>> from usvtool.pipeline import Variant
+    >>> controller_args("udwa-calm", Variant("udwa-calm", "udwa", (("weather", False),)))
+    ['--controller', 'udwa', '--param', 'weather=false', '--label', 'udwa-calm']
 
     >>> controller_args("c-client", Program("c-client", (Path("/x/client"), "--course"),
     ...                                     (("deadline", 2),)))  # doctest: +NORMALIZE_WHITESPACE
@@ -99,6 +116,10 @@ def controller_args(controller: str, program: Program | None = None) -> list[str
     """
     if program is None:
         return ["--controller", controller]
+    if not isinstance(program, Program):
+        params = [w for key, value in program.params
+                  for w in ("--param", f"{key}={param_word(value)}")]  # fmt: skip
+        return ["--controller", program.controller, *params, "--label", program.name]
     words = shlex.join(str(w) for w in program.command)
     params = [w for key, value in program.params for w in ("--param", f"{key}={word(value)}")]
     return ["--controller", f"exec:{words}", "--param", f"label={program.name}", *params,
@@ -106,7 +127,7 @@ def controller_args(controller: str, program: Program | None = None) -> list[str
 
 
 def simulate_command(scenario: Path, controller: str, seed: int,
-                     program: Program | None = None) -> tuple[str, ...]:  # fmt: skip
+                     program: Named | None = None) -> tuple[str, ...]:  # fmt: skip
     """A run job's ``usvtool simulate`` command line (``program``: the controller's, when it
     is one)."""
     return ("simulate", str(scenario), *controller_args(controller, program), "--seed",

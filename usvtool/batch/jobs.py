@@ -42,7 +42,7 @@ from usvtool.batch.commands import (
 from usvtool.budget import require
 from usvtool.digest import sha256
 from usvtool.errors import UsvError
-from usvtool.pipeline import Names, Pipeline, Program
+from usvtool.pipeline import Named, Names, Pipeline, Program
 
 PACKAGE = Path(__file__).resolve().parent.parent
 #: The stage and the command of each kind of job.
@@ -180,8 +180,8 @@ def expand(pipeline: Pipeline, names: Names,
             scenarios[scenario] = _scenario_content(path, scenario_files, content)
         program = pipeline.program(controller)
         key = _key({"kind": "runs", "scenario": scenarios[scenario], "controller": controller,
-                    "seed": seed, **_program_key(program, content)}, names,
-                   controller)  # fmt: skip
+                    "seed": seed, **_program_key(program, content)}, names, controller,
+                   *_registered(program))  # fmt: skip
         jobs.setdefault(key, Job("runs", key, Path(scenario).stem, controller, seed,
                                  simulate_command(path, controller, seed, program),
                                  info={"scenario": str(path), **_program_info(program)}))
@@ -192,7 +192,7 @@ def expand(pipeline: Pipeline, names: Names,
         key = _key({"kind": "runs", "scene": {**scene, "options": read},
                     "controller": j.controller, "seed": j.seed,
                     **_program_key(j.program, content)}, names, j.controller,
-                   j.family)  # fmt: skip
+                   j.family, *_registered(j.program))  # fmt: skip
         _claim(pipeline, owners, ("runs", j.case, j.controller, j.seed), key,
                f"families.{j.entry}")  # fmt: skip
         # the files' own SHA-256 in job.json, for a reader to check it reads what the run did
@@ -212,13 +212,21 @@ def expand(pipeline: Pipeline, names: Names,
     return list(jobs.values())
 
 
-def _program_key(program: Program | None, content) -> dict:
+def _registered(program: Named | None) -> tuple[str, ...]:
+    """The registered controller a variant runs, whose plugin origin its key holds."""
+    return () if program is None or isinstance(program, Program) else (program.controller,)
+
+
+def _program_key(program: Named | None, content) -> dict:
     """What a run's key holds of its controller's program (nothing for a registered controller,
     whose keys are as they were): its command with the content of every file in it, that of the
     program found on ``PATH`` for a bare name (``python3``), and its parameters; so a rebuilt
-    program, or an edited script it runs, runs its jobs again."""
+    program, or an edited script it runs, runs its jobs again. A variant's: its registered
+    controller and its parameters."""
     if program is None:
         return {}
+    if not isinstance(program, Program):
+        return {"variant": {"controller": program.controller, "params": dict(program.params)}}
     command = [{"file": content(w)} if isinstance(w, Path) else w for w in program.command]
     found = None
     if not isinstance(program.command[0], Path):
@@ -227,10 +235,13 @@ def _program_key(program: Program | None, content) -> dict:
     return {"program": {"command": command, "found": found, "params": dict(program.params)}}
 
 
-def _program_info(program: Program | None) -> dict:
-    """A run's ``job.json`` fields of its program: its command and parameters."""
+def _program_info(program: Named | None) -> dict:
+    """A run's ``job.json`` fields of its program: its command and parameters (a variant's:
+    its registered controller and parameters)."""
     if program is None:
         return {}
+    if not isinstance(program, Program):
+        return {"variant": {"controller": program.controller, "params": dict(program.params)}}
     return {"program": {"command": [str(w) for w in program.command],
                         "params": dict(program.params)}}  # fmt: skip
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+from functools import partial
 from pathlib import Path
 
 import click
@@ -58,6 +59,7 @@ def stage_names() -> Names:
     the stages, and the file options of the commands a pipeline gives options to."""
     from usvtool.cli.plan import plan
     from usvtool.cli.preprocess import preprocess
+    from usvtool.params import check
     from usvtool.plan.benchmark_functions import FUNCTIONS
     from usvtool.plan.optimizers import OPTIMIZERS
     from usvtool.plan.planners import EXACT
@@ -73,8 +75,10 @@ def stage_names() -> Names:
                                  frozenset(k for k, o in cls.declarations().items() if o.file))
                 for name, cls in FAMILIES.items()}  # fmt: skip
     variants = {name: tuple(cls.variants) for name, cls in EXACT.items()}
+    controller_params = {name: partial(check, cls.declarations(), owner=name)
+                         for name, cls in CONTROLLERS.items()}  # fmt: skip
     return Names(tuple(OPTIMIZERS), tuple(EXACT), tuple(CONTROLLERS), tuple(FUNCTIONS), files,
-                 families, plugins, variants)  # fmt: skip
+                 families, plugins, variants, controller_params)  # fmt: skip
 
 
 def scenario_files(path: Path) -> list[Path]:

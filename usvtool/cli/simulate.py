@@ -8,6 +8,7 @@ The scenario's schema is docs/scenario.md, the outputs and the summary docs/simu
 from __future__ import annotations
 
 import logging
+import re
 from pathlib import Path
 
 import click
@@ -25,6 +26,8 @@ from usvtool.cli.options import (
 from usvtool.sim.controllers import CONTROLLERS
 
 log = logging.getLogger(__name__)
+#: What ``--label`` may be (a method's name in a pipeline and the report).
+_LABEL = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
 
 
 class ControllerChoice(click.Choice):
@@ -102,6 +105,22 @@ def make_family_scene(family: str | None, kind: str | None, scene: int, options:
     return make_scene(family, kind, scene, options, lambda key: f"--family-option {key}")
 
 
+def check_label(label: str | None, program: list[str] | None) -> None:
+    """A usage error for a ``--label`` that is no name, or is another controller's (an exec
+    controller is named by its ``label`` parameter instead)."""
+    if label is None:
+        return
+    if program is not None:
+        raise click.BadParameter("an exec controller is named by --param label=NAME",
+                                 param_hint="'--label'")  # fmt: skip
+    if not _LABEL.match(label):
+        raise click.BadParameter(f"{label!r} is not a name (letters, digits, _ . + -)",
+                                 param_hint="'--label'")  # fmt: skip
+    if label in CONTROLLERS:
+        raise click.BadParameter(f"{label!r} is a controller's name: a variant needs a name of "
+                                 "its own", param_hint="'--label'")  # fmt: skip
+
+
 @click.command()
 @click.argument("scenario_path", metavar="[SCENARIO.yaml]", required=False,
                 type=click.Path(dir_okay=False))  # fmt: skip
@@ -119,6 +138,10 @@ def make_family_scene(family: str | None, kind: str | None, scene: int, options:
     "exec:PROGRAM [ARGS...] runs a program speaking docs/protocol.md (one word: quote it).",
 )
 @param_option("A controller parameter (repeatable), over the scenario's.")
+@click.option("--label", metavar="NAME",
+              help="The run's controller name in its summary and events (the method in the "
+              "results; a batch gives a variant's name: docs/pipelines.md); default the "
+              "controller's own.")  # fmt: skip
 @seed_option
 @output_option("Trace CSV to write.")
 @click.option("--events", type=OutputPath(), help="Also write the events JSON.")
@@ -131,8 +154,8 @@ def make_family_scene(family: str | None, kind: str | None, scene: int, options:
 @summary_option
 def simulate(scenario_path: str | None, family: str | None, kind: str | None, scene_number: int,
              family_options: dict, scenario_out: str | None, controller: str | None,
-             params: dict, seed: int, output: str, events: str | None, tracks: str | None,
-             controller_log: str | None, max_memory: int | None,
+             params: dict, label: str | None, seed: int, output: str, events: str | None,
+             tracks: str | None, controller_log: str | None, max_memory: int | None,
              summary_path: str | None) -> None:  # fmt: skip
     """Run SCENARIO.yaml (own ship, targets, weather, controller), or a scene of a --family,
     and write its trace to -o.
@@ -149,6 +172,7 @@ def simulate(scenario_path: str | None, family: str | None, kind: str | None, sc
     from usvtool.trace import write_events, write_trace, write_tracks
 
     program = exec_words(controller)
+    check_label(label, program)
     if program is not None:
         controller, params = "exec", {**params, "command": program}
     if (scenario_path is None) == (family is None):
@@ -187,7 +211,8 @@ def simulate(scenario_path: str | None, family: str | None, kind: str | None, sc
              scenario.sim.duration, scenario.sim.dt)  # fmt: skip
     base = Path(events).resolve().parent if events else None
     result = run(scenario, SimOptions(controller=controller, params=params, seed=seed,
-                                      max_memory=max_memory, files_base=base))  # fmt: skip
+                                      max_memory=max_memory, files_base=base,
+                                      label=label))  # fmt: skip
     summary = result.summary()
     extra = {"output": output, "scenario_file": scenario_path}
     if scene is not None:

@@ -72,6 +72,8 @@ class SimOptions:
     seed: int = 0
     max_memory: int | None = None
     files_base: Path | None = None  # the events file's folder: paths below it kept relative
+    label: str | None = None  # the run's controller name in its summary and events (None: the
+    # controller's own)
 
 
 @dataclass
@@ -99,6 +101,8 @@ def simulate(scenario: Scenario, options: SimOptions | None = None) -> SimResult
         params = {}  # the scenario's parameters belong to its own controller
     with _naming(scenario.path, "controller"):
         controller = make_controller(name, **{**params, **opts.params})
+    if opts.label is not None:
+        controller.name = opts.label  # a variant's runs: the method in the results
     sim = scenario.sim
     n_steps = int(round(sim.duration / sim.dt))
     ships = len(scenario.targets) + 1
