@@ -222,6 +222,11 @@ BAD = [  # (id, changes to the scenario, extra arguments, exit status, words of 
      "--param v_samples must be >= 2 for udwa, not 1"),
     ("cli-fractional-samples", [], ["--param", "v_samples=20.5"], 1,
      "--param v_samples must be an integer, not 20.5"),
+    ("cli-label-of-a-controller", [], ["--label", "dwa"], 2,
+     "'dwa' is a controller's name: a variant needs a name of its own"),
+    ("cli-label-not-a-name", [], ["--label", "udwa calm"], 2, "'udwa calm' is not a name"),
+    ("cli-label-of-a-program", [], ["--controller", "exec:python3", "--label", "c"], 2,
+     "an exec controller is named by --param label=NAME"),
 ]  # fmt: skip
 
 
@@ -354,3 +359,17 @@ def test_files_beside_the_events_are_named_relative_to_them(case, usv):
     run = read_events(out / "events.json")["run"]
     assert (run["scenario_file"], run["map"]) == ("s.yaml", "map.tif")
     assert run["tracks"][2] == str((directory / "track.csv").resolve())
+
+
+def test_a_label_names_the_run_s_controller_in_its_summary_and_events(case, usv):
+    directory, out = case
+    data = copy.deepcopy(BASE)
+    data["sim"]["duration"] = 3
+    r = simulate(usv, write_scenario(directory, data), out, "--param", "weather=false",
+                 "--label", "udwa-calm")  # fmt: skip
+    assert r.exit_code == 0, r.stderr
+    summary = json.loads(r.stdout)
+    events = json.loads((out / "events.json").read_text())
+    assert summary["controller"] == events["controller"] == events["run"]["controller"]
+    assert summary["controller"] == "udwa-calm"
+    assert events["run"]["parameters"]["weather"] is False
