@@ -278,3 +278,17 @@ def median_iqr(values: list[float], digits: int = 1) -> Cell:
         return Cell("-", "num")
     med, spread = inference.median(values), inference.iqr(values)
     return Cell(f"{med:.{digits}f} (IQR {spread:.{digits}f})", "num")
+
+
+def controller_failed(job: JobResults) -> bool:
+    """Whether the run's controller failed and ended it: its ``controller_failed`` row (``usvtool
+    metrics`` writes one, ``True``, only then; docs/metrics.md). Such a run has not arrived, so
+    :func:`outcome` counts it as did not arrive: a failure. A row saying it arrived all the same
+    (no ``usvtool metrics`` writes that) is refused, so that it never counts as a success."""
+    if job.text("controller_failed") in (None, "", "False"):
+        return False
+    if job.number("arrived") == 1.0 and not job.text("collision"):
+        raise UsvError(f"job {job.key} ({job.case}, {job.method}): its controller failed, yet "
+                       "its arrived row says True: usvtool metrics never writes that; run the "
+                       "batch again")  # fmt: skip
+    return True

@@ -15,6 +15,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from usvtool.report.sections import (
+    baselines,
     benchmark_functions,
     claims,
     encounters,
@@ -31,7 +32,8 @@ from usvtool.report.sections import (
 
 #: The section modules in reading order: the summary (page 1), the user's claims (a pipeline's
 #: ``claims:``), the papers' claims, global path planning, the benchmark functions, collision
-#: avoidance in encounters, the Imazu problem, runs in wind, recorded traffic, the methods that
+#: avoidance in encounters, the Imazu problem, every controller against the field's
+#: baselines (vo, sbmpc), runs in wind, recorded traffic, the methods that
 #: are not the papers' (ours and plugins'), the charts' preprocessing and the methods (last).
 SECTIONS = (
     summary,
@@ -41,6 +43,7 @@ SECTIONS = (
     benchmark_functions,
     encounters,
     imazu,
+    baselines,
     wind,
     traffic,
     other_methods,

@@ -101,14 +101,24 @@ def comparisons(results: Results, kind: str, method: str,
         return []
     rivals = [m for m in results.methods(kind) if m in PAPER_METHODS and m != method
               and len(results.group(kind, name, m)) >= LEAST]  # fmt: skip
+    return [(rival, metric, test) for rival in rivals
+            for metric, test in metric_tests(results, kind, method, rival, name)]  # fmt: skip
+
+
+def metric_tests(results: Results, kind: str, method: str, rival: str,
+                 name: str) -> list[tuple[str, Test]]:  # fmt: skip
+    """The method against ``rival`` in the group of cases ``name``, per main metric
+    (:data:`MAIN`): (metric, the judging module's comparison by the median: paired by scene for
+    runs, independent otherwise, a failed run the worst; its p uncorrected) when both sides
+    have :data:`LEAST` runs or more in it (after pairing). Shared with the baselines' section
+    (:mod:`.baselines`)."""
     out = []
-    for rival in rivals:
-        for metric, better, _, _ in MAIN[kind]:
-            claim = Claim(f"{method} vs {rival}", "", (), kind, metric, "median", better, method,
-                          (rival,), (name,))  # fmt: skip
-            test = comparison(results, claim, name, rival)
-            if test.comparison is not None and min(s.n for s in test.sides) >= LEAST:
-                out.append((rival, metric, test))
+    for metric, better, _, _ in MAIN[kind]:
+        claim = Claim(f"{method} vs {rival}", "", (), kind, metric, "median", better, method,
+                      (rival,), (name,))  # fmt: skip
+        test = comparison(results, claim, name, rival)
+        if test.comparison is not None and min(s.n for s in test.sides) >= LEAST:
+            out.append((metric, test))
     return out
 
 
@@ -173,12 +183,10 @@ def effects(method: str, kind: str, tests: dict[str, list]) -> Table | None:
         for rival, metric, t in found:
             a, b = t.sides
             c = t.comparison
-            symbol = "r" if c.effect_name == inference.PAIRED_R else "δ"
             rows.append([Cell(name), Cell(rival), Cell(metric),
                          Cell(f"{a.n}/{b.n} ({a.failed}/{b.failed})", "num"),
-                         Cell(f"{_g(a.median)} vs {_g(b.median)}", "num"),
-                         Cell(f"{symbol} {c.effect:+.2f} [{c.low:+.2f}, {c.high:+.2f}]", "num"),
-                         Cell("-" if c.p is None else f"{c.p:.2g}", "num"),
+                         Cell(f"{value_text(a.median)} vs {value_text(b.median)}", "num"),
+                         Cell(effect_text(c), "num"), Cell(p_text(c.p), "num"),
                          Cell(t.outcome)])  # fmt: skip
     if not rows:
         return None
@@ -195,10 +203,24 @@ def effects(method: str, kind: str, tests: dict[str, list]) -> Table | None:
                   "p", "outcome"], rows, placement=APPENDIX)  # fmt: skip
 
 
-def _g(value: float | None) -> str:
+def value_text(value: float | None) -> str:
+    """A side's median or IQR as the comparisons' tables print it: three significant digits,
+    ``failed`` when it reaches a failed run (infinite), ``-`` when unknown."""
     if value is None:
         return "-"
     return "failed" if abs(value) == float("inf") else f"{value:.3g}"
+
+
+def effect_text(c: inference.Comparison) -> str:
+    """``r +0.43 [+0.10, +0.71]``: the effect (r paired by scene, δ Cliff's otherwise; > 0 the
+    method better) with its 95 % bootstrap interval."""
+    symbol = "r" if c.effect_name == inference.PAIRED_R else "δ"
+    return f"{symbol} {c.effect:+.2f} [{c.low:+.2f}, {c.high:+.2f}]"
+
+
+def p_text(p: float | None) -> str:
+    """A p as the comparisons' tables print it (``-`` when undefined)."""
+    return "-" if p is None else f"{p:.2g}"
 
 
 def subsection(results: Results, method: str) -> Section:

@@ -12,7 +12,7 @@ from usvtool.report import judging
 from usvtool.report.data import Results
 from usvtool.report.document import HTML, Cell, Section, Table
 from usvtool.report.papers import IWSO_DWA_TABLE_1, PAPERS
-from usvtool.report.sections import claims
+from usvtool.report.sections import baselines, claims
 
 
 def _natural(case: str) -> tuple:
@@ -159,5 +159,26 @@ def section(results: Results) -> Section:
             ["claim", "ours", "verdict"],
             [[Cell(v.claim.id), Cell(claims.headline(v)), Cell(v.verdict, claims.CSS[v.verdict])]
              for v in yours], placement=HTML))  # fmt: skip
+    if line := against_baselines(results):
+        s.paragraphs.append(line)
     s.paragraphs.append("Caveats. " + " ".join(caveats(results, verdicts)))
     return s
+
+
+def against_baselines(results: Results) -> str:
+    """One line: per scene family group where the field's baselines ran, each controller's
+    comparisons with them better / worse of all (:func:`baselines.record`, the section's own
+    standings); '' when no baseline ran."""
+    found = baselines.standings(results)
+    if not found:
+        return ""
+    parts = []
+    for g in found:
+        counted = [(s.method, baselines.record(s)) for s in g.standings]
+        mine = ", ".join(f"{m} {w}/{lost} of {n}" for m, (w, lost, n) in counted if n)
+        parts.append(f"{g.name}: {mine or 'too few paired runs'}")
+    ran = [b for b in baselines.BASELINES if any(b in g.baselines for g in found)]
+    return (f"Against the field's baselines ({' and '.join(ran)}; the section Against the "
+            "field's baselines): each controller's comparisons with them, arrival time and "
+            "closest distance paired by scene, better / worse (uncorrected p < "
+            f"{judging.ALPHA}, a description) of all: {'; '.join(parts)}.")
