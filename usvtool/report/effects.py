@@ -1,0 +1,173 @@
+"""Effects in the metric's own units, with their intervals (docs/statistics.md, "Effects in the
+metric's units").
+
+**Sign.** As :func:`usvtool.report.inference.compare`: every estimate and bound here is an
+**improvement**, > 0 when the method is better in the claim's direction. With ``better=
+"lower"`` it is rival - method (a route 122 m shorter than the rival's is +122), with
+``"higher"`` method - rival. The raw difference method - rival is the improvement with its
+sign flipped when lower is better. The values must be finite (measured values: a failure has
+no magnitude; compare the failures apart, :mod:`usvtool.report.rates`).
+
+- :func:`hodges_lehmann`: the Hodges-Lehmann shift (Hodges and Lehmann 1963, Ann. Math. Stat.
+  34) with its distribution-free interval (Bauer 1972, J. Am. Stat. Assoc. 67, 687-690;
+  Hollander and Wolfe 1999, Nonparametric Statistical Methods, 2nd ed., sections 3.2-3.3
+  paired, 4.2-4.3 independent). Paired: the median of the n(n + 1)/2 Walsh averages
+  (d_i + d_j)/2, i <= j, of the n improvements d (all pairs, zeros too), the interval
+  [W_(k), W_(M + 1 - k)] of the sorted Walsh averages with k the signed-rank depth
+  (C_alpha = n(n + 1)/2 + 1 - t_(alpha/2)). Independent: the median of the m n cross
+  differences a_i - b_j, the interval [D_(k), D_(mn + 1 - k)] with k the rank-sum depth
+  (C_alpha = m(2n + m + 1)/2 + 1 - w_(alpha/2)). k is exact or normal by
+  :func:`usvtool.report.effective_n.exact`; the exact k gives a coverage of at least the one
+  asked for (the coverage reached is given); k = 0 (even the most extreme arrangement is
+  more likely than (1 - confidence)/2: at 95 %, 5 pairs or fewer, 3 + 3 runs) gives the
+  whole line, -inf to +inf. With ties the coverage is
+  approximate (the depths are the untied distribution's).
+- :func:`bootstrap_difference`: the difference of a named statistic (median, mean, min, max,
+  std, variance: ddof 1) with its percentile bootstrap interval (Efron and Tibshirani 1993, An
+  Introduction to the Bootstrap, chapter 13), pairs resampled together when paired, the
+  resamples drawn from ``numpy.random.default_rng(seed)`` as one (resamples, n) index array;
+  and the **relative change**, the improvement over |the rival's statistic|, with its
+  percentile interval over the same resamples (None when the rival's statistic is 0 in the
+  sample or in some resample).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import partial
+
+import numpy as np
+
+from usvtool.report import effective_n, rank_null
+
+BETTER = ("lower", "higher")
+#: The statistics a difference may be of, each over the last axis.
+STATISTICS = {
+    "median": np.median,
+    "mean": np.mean,
+    "min": np.min,
+    "max": np.max,
+    "std": partial(np.std, ddof=1),
+    "variance": partial(np.var, ddof=1),
+}
+
+
+@dataclass(frozen=True)
+class Shift:
+    """The Hodges-Lehmann shift (> 0: the method better) and its interval; ``coverage`` the
+    interval's coverage (exact: reached, at least the one asked for; normal: the one asked
+    for); ``exact``: the depth from the exact distribution; ``n``: the pairs (paired) or the
+    sizes."""
+
+    estimate: float
+    low: float
+    high: float
+    confidence: float
+    coverage: float
+    paired: bool
+    exact: bool
+    n: tuple[int, int]
+
+
+@dataclass(frozen=True)
+class Difference:
+    """The bootstrap of a statistic's difference: the improvement ``estimate`` (> 0: the
+    method better) with its percentile interval, the two sides' statistics, and the relative
+    change (the improvement over |the rival's statistic|) with its interval (None: the rival's
+    statistic is 0)."""
+
+    statistic: str
+    estimate: float
+    low: float
+    high: float
+    method_value: float
+    rival_value: float
+    relative: float | None
+    relative_low: float | None
+    relative_high: float | None
+    paired: bool
+    confidence: float
+    resamples: int
+    seed: int
+
+
+def hodges_lehmann(method: Sequence[float], rival: Sequence[float], *, paired: bool,
+                   better: str, confidence: float = 0.95) -> Shift:  # fmt: skip
+    """The Hodges-Lehmann shift of ``method`` against ``rival`` with its distribution-free
+    ``confidence`` interval (module docstring)."""
+    a, b = _oriented(method, rival, better, paired)
+    tail = (1 - confidence) / 2
+    if paired:
+        d = a - b
+        i, j = np.triu_indices(d.size)
+        values = np.sort((d[i] + d[j]) / 2)
+        rule = effective_n.exact(True, d.size)
+        k = rank_null.signed_rank_depth(d.size, tail, exact=rule)
+        coverage = rank_null.depth_coverage_signed_rank(d.size, k) if rule else confidence
+        sizes = (d.size, d.size)
+    else:
+        values = np.sort((a[:, None] - b[None, :]).ravel())
+        rule = effective_n.exact(False, a.size + b.size)
+        k = rank_null.rank_sum_depth(a.size, b.size, tail, exact=rule)
+        coverage = rank_null.depth_coverage_rank_sum(a.size, b.size, k) if rule else confidence
+        sizes = (a.size, b.size)
+    if k == 0:
+        low, high, coverage = -math.inf, math.inf, 1.0
+    else:
+        low, high = float(values[k - 1]), float(values[values.size - k])
+    return Shift(float(np.median(values)), low, high, confidence, coverage, paired, rule, sizes)
+
+
+def bootstrap_difference(method: Sequence[float], rival: Sequence[float], *, statistic: str,
+                         paired: bool, better: str, seed: int = 0, resamples: int = 2000,
+                         confidence: float = 0.95) -> Difference:  # fmt: skip
+    """The bootstrap of the improvement in ``statistic`` (module docstring)."""
+    if statistic not in STATISTICS:
+        raise ValueError(f"statistic must be one of {tuple(STATISTICS)}, not {statistic!r}")
+    x, y = _finite(method, rival, paired)
+    if statistic in ("std", "variance") and min(x.size, y.size) < 2:
+        raise ValueError(f"the {statistic} needs at least two values on each side")
+    sign = _sign(better)
+    f = STATISTICS[statistic]
+    rng = np.random.default_rng(seed)
+    ix = rng.integers(0, x.size, size=(resamples, x.size))
+    iy = ix if paired else rng.integers(0, y.size, size=(resamples, y.size))
+    fx, fy = float(f(x)), float(f(y))
+    bx, by = f(x[ix], axis=-1), f(y[iy], axis=-1)
+    boot = sign * (bx - by)
+    q = [50 * (1 - confidence), 50 * (1 + confidence)]
+    low, high = np.percentile(boot, q)
+    estimate = float(sign * (fx - fy))
+    relative = (None, None, None)
+    if fy != 0 and np.all(by != 0):
+        rel_low, rel_high = np.percentile(boot / np.abs(by), q)
+        relative = (estimate / abs(fy), float(rel_low), float(rel_high))
+    return Difference(statistic, estimate, float(low), float(high), fx, fy, *relative, paired,
+                      confidence, resamples, seed)  # fmt: skip
+
+
+def _sign(better: str) -> float:
+    if better not in BETTER:
+        raise ValueError(f"better must be one of {BETTER}, not {better!r}")
+    return 1.0 if better == "higher" else -1.0
+
+
+def _finite(method: Sequence[float], rival: Sequence[float], paired: bool):
+    x, y = np.asarray(method, float), np.asarray(rival, float)
+    if x.size == 0 or y.size == 0:
+        raise ValueError("an effect needs at least one value on each side")
+    if not (np.isfinite(x).all() and np.isfinite(y).all()):
+        raise ValueError("an effect in the metric's units takes finite values only (no "
+                         "failure, no NaN): compare the failures apart (rates)")  # fmt: skip
+    if paired and x.size != y.size:
+        raise ValueError(f"paired samples differ in size ({x.size} and {y.size})")
+    return x, y
+
+
+def _oriented(method, rival, better: str, paired: bool):
+    """The values times +1 (higher better) or -1 (lower better): larger is better."""
+    sign = _sign(better)
+    x, y = _finite(method, rival, paired)
+    return sign * x, sign * y
