@@ -18,11 +18,14 @@ from usvtool.trace import write_events
 CONTROLLERS = ("dwa", "udwa")
 
 
-def job(root, case: str, method: str, metrics: dict, family: str = "imazu") -> JobResults:
+def job(root, case: str, method: str, metrics: dict, family: str = "imazu", scale: float = 1.0,
+        options: dict | None = None) -> JobResults:
     """A run job of ``case``: its metrics as a results table holds them, its trace's first step
     and its events: own ship north at 6 m/s, 12 m long; one 10 m target head-on at 4 m/s,
-    500 m ahead, so its CPA is 500 / 10 = 50 s ahead at 0 m. The scenario file beside them
-    says otherwise: the section never reads it."""
+    500 m ahead, so its CPA is 500 / 10 = 50 s ahead at 0 m (``scale`` times each length and
+    the distance: the CPA ``scale`` times as far ahead); the verdicts' onset at a TCPA of
+    120 s. The scenario file beside them says otherwise: the section never reads it.
+    ``options``: the family options of its ``job.json`` (none: the family's defaults)."""
     d = root / "runs" / f"{case.replace('/', '-')}-{method}"
     d.mkdir(parents=True)
     rows = {m: Row("k", "runs", case, method, 1, m, str(v)) for m, v in metrics.items()}
@@ -30,19 +33,22 @@ def job(root, case: str, method: str, metrics: dict, family: str = "imazu") -> J
         "sim: {dt: 0.1, duration: 999.0}\n"
         "own: {start: [0, 0], goal: [0, 900], heading: 90, speed: 2}\n"
         "targets: [{name: ts1, start: [0, 100], heading: 0, speed: 1, length: 10}]\n")
+    ahead, own, target = 500.0 * scale, 12.0 * scale, 10.0 * scale
     (d / "trace.csv").write_text(
         "t,ship,x,y,heading,speed,yaw_rate\n"
         "0.000,own,0.000,0.000,0.000,6.0000,0.0000\n"
-        "0.000,ts1,0.000,500.000,180.000,4.0000,0.0000\n"
+        f"0.000,ts1,0.000,{ahead:.3f},180.000,4.0000,0.0000\n"
         "0.100,own,0.000,0.600,0.000,6.0000,0.0000\n"
-        "0.100,ts1,0.000,499.600,180.000,4.0000,0.0000\n")
+        f"0.100,ts1,0.000,{ahead - 0.4:.3f},180.000,4.0000,0.0000\n")
     write_events(d / "trace.events.json", {"encounters": [], "thresholds": {
-        "apparent": {"course_deg": 30.0, "speed_reduction": 0.5}, "domain_axes_m": [84, 36]},
-        "run": {"own_length": 12.0,
-                "ships": [{"name": "own", "length": 12.0}, {"name": "ts1", "length": 10.0}],
-                "map": None, "wind_field": None, "goal": [0.0, 800.0], "duration_s": 90.0,
-                "scenario_file": "scenario.yaml"}})  # fmt: skip
-    config = {"scene": {"family": family, "kind": case.split("/")[1], "scene": 0}}
+        "horizon_s": 120.0, "apparent": {"course_deg": 30.0, "speed_reduction": 0.5},
+        "domain_axes_m": [7 * own, 3 * own]},
+        "run": {"own_length": own,
+                "ships": [{"name": "own", "length": own}, {"name": "ts1", "length": target}],
+                "map": None, "wind_field": None, "goal": [0.0, 800.0 * scale],
+                "duration_s": 90.0, "scenario_file": "scenario.yaml"}})  # fmt: skip
+    config = {"scene": {"family": family, "kind": case.split("/")[1], "scene": 0,
+                        "options": options or {}}}  # fmt: skip
     return JobResults(f"{case}-{method}", "runs", case, method, 1, d, rows, config=config)
 
 
@@ -130,3 +136,86 @@ def test_the_grid_is_a_png_of_150_dpi_or_more(built):
 
 def test_no_imazu_run_no_section():
     assert imazu.section(Results([], [])) is None
+
+
+# --- several scales: one pipeline entry each ---------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def scales(tmp_path_factory):
+    """The built section's runs (entry imazu, the family's defaults) and the same two cases
+    at twice the scale in an entry with options, imazu-twice: 24 m own ship, 20 m target
+    1000 m ahead, so 1000 / 24 = 41.7 L off and the CPA 1000 / 10 = 100 s ahead; udwa alone,
+    one run arrived (compliant 1, excused 1), one that did not."""
+    root = tmp_path_factory.mktemp("scales")
+    ok = {"arrived": True, "arrival_time_s": 140.0}
+    twice = {"scale": 2.0, "options": {"own_length": 24, "length": 20}}
+    jobs = [
+        job(root, "imazu/01/s000", "dwa", {**ok, "closest_distance_m": 41.25,
+                                           **counts(1, 0, 0, 0)}),
+        job(root, "imazu/01/s000", "udwa", {**ok, "closest_distance_m": 55.0,
+                                            **counts(0, 1, 0, 0)}),
+        job(root, "imazu/02/s000", "udwa", {"arrived": False, "closest_distance_m": 20.0,
+                                            **counts(0, 0, 0, 1)}),
+        job(root, "imazu-twice/01/s000", "udwa", {**ok, "closest_distance_m": 48.0,
+                                                  **counts(1, 1, 0, 0)}, **twice),
+        job(root, "imazu-twice/02/s000", "udwa", {"arrived": False, "closest_distance_m": 72.0,
+                                                  **counts(0, 0, 0, 2)}, **twice),
+    ]  # fmt: skip
+    return imazu.section(Results(jobs, [], order=CONTROLLERS))
+
+
+def test_each_scale_and_controller_has_a_row_by_hand(scales):
+    rows = cells(scales, "imazu-scales")
+    # imazu: 500 / 12 = 41.7 L off, the CPA 50 s ahead = 50 / 120 = 0.42 x the onset's TCPA;
+    # imazu-twice: 1000 / 24 = 41.7 L, 100 s = 0.83 x
+    assert rows[0][0] == ("imazu: own ship 12 m (L) at 6.0 m/s; targets 10 m; at the start "
+                          "42 L off, the CPA 50 s ahead = 0.42 x the onset TCPA (120 s)")
+    assert rows[2][0] == ("imazu-twice: own ship 24 m (L) at 6.0 m/s; targets 20 m; at the "
+                          "start 42 L off, the CPA 100 s ahead = 0.83 x the onset TCPA (120 s)")
+    # scale, controller, runs, arrived, collided, did not arrive, compliant / judged
+    # (excused), not judged, the median closest distance (m, L)
+    assert [r[1:] for r in rows] == [
+        ["dwa", "1", "1", "0", "0", "1 / 1 (0)", "0", "41.2 m (3.4 L)"],
+        # 55 and 20 m: 37.5 m = 3.1 x 12 m; its failed run's encounter not judged
+        ["udwa", "2", "1", "0", "1", "0 / 1 (1)", "1", "37.5 m (3.1 L)"],
+        # 48 and 72 m: 60 m = 2.5 x 24 m
+        ["udwa", "2", "1", "0", "1", "1 / 2 (1)", "2", "60.0 m (2.5 L)"],
+    ]  # fmt: skip
+    assert rows[1][0] == ""  # the scale once per entry
+
+
+def test_the_grid_and_every_run_are_the_default_entrys(scales):
+    assert [r[0] for r in cells(scales, "imazu-table")] == ["01", "02"]
+    assert [r[:2] for r in cells(scales, "imazu-totals")] == [["dwa", "1"], ["udwa", "2"]]
+    grid = next(f for f in scales.figures() if f.id == "imazu-grid")
+    assert {line.split(",")[0] for line in grid.data.splitlines()[1:]} == {
+        "imazu/01/s000", "imazu/02/s000"}  # fmt: skip
+    text = " ".join(scales.paragraphs)
+    assert "own ship 12 m long at 6.0 m/s" in text and "24 m" not in text
+    assert ("2 scales, one pipeline entry each (imazu, imazu-twice): the totals, the grid and "
+            "every run below are those of imazu (run at the family's defaults") in text
+    # the table of the scales follows the totals, before the grid
+    assert [b.id for b in scales.blocks][:3] == ["imazu-totals", "imazu-scales", "imazu-grid"]
+
+
+def built_tables(section):
+    return [t.id for t in section.tables()]
+
+
+def test_one_scale_has_no_table_of_scales(built):
+    assert "imazu-scales" not in built_tables(built)
+    assert "one pipeline entry each" not in " ".join(built.paragraphs)
+
+
+def test_the_main_entry_is_the_one_at_the_familys_defaults():
+    def runs(options):
+        config = {"scene": {"family": "imazu", "options": options}}
+        return {"x/01/s000": {"udwa": JobResults("k", "runs", "x/01/s000", "udwa", 1, None,
+                                                 config=config)}}  # fmt: skip
+
+    at_defaults, compressed = runs({}), runs({"own_speed": 7})
+    assert imazu.main_entry({"imazu": compressed, "zz": at_defaults}) == "zz"
+    assert imazu.main_entry({"b": compressed, "imazu": compressed}) == "imazu"
+    assert imazu.main_entry({"c": compressed, "b": compressed}) == "b"
+    assert imazu.main_entry({"zz": at_defaults, "imazu": at_defaults}) == "imazu"

@@ -10,6 +10,13 @@ scenario YAML: the ships' starts, headings and speeds from the trace's first ste
 targets' classes, ranges and time to CPA at the start, by :func:`usvtool.encounter.assess`),
 lengths, the goal and the duration from the events' ``run`` object
 (:mod:`usvtool.report.runs`). docs/report-imazu.md says what each cell means.
+
+The family may run at several scales, one pipeline entry each (``imazu`` at the published
+proportions, ``imazu-compressed`` at the compressed USV scale: :func:`entries`). The grid, the
+totals and the table of every run are then the main entry's (:func:`main_entry`: the one run
+at the family's defaults), and a table of the scales (:func:`sensitivity_table`) sets each
+entry's scale, in own ship lengths and against the verdicts' onset TCPA, beside every
+controller's outcomes there.
 """
 
 from __future__ import annotations
@@ -21,16 +28,19 @@ import numpy as np
 from usvtool.encounter import CLASS_NAMES, assess
 from usvtool.errors import UsvError
 from usvtool.pipeline import split_family_case
+from usvtool.report import inference
 from usvtool.report.data import JobResults, Results
 from usvtool.report.document import APPENDIX, Cell, Figure, Section, Table
 from usvtool.report.figures.imazu import Cell as GridCell
 from usvtool.report.figures.imazu import imazu_grid, outcome
 from usvtool.report.runs import (
     COUNTS,
+    OUTCOMES,
     TALLY_COLUMNS,
     VERDICTS,
     RunTally,
     family_runs,
+    job_events,
     job_facts,
     median_iqr,
     ship_lengths,
@@ -67,6 +77,38 @@ def imazu_runs(results: Results) -> dict[str, dict[str, JobResults]]:
     """The Imazu family's runs: case (``ENTRY/KIND/sNNN``) -> controller -> the run of its
     lowest seed."""
     return family_runs(results, FAMILY)
+
+
+Runs = dict[str, dict[str, JobResults]]
+
+
+def entries(runs: Runs) -> dict[str, Runs]:
+    """The runs by the pipeline's entry (the cases' ``ENTRY``: one entry per scale the family
+    ran at), the entries in :func:`main_entry` order (the main one first, then by name)."""
+    found: dict[str, Runs] = {}
+    for case, by in runs.items():
+        found.setdefault(split_family_case(case)[0], {})[case] = by
+    return {name: found[name] for name in sorted(found, key=lambda n: _rank(n, found[n]))}
+
+
+def options(runs: Runs) -> dict:
+    """The family options the entry's runs were made with (their ``job.json``'s
+    ``scene.options``; {} at the family's defaults)."""
+    for by in runs.values():
+        for job in by.values():
+            return dict((job.config.get("scene") or {}).get("options") or {})
+    return {}
+
+
+def _rank(name: str, runs: Runs) -> tuple:
+    return (bool(options(runs)), name != FAMILY, name)
+
+
+def main_entry(found: dict[str, Runs]) -> str:
+    """The entry the grid, the totals and the table of every run show: the one run at the
+    family's defaults (no ``options``: the published proportions); among several such, or
+    none, the one named ``imazu``, else the first by name."""
+    return min(found, key=lambda n: _rank(n, found[n]))
 
 
 #: The keys of the events' ``run`` object the section reads (docs/simulate.md).
@@ -174,14 +216,99 @@ def _label(case: str) -> str:
     return split_family_case(case)[1]
 
 
+def horizons(runs: Runs) -> list[float]:
+    """The verdicts' onset TCPA of the runs (their events' ``thresholds.horizon_s``, every
+    distinct value; docs/colregs.md, Latching): an encounter starts when its TCPA falls below
+    it."""
+    found = set()
+    for by in runs.values():
+        for job in by.values():
+            events = job_events(job)
+            value = None if events is None else (events[0].get("thresholds") or {}).get(
+                "horizon_s")  # fmt: skip
+            if isinstance(value, int | float) and not isinstance(value, bool):
+                found.add(float(value))
+    return sorted(found)
+
+
+def scale_cell(name: str, starts: list[Start], onset: list[float]) -> str:
+    """An entry's scale in ship lengths (L: the own ship's) and in the verdicts' onset TCPA."""
+    if not starts:
+        return f"{name}: the runs' files are missing"
+    tcpa = [t for s in starts for t in s.tcpa]
+    ranges = [r / s.own_length for s in starts for r in s.ranges]
+    text = (f"{name}: own ship {_span([s.own_length for s in starts], 'm')} (L) at "
+            f"{_span([s.own_speed for s in starts], 'm/s', 1)}; targets "
+            f"{_span([v for s in starts for v in s.lengths], 'm')}; at the start "
+            f"{_span(ranges, 'L')} off, the CPA {_span(tcpa, 's')} ahead")  # fmt: skip
+    if onset:
+        ratio = [t / h for t in (min(tcpa), max(tcpa)) for h in onset]
+        text += (f" = {_span(ratio, 'x', 2)} the onset TCPA "
+                 f"({' or '.join(f'{h:g}' for h in onset)} s)")  # fmt: skip
+    return text
+
+
+def sensitivity_table(found: dict[str, Runs], controllers: list[str],
+                      starts: dict[str, Start | None]) -> Table:  # fmt: skip
+    """One row per scale (an entry) and controller that ran there: its runs, arrived,
+    collided, did not arrive, compliant / judged (excused), not judged and the median closest
+    distance (m and own ship lengths)."""
+    rows = []
+    for name, runs in found.items():
+        known = [s for case in runs if (s := starts.get(case)) is not None]
+        text = scale_cell(name, known, horizons(runs))
+        own = inference.median([s.own_length for s in known]) if known else None
+        first = True
+        for c in controllers:
+            jobs = [r[c] for r in runs.values() if c in r]
+            if not jobs:
+                continue
+            tally = RunTally.of(jobs)
+            if tally.verdicts is None:
+                judged, blind = "-", "-"
+            else:
+                v = tally.verdicts
+                total = v["compliant"] + v["compliant_excused"] + v["noncompliant"]
+                judged = f"{v['compliant']} / {total} ({v['compliant_excused']})"
+                blind = str(v["not_judged"])
+            closest = [x for j in jobs if (x := j.number("closest_distance_m")) is not None]
+            median = inference.median(closest) if closest else None
+            distance = "-" if median is None else f"{median:.1f} m" + (
+                f" ({median / own:.1f} L)" if own else "")  # fmt: skip
+            outcomes = [Cell(str(tally.outcomes[o]), "num" + (" fails" if tally.outcomes[o]
+                                                             and o != "arrived" else ""))
+                        for o in OUTCOMES]  # fmt: skip
+            rows.append([Cell(text if first else ""), Cell(c), Cell(str(len(jobs)), "num"),
+                         *outcomes, Cell(judged, "num"),
+                         Cell(blind, "num" + (" untested" if blind not in ("-", "0") else "")),
+                         Cell(distance, "num")])  # fmt: skip
+            first = False
+    return Table(
+        "imazu-scales", "The Imazu cases at each scale",
+        f"The {len(found)} scales the family ran at (each an entry of the pipeline, its scale "
+        "read from its runs' files: L the own ship's length, the ranges at the start in L, the "
+        "time to the CPA at the start against the TCPA below which the verdicts start an "
+        "encounter, from the events' thresholds), each with every controller that ran it: its "
+        "runs, their outcomes (a run that collided or did not arrive is a failure, its "
+        "encounters never judged), the encounters compliant (no rule failed, none excused) of "
+        "those judged, the compliant only through an excused Rule 2 departure in brackets (among "
+        "the judged, not the compliant), the encounters not judged, and the median over the "
+        "runs of the closest centre distance to a target, in m and in L.",
+        ["scale", "controller", "runs", *OUTCOMES, "compliant / judged (excused)", "not judged",
+         "closest: median"], rows)  # fmt: skip
+
+
 def section(results: Results) -> Section | None:
-    runs = imazu_runs(results)
-    if not runs:
+    every = imazu_runs(results)
+    if not every:
         return None
-    controllers = sorted({c for r in runs.values() for c in r},
-                         key=lambda m: results.methods("runs").index(m))  # fmt: skip
+    found = entries(every)
+    main = main_entry(found)
+    runs = found[main]
+    order = results.methods("runs")
+    controllers = sorted({c for r in runs.values() for c in r}, key=order.index)
     cases = list(runs)
-    starts = {case: start(next(iter(r.values()))) for case, r in runs.items()}
+    starts = {case: start(next(iter(r.values()))) for case, r in every.items()}
     classes = {case: " ".join(SHORT.get(c, c) for c in s.classes) if s else "?"
                for case, s in starts.items()}  # fmt: skip
     labels = [f"{_label(case)} {classes[case]}" for case in cases]
@@ -189,7 +316,7 @@ def section(results: Results) -> Section | None:
     headers = [f"{c}\n{sum(t.outcomes.values())} runs: {t.outcomes['arrived']} arrived\n"
                f"{t.outcomes['collided']} collided" for c, t in tallies.items()]  # fmt: skip
     cells = {(case, c): grid_cell(job) for case, r in runs.items() for c, job in r.items()}
-    known = [s for s in starts.values() if s is not None]
+    known = [s for case in cases if (s := starts[case]) is not None]
     scale = scale_text(known) if known else "the runs' files are missing"
     seeds = sorted({j.seed for r in runs.values() for j in r.values() if j.seed is not None})
     top = Section("imazu", "The Imazu problem")
@@ -202,7 +329,19 @@ def section(results: Results) -> Section | None:
         f"point if neither gives way. At the scale run here (read from the runs): {scale}. "
         f"Classes at the start: HO head-on, GW crossing give-way, SO crossing stand-on, OT "
         "overtaking.")
+    if len(found) > 1:
+        others = [n for n in found if n != main]
+        why = ("run at the family's defaults, the published proportions" if not options(runs)
+               else "named as the family" if main == FAMILY else "the first by name")
+        top.paragraphs.append(
+            f"The family ran at {len(found)} scales, one pipeline entry each ({', '.join(found)})"
+            f": the totals, the grid and every run below are those of {main} ({why}); "
+            f"{', '.join(others)} {'is' if len(others) == 1 else 'are'} beside it in the table "
+            "of the scales, after the totals.")
     top.blocks.append(totals_table(runs, controllers))  # short: it fills a page before the grid
+    if len(found) > 1:
+        every_controller = sorted({c for r in every.values() for c in r}, key=order.index)
+        top.blocks.append(sensitivity_table(found, every_controller, starts))
     plot = imazu_grid(cases, labels, controllers, cells, headers)
     top.blocks.append(Figure(
         "imazu-grid", "The Imazu cases with every controller",
@@ -213,7 +352,7 @@ def section(results: Results) -> Section | None:
     rows = [[Cell(_label(case)), Cell(classes[case])]
             + [_run_text(runs[case][c]) if c in runs[case] else Cell("no run")
                for c in controllers] for case in cases]  # fmt: skip
-    thresholds = thresholds_table([j for r in runs.values() for j in r.values()])
+    thresholds = thresholds_table([j for r in every.values() for j in r.values()])
     top.blocks.append(Table(
         "imazu-table", "The Imazu cases: every run",
         "Per run: a failure first (a collision, naming what was hit, or no arrival), the "
