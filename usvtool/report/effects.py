@@ -97,7 +97,7 @@ def hodges_lehmann(method: Sequence[float], rival: Sequence[float], *, paired: b
                    better: str, confidence: float = 0.95) -> Shift:  # fmt: skip
     """The Hodges-Lehmann shift of ``method`` against ``rival`` with its distribution-free
     ``confidence`` interval (module docstring)."""
-    a, b = _oriented(method, rival, better, paired)
+    a, b = oriented(method, rival, better, paired)
     tail = (1 - confidence) / 2
     if paired:
         d = a - b
@@ -166,7 +166,7 @@ def _finite(method: Sequence[float], rival: Sequence[float], paired: bool):
     return x, y
 
 
-def _oriented(method, rival, better: str, paired: bool):
+def oriented(method, rival, better: str, paired: bool):
     """The values times +1 (higher better) or -1 (lower better): larger is better."""
     sign = _sign(better)
     x, y = _finite(method, rival, paired)

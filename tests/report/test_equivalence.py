@@ -1,0 +1,103 @@
+"""usvtool.report.equivalence: TOST by shifted rank tests against scipy and by its properties,
+the vectorised rank statistics of the power simulation against scipy, and the n needed:
+seeded, growing as the effect shrinks, giving up above the cap."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.special import ndtr
+from scipy.stats import mannwhitneyu, wilcoxon
+
+from usvtool.report import equivalence
+from usvtool.report.equivalence import sample_size, tost
+
+
+def test_identical_samples_are_equivalent():
+    x = np.random.default_rng(1).normal(40, 5, 20)
+    for paired in (True, False):
+        e = tost(x, x, paired=paired, better="higher", margin=2.0)
+        assert e.equivalent and e.p < 0.05
+        assert -2 < e.interval.low <= e.interval.high < 2
+        assert e.interval.confidence == pytest.approx(0.9)
+
+
+def test_shifted_samples_are_not_equivalent():
+    x = np.random.default_rng(2).normal(40, 1, 20)
+    for paired in (True, False):
+        e = tost(x, x + 3, paired=paired, better="higher", margin=0.5)
+        assert not e.equivalent and e.p > 0.5
+        assert e.interval.high < -0.5  # the method 3 lower, higher better: an improvement of -3
+
+
+def test_tost_one_sided_p_match_scipy():
+    rng = np.random.default_rng(3)
+    x, y = rng.normal(10, 1, 15), rng.normal(10.2, 1, 15)
+    m = 0.7
+    e = tost(x, y, paired=True, better="higher", margin=m)
+    d = x - y
+    assert e.p_lower == pytest.approx(wilcoxon(d + m, alternative="greater", method="exact").pvalue)
+    assert e.p_upper == pytest.approx(wilcoxon(d - m, alternative="less", method="exact").pvalue)
+    assert e.p == max(e.p_lower, e.p_upper) and e.exact
+    f = tost(x, y, paired=False, better="lower", margin=m)
+    a, b = -x, -y  # lower better: the oriented values
+    want_low = mannwhitneyu(a + m, b, alternative="greater", method="exact").pvalue
+    want_up = mannwhitneyu(a - m, b, alternative="less", method="exact").pvalue
+    assert (f.p_lower, f.p_upper) == pytest.approx((want_low, want_up))
+
+
+def test_tost_agrees_with_the_90_percent_interval():
+    # where the HL interval is well inside the margin, equivalent; well across it, not
+    rng = np.random.default_rng(4)
+    for shift, margin in ((0.0, 1.0), (0.2, 1.0), (0.9, 0.5), (0.0, 0.05)):
+        x = rng.normal(0, 0.5, 30)
+        y = x + shift + rng.normal(0, 0.1, 30)
+        e = tost(x, y, paired=True, better="lower", margin=margin)
+        inside = -margin < e.interval.low and e.interval.high < margin
+        assert e.equivalent == inside
+
+
+def test_margin_must_be_positive():
+    with pytest.raises(ValueError, match="margin"):
+        tost([1, 2], [1, 2], paired=True, better="lower", margin=0)
+
+
+def test_vectorised_rank_z_matches_scipy():
+    rng = np.random.default_rng(5)
+    d = np.round(rng.normal(0.3, 1, (4, 25)), 1)  # ties and zeros
+    z = equivalence._signed_rank_z(d)
+    for row, value in zip(d, z, strict=True):
+        want = wilcoxon(row, method="approx", correction=True).pvalue
+        assert 2 * ndtr(-abs(value)) == pytest.approx(want)
+    x, y = np.round(rng.normal(0, 1, (3, 12)), 1), np.round(rng.normal(0.5, 1, (3, 12)), 1)
+    z = equivalence._rank_sum_z(x, y)
+    for rx, ry, value in zip(x, y, z, strict=True):
+        want = mannwhitneyu(rx, ry, method="asymptotic").pvalue
+        assert 2 * ndtr(-abs(value)) == pytest.approx(want)
+
+
+def test_sample_size_is_seeded_and_reaches_the_power():
+    rng = np.random.default_rng(6)
+    x, y = rng.normal(0, 1, 15), rng.normal(0.6, 1, 15)
+    a = sample_size(x, y, paired=False, better="lower", simulations=200, cap=2000)
+    b = sample_size(x, y, paired=False, better="lower", simulations=200, cap=2000)
+    assert a == b and a.n is not None and a.power >= 0.8
+    assert a.test == "Mann-Whitney U" and a.target == 0.8
+    # a smaller observed effect needs more runs
+    c = sample_size(x, y - 0.3, paired=False, better="lower", simulations=200, cap=2000)
+    assert c.n is not None and c.n > a.n
+
+
+def test_sample_size_gives_up_above_the_cap():
+    rng = np.random.default_rng(7)
+    d = rng.normal(0.02, 1, 20)
+    s = sample_size(d, np.zeros(20), paired=True, better="higher", simulations=100, cap=64)
+    assert s.n is None and s.power < 0.8 and "64" in s.reason
+    z = sample_size([1.0, 2, 3], [1.0, 2, 3], paired=True, better="higher", cap=64)
+    assert z.n is None and "no observed effect" in z.reason
+
+
+def test_sample_size_small_when_already_decisive():
+    x = np.arange(30.0)
+    s = sample_size(x, x + 5, paired=True, better="lower", simulations=100, cap=1000)
+    assert s.n is not None and s.n <= 30 and s.test == "Wilcoxon signed-rank"
