@@ -82,26 +82,29 @@ def test_the_groups_are_the_families_where_a_baseline_ran(results):
 
 
 def test_each_controllers_outcomes_count_every_failure(results):
-    section = baselines.section(results)
-    emergency, imazu, every = section.tables()
-    assert emergency.columns[:11] == [
-        "controller", "runs", "arrived", "collided", "did not arrive", "compliant",
-        "excused only", "non-compliant", "not judged", "controller failed",
-        "arrival (s): median (IQR)"]  # fmt: skip
-    rows = {r[0]: r for r in texts(emergency)}
-    # udwa: 5 arrived, 1 collided (its 2 encounters not judged); medians over the 5 that
-    # arrived: 105..109 -> 107 (IQR 108 - 106), 30..34 -> 32
-    assert rows["udwa"][1:12] == ["6", "5", "1", "0", "10", "0", "0", "2", "0", "107.0 (2.0)",
-                                  "32.0 (2.0)"]  # fmt: skip
-    # the plugin's failed program: did not arrive, counted as a controller failure, its 90 m
-    # left out of the medians (91..95 -> 93; 26..30 -> 28)
-    assert rows["mine"][1:5] == ["6", "5", "0", "1"] and rows["mine"][9:12] == [
-        "1", "93.0 (2.0)", "28.0 (2.0)"]  # fmt: skip
-    # vo: 100..105 -> 102.5 (IQR 103.75 - 101.25)
-    assert rows["vo (baseline)"][10] == "102.5 (2.5)"
-    assert imazu.columns[-1] == "against vo"  # sbmpc did not run there
-    assert [(r[0], r[-1]) for r in texts(imazu)] == [("udwa", "-"), ("vo (baseline)", "itself")]
-    assert every.placement == "appendix" and emergency.placement == "main"
+    outcomes, against, every = baselines.section(results).tables()
+    assert outcomes.columns == [
+        "group", "controller", "runs", "arrived", "collided", "did not arrive", "compliant",
+        "excused only", "non-compliant", "not judged", "controller failed"]  # fmt: skip
+    rows = texts(outcomes)
+    assert [r[:2] for r in rows] == [
+        ["emergency", "udwa"], ["", "vo (baseline)"], ["", "sbmpc (baseline)"], ["", "mine"],
+        ["imazu", "udwa"], ["", "vo (baseline)"]]  # fmt: skip
+    # udwa: 5 arrived, 1 collided (its 2 encounters not judged)
+    assert rows[0][2:] == ["6", "5", "1", "0", "10", "0", "0", "2", "0"]
+    # the plugin's failed program: did not arrive, and counted as a controller failure
+    assert rows[3][2:6] == ["6", "5", "0", "1"] and rows[3][-1] == "1"
+    # the medians over the runs that arrived without collision: udwa 105..109 -> 107 (IQR
+    # 108 - 106), 30..34 -> 32; mine without its failed run's 90 m: 91..95, 26..30; vo
+    # 100..105 -> 102.5 (IQR 103.75 - 101.25)
+    rows = [r[2:4] for r in texts(against)]
+    assert rows[0] == ["107.0 (2.0)", "32.0 (2.0)"]  # udwa
+    assert rows[3] == ["93.0 (2.0)", "28.0 (2.0)"]  # mine
+    assert rows[1][0] == "102.5 (2.5)"  # vo
+    # sbmpc did not run the imazu cases; 2 paired runs are too few for a comparison
+    assert texts(against)[4][4:] == ["-", "-", "did not run", "did not run"]
+    assert texts(against)[5][4:] == ["itself", "itself", "did not run", "did not run"]
+    assert every.placement == "appendix" and outcomes.placement == against.placement == "main"
 
 
 def test_the_comparisons_with_each_baseline_by_hand(results):
@@ -129,10 +132,14 @@ def test_the_comparisons_with_each_baseline_by_hand(results):
     # the failed program counts as the worst: 5 scenes better by 10 s, one failure
     row = got[("mine", "vo", "arrival_time_s")]
     assert row[4] == "6/6 (1/0)" and row[8].startswith(f"r {9 / 21:+.2f}")
-    # the main table's digest is the same comparisons'
-    rows = {r[0]: r for r in texts(baselines.section(results).tables()[0])}
-    assert rows["udwa"][-2:] == ["arrival worse; closest n.s.", "arrival n.s.; closest worse"]
-    assert rows["vo (baseline)"][-2:] == ["itself", "arrival better; closest worse"]
+    # the main table gives the same comparisons' outcomes and effects
+    against = baselines.section(results).tables()[1]
+    assert against.columns[4:] == ["against vo: arrival", "against vo: closest",
+                                   "against sbmpc: arrival", "against sbmpc: closest"]
+    rows = {r[1]: r[4:] for r in texts(against)[:4]}
+    assert rows["udwa"] == ["worse, r -1.00", f"n.s., r {9 / 21:+.2f}",
+                            f"n.s., r {9 / 21:+.2f}", "worse, r -1.00"]  # fmt: skip
+    assert rows["vo (baseline)"] == ["itself", "itself", "better, r +1.00", "worse, r -1.00"]
 
 
 def test_the_summary_counts_each_controllers_wins_and_losses(results):

@@ -169,10 +169,13 @@ def test_each_scale_and_controller_has_a_row_by_hand(scales):
     rows = cells(scales, "imazu-scales")
     # imazu: 500 / 12 = 41.7 L off, the CPA 50 s ahead = 50 / 120 = 0.42 x the onset's TCPA;
     # imazu-twice: 1000 / 24 = 41.7 L, 100 s = 0.83 x
-    assert rows[0][0] == ("imazu: own ship 12 m (L) at 6.0 m/s; targets 10 m; at the start "
-                          "42 L off, the CPA 50 s ahead = 0.42 x the onset TCPA (120 s)")
-    assert rows[2][0] == ("imazu-twice: own ship 24 m (L) at 6.0 m/s; targets 20 m; at the "
-                          "start 42 L off, the CPA 100 s ahead = 0.83 x the onset TCPA (120 s)")
+    assert rows[0][0] == "imazu: L 12 m, 42 L off, CPA 0.42 x the onset TCPA"
+    assert rows[2][0] == "imazu-twice: L 24 m, 42 L off, CPA 0.83 x the onset TCPA"
+    text = " ".join(scales.paragraphs)  # in full
+    assert ("imazu: own ship 12 m (L) at 6.0 m/s; targets 10 m; at the start 42 L off, the CPA "
+            "50 s ahead = 0.42 x the onset TCPA (120 s); imazu-twice: own ship 24 m (L) at 6.0 "
+            "m/s; targets 20 m; at the start 42 L off, the CPA 100 s ahead = 0.83 x the onset "
+            "TCPA (120 s).") in text
     # scale, controller, runs, arrived, collided, did not arrive, compliant / judged
     # (excused), not judged, the median closest distance (m, L)
     assert [r[1:] for r in rows] == [
@@ -192,7 +195,8 @@ def test_the_grid_and_every_run_are_the_default_entrys(scales):
     assert {line.split(",")[0] for line in grid.data.splitlines()[1:]} == {
         "imazu/01/s000", "imazu/02/s000"}  # fmt: skip
     text = " ".join(scales.paragraphs)
-    assert "own ship 12 m long at 6.0 m/s" in text and "24 m" not in text
+    assert "own ship 12 m long at 6.0 m/s" in scales.paragraphs[0]
+    assert "24 m" not in scales.paragraphs[0]
     assert ("2 scales, one pipeline entry each (imazu, imazu-twice): the totals, the grid and "
             "every run below are those of imazu (run at the family's defaults") in text
     # the table of the scales follows the totals, before the grid

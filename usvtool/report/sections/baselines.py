@@ -17,7 +17,8 @@ description, not a claim.
 
 Three layers, kept apart: :func:`groups` and :func:`standings` judge (no page, no file read
 beyond the results table: computed once per :class:`Results`, the summary's line shares them,
-:func:`record`); the tables (:func:`outcomes_table`, :func:`comparisons_table`) and
+:func:`record`); the tables (:func:`outcomes_table`, :func:`against_table`,
+:func:`comparisons_table`) and
 :func:`section` write the page. No figure: the tables say it, and the part costs the report a
 few hundredths of a second per comparison.
 """
@@ -47,7 +48,6 @@ from usvtool.report.sections.other_methods import (
     p_text,
     value_text,
 )
-from usvtool.results import file_name
 
 #: The field's baseline controllers (docs/controllers.md) and what each is.
 BASELINES = {
@@ -149,42 +149,70 @@ def _figure(values: list[float]) -> Cell:
     return Cell(f"{inference.median(values):.1f} ({inference.iqr(values):.1f})", "num")
 
 
-def _against(s: Standing, baseline: str) -> Cell:
-    """The controller against one baseline, per main metric: better, worse or n.s."""
+def _first(g: Group, i: int) -> Cell:
+    """The group's name on its first row only."""
+    return Cell(g.name if i == 0 else "")
+
+
+def _name(method: str) -> str:
+    return f"{method} (baseline)" if method in BASELINES else method
+
+
+def outcomes_table(found: list[Group]) -> Table:
+    """Per group and controller: runs, outcomes, COLREGs counts and controller failures."""
+    rows = []
+    for g in found:
+        for i, s in enumerate(g.standings):
+            failed = Cell(str(s.controller_failed),
+                          "num" + (" fails" if s.controller_failed else ""))  # fmt: skip
+            rows.append([_first(g, i), Cell(_name(s.method)), Cell(str(s.runs), "num"),
+                         *s.tally.cells(), failed])  # fmt: skip
+    return Table(
+        "baselines-outcomes", "Where the baselines ran: every controller's outcomes",
+        "Per scene family group where a baseline ran and controller: the runs, their outcomes "
+        "each in its own column (controller failed: those of the runs that did not arrive that "
+        "ended because the controller failed, a failure as the others), their encounters' "
+        f"COLREGs counts. {COUNTS}",
+        ["group", "controller", "runs", *TALLY_COLUMNS, "controller failed"], rows)
+
+
+def _against(s: Standing, baseline: str, metric: str) -> Cell:
+    """The controller against a baseline on a metric: better, worse or n.s. with the
+    effect; ``itself``; ``-`` with too few paired runs."""
     if s.method == baseline:
         return Cell("itself")
-    found = [(m, t) for b, m, t in s.tests if b == baseline]
-    if not found:
+    t = next((t for b, m, t in s.tests if b == baseline and m == metric), None)
+    if t is None:
         return Cell("-")
-    words = [f"{SHORT.get(m, m)} {WORDS.get(t.outcome, t.outcome)}" for m, t in found]
-    outcomes = {t.outcome for _, t in found}
-    css = "fails" if "worse" in outcomes else "holds" if outcomes == {"better"} else ""
-    return Cell("; ".join(words), css)
+    return Cell(f"{WORDS.get(t.outcome, t.outcome)}, r {t.comparison.effect:+.2f}",
+                CSS.get(t.outcome, ""))
 
 
-def outcomes_table(g: Group) -> Table:
-    """Per controller of the group: runs, outcomes, COLREGs counts, controller failures, the
-    main metrics' median (IQR) over the runs that did not fail and the digest of its
-    comparisons against each baseline."""
+def against_table(found: list[Group]) -> Table:
+    """Per group and controller: the main metrics' median (IQR) over the runs that did not
+    fail, and against each baseline per metric the outcome of the paired comparison."""
+    ran = [b for b in BASELINES if any(b in g.baselines for g in found)]
+    metrics = MAIN["runs"]
     rows = []
-    for s in g.standings:
-        name = f"{s.method} (baseline)" if s.method in BASELINES else s.method
-        failed = Cell(str(s.controller_failed), "num" + (" fails" if s.controller_failed else ""))
-        rows.append([Cell(name), Cell(str(s.runs), "num"), *s.tally.cells(), failed,
-                     *(_figure(s.values[m]) for m, *_ in MAIN["runs"]),
-                     *(_against(s, b) for b in g.baselines)])  # fmt: skip
-    metrics = [f"{h}: median (IQR)" for _, _, h, _ in MAIN["runs"]]
+    for g in found:
+        for i, s in enumerate(g.standings):
+            rows.append([_first(g, i), Cell(_name(s.method)),
+                         *(_figure(s.values[m]) for m, *_ in metrics),
+                         *(_against(s, b, m) if b in g.baselines else Cell("did not run")
+                           for b in ran for m, *_ in metrics)])  # fmt: skip
     return Table(
-        f"baselines-{file_name(g.name)}", f"{g.name}: every controller against the baselines",
-        f"The runs of the scene family group {g.name} per controller: their outcomes, each in "
-        "its own column (controller failed: the runs among those that did not arrive that "
-        f"ended because the controller failed), their encounters' COLREGs counts. {COUNTS} "
-        "The medians (IQR) are over the runs that arrived without collision. Against a "
-        "baseline: per metric, better or worse when the paired-by-scene comparison (failures "
-        f"the worst) gives uncorrected p < {ALPHA} (a description, not a claim), n.s. "
-        f"otherwise, '-' with fewer than {LEAST} paired runs; each comparison in the appendix.",
-        ["controller", "runs", *TALLY_COLUMNS, "controller failed", *metrics,
-         *(f"against {b}" for b in g.baselines)], rows)  # fmt: skip
+        "baselines-against", "Every controller against the baselines",
+        "Per group and controller: the median (IQR) of the arrival time and of the closest "
+        "centre distance to a target over the runs that arrived without collision; then, "
+        "against each baseline, per metric, the paired-by-scene comparison (a run that "
+        "collided or did not arrive the worst): better or worse at uncorrected p < "
+        f"{ALPHA} (a description, not a claim), n.s. otherwise, with the matched-pairs "
+        "rank-biserial effect r (> 0: the controller better than the baseline); '-' with fewer "
+        f"than {LEAST} paired runs. Each comparison's n, medians, interval and p in the "
+        "appendix.",
+        ["group", "controller", *(f"{h}: median (IQR)" for _, _, h, _ in metrics),
+         *(f"against {b}: {SHORT.get(m, m)}" for b in ran for m, *_ in metrics)],
+        rows)  # fmt: skip
 
 
 def _side(side) -> str:
@@ -241,7 +269,7 @@ def section(results: Results) -> Section | None:
         "interval, the claims' comparison; a run that collided or did not arrive counts as the "
         "worst). The p are uncorrected, each comparison alone: they describe, they judge no "
         "claim (to have one judged, declare it in the pipeline: docs/pipelines.md).")
-    top.blocks += [outcomes_table(g) for g in found]
+    top.blocks += [outcomes_table(found), against_table(found)]
     if (table := comparisons_table(found)) is not None:
         top.blocks.append(table)
     return top

@@ -231,21 +231,31 @@ def horizons(runs: Runs) -> list[float]:
     return sorted(found)
 
 
-def scale_cell(name: str, starts: list[Start], onset: list[float]) -> str:
-    """An entry's scale in ship lengths (L: the own ship's) and in the verdicts' onset TCPA."""
+def scale_cell(name: str, starts: list[Start], onset: list[float],
+               short: bool = False) -> str:  # fmt: skip
+    """An entry's scale in ship lengths (L: the own ship's) and against the verdicts' onset
+    TCPA; ``short``: the lengths, the ranges and the CPA's time against the onset alone."""
     if not starts:
         return f"{name}: the runs' files are missing"
     tcpa = [t for s in starts for t in s.tcpa]
-    ranges = [r / s.own_length for s in starts for r in s.ranges]
+    ranges = _span([r / s.own_length for s in starts for r in s.ranges], "L")
+    ratio = (_span([t / h for t in (min(tcpa), max(tcpa)) for h in onset], "x", 2)
+             if onset else "")  # fmt: skip
+    if short:
+        return (f"{name}: L {_span([s.own_length for s in starts], 'm')}, {ranges} off, CPA "
+                f"{ratio + ' the onset TCPA' if onset else _span(tcpa, 's') + ' ahead'}")
     text = (f"{name}: own ship {_span([s.own_length for s in starts], 'm')} (L) at "
             f"{_span([s.own_speed for s in starts], 'm/s', 1)}; targets "
             f"{_span([v for s in starts for v in s.lengths], 'm')}; at the start "
-            f"{_span(ranges, 'L')} off, the CPA {_span(tcpa, 's')} ahead")  # fmt: skip
+            f"{ranges} off, the CPA {_span(tcpa, 's')} ahead")  # fmt: skip
     if onset:
-        ratio = [t / h for t in (min(tcpa), max(tcpa)) for h in onset]
-        text += (f" = {_span(ratio, 'x', 2)} the onset TCPA "
-                 f"({' or '.join(f'{h:g}' for h in onset)} s)")  # fmt: skip
+        text += f" = {ratio} the onset TCPA ({' or '.join(f'{h:g}' for h in onset)} s)"
     return text
+
+
+def entry_starts(runs: Runs, starts: dict[str, Start | None]) -> list[Start]:
+    """The starts of the entry's cases that have their files."""
+    return [s for case in runs if (s := starts.get(case)) is not None]
 
 
 def sensitivity_table(found: dict[str, Runs], controllers: list[str],
@@ -255,8 +265,8 @@ def sensitivity_table(found: dict[str, Runs], controllers: list[str],
     distance (m and own ship lengths)."""
     rows = []
     for name, runs in found.items():
-        known = [s for case in runs if (s := starts.get(case)) is not None]
-        text = scale_cell(name, known, horizons(runs))
+        known = entry_starts(runs, starts)
+        text = scale_cell(name, known, horizons(runs), short=True)
         own = inference.median([s.own_length for s in known]) if known else None
         first = True
         for c in controllers:
@@ -286,9 +296,10 @@ def sensitivity_table(found: dict[str, Runs], controllers: list[str],
     return Table(
         "imazu-scales", "The Imazu cases at each scale",
         f"The {len(found)} scales the family ran at (each an entry of the pipeline, its scale "
-        "read from its runs' files: L the own ship's length, the ranges at the start in L, the "
-        "time to the CPA at the start against the TCPA below which the verdicts start an "
-        "encounter, from the events' thresholds), each with every controller that ran it: its "
+        "read from its runs' files, in full in the paragraph above: L the own ship's length, "
+        "the targets' ranges at the start in L, the time to the CPA at the start over the TCPA "
+        "below which the verdicts start an encounter, from the events' thresholds), each with "
+        "every controller that ran it: its "
         "runs, their outcomes (a run that collided or did not arrive is a failure, its "
         "encounters never judged), the encounters compliant (no rule failed, none excused) of "
         "those judged, the compliant only through an excused Rule 2 departure in brackets (among "
@@ -337,7 +348,10 @@ def section(results: Results) -> Section | None:
             f"The family ran at {len(found)} scales, one pipeline entry each ({', '.join(found)})"
             f": the totals, the grid and every run below are those of {main} ({why}); "
             f"{', '.join(others)} {'is' if len(others) == 1 else 'are'} beside it in the table "
-            "of the scales, after the totals.")
+            "of the scales, after the totals. The scales, read from the runs (L the own ship's "
+            "length; the onset TCPA the verdicts': an encounter starts when its TCPA falls "
+            "below it): " + "; ".join(scale_cell(n, entry_starts(r, starts), horizons(r))
+                                     for n, r in found.items()) + ".")  # fmt: skip
     top.blocks.append(totals_table(runs, controllers))  # short: it fills a page before the grid
     if len(found) > 1:
         every_controller = sorted({c for r in every.values() for c in r}, key=order.index)
