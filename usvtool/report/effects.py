@@ -131,11 +131,8 @@ def bootstrap_difference(method: Sequence[float], rival: Sequence[float], *, sta
         raise ValueError(f"the {statistic} needs at least two values on each side")
     sign = _sign(better)
     f = STATISTICS[statistic]
-    rng = np.random.default_rng(seed)
-    ix = rng.integers(0, x.size, size=(resamples, x.size))
-    iy = ix if paired else rng.integers(0, y.size, size=(resamples, y.size))
     fx, fy = float(f(x)), float(f(y))
-    bx, by = f(x[ix], axis=-1), f(y[iy], axis=-1)
+    bx, by = resampled(x, y, statistic, paired=paired, seed=seed, resamples=resamples)
     boot = sign * (bx - by)
     q = [50 * (1 - confidence), 50 * (1 + confidence)]
     low, high = np.percentile(boot, q)
@@ -146,6 +143,18 @@ def bootstrap_difference(method: Sequence[float], rival: Sequence[float], *, sta
         relative = (estimate / abs(fy), float(rel_low), float(rel_high))
     return Difference(statistic, estimate, float(low), float(high), fx, fy, *relative, paired,
                       confidence, resamples, seed)  # fmt: skip
+
+
+def resampled(x: np.ndarray, y: np.ndarray, statistic: str, *, paired: bool, seed: int,
+              resamples: int) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """``statistic`` of each of ``resamples`` bootstrap resamples of x and of y (paired: the
+    same indices for both), the indices drawn as one (resamples, n) array per side from
+    ``numpy.random.default_rng(seed)``, x's first."""
+    f = STATISTICS[statistic]
+    rng = np.random.default_rng(seed)
+    ix = rng.integers(0, x.size, size=(resamples, x.size))
+    iy = ix if paired else rng.integers(0, y.size, size=(resamples, y.size))
+    return f(x[ix], axis=-1), f(y[iy], axis=-1)
 
 
 def _sign(better: str) -> float:
