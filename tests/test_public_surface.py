@@ -45,6 +45,7 @@ def test_each_stage_gives_a_function_and_its_options_and_result():
         ("batch", "run_batch", "BatchOptions", "BatchResult"),
         ("report", "make_report", "ReportOptions", "ReportResult"),
         ("report", "compare", "CompareOptions", "CompareResult"),
+        ("report", "animate", "AnimateOptions", "AnimateResult"),
         ("ais", "read_ais", "ReadOptions", "ReadResult"),
         ("ais", "find_encounters", "EncounterOptions", "EncounterResult"),
         ("ais", "make_scenario", "ScenarioOptions", "ScenarioResult"),

@@ -25,6 +25,7 @@ SUBCOMMANDS = {
     "render": ("usvtool.cli.render", "Draw an S-57 cell as an S-52 coloured chart image."),
     "plan": ("usvtool.cli.plan", "Plan a global route on a navigation grid."),
     "simulate": ("usvtool.cli.simulate", "Run an encounter scenario: trace, events, tracks."),
+    "animate": ("usvtool.cli.animate", "Animate a run: GIF, MP4 or a self-contained HTML player."),
     "scene": ("usvtool.cli.scene", "Write one scene of a scene family as a scenario file."),
     "functions": ("usvtool.cli.functions", "Run the optimizers on benchmark functions F1-F10."),
     "metrics": ("usvtool.cli.metrics", "Tabulate the papers' metrics of routes and runs."),

@@ -10,11 +10,13 @@ figures (:mod:`.figures`).
 
 Entry points (docs/api.md): :func:`make_report` writes the comparison report (``usvtool
 report``, :mod:`.build`); :func:`compare` compares a results table with a baseline (``usvtool
-compare``, :mod:`.regression.compare`).
+compare``, :mod:`.regression.compare`); :func:`animate` animates a run (``usvtool animate``,
+:mod:`.animation`).
 """
 
+from usvtool.report.animation import AnimateOptions, AnimateResult, animate
 from usvtool.report.build import ReportOptions, ReportResult, make_report
 from usvtool.report.regression.compare import CompareOptions, CompareResult, compare
 
-__all__ = ["CompareOptions", "CompareResult", "ReportOptions", "ReportResult", "compare",
-           "make_report"]  # fmt: skip
+__all__ = ["AnimateOptions", "AnimateResult", "CompareOptions", "CompareResult",
+           "ReportOptions", "ReportResult", "animate", "compare", "make_report"]  # fmt: skip
