@@ -17,18 +17,20 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet -e '.[test,gym,trafficgen]'
 	touch $(STAMP)
 
-# Debian packages the tests use: Chromium (the report's browser test) and Pango (WeasyPrint's PDF).
-# Installed with apt-get when missing and running as root; otherwise a note (the browser test is
-# then skipped and report.pdf not written, each saying why).
+# Debian packages the tests use: Chromium (the report's browser test), Pango (WeasyPrint's PDF) and
+# ffmpeg (usvtool animate's MP4s). Installed with apt-get when missing and running as root;
+# otherwise a note (the browser test and the MP4 test are then skipped and report.pdf not
+# written, each saying why).
 SYSTEM_STAMP := $(VENV)/.system-packages
 $(SYSTEM_STAMP):
-	@if command -v chromium >/dev/null && ldconfig -p | grep -q libpangoft2-1.0; then :; \
+	@if command -v chromium >/dev/null && ldconfig -p | grep -q libpangoft2-1.0 \
+		&& command -v ffmpeg >/dev/null; then :; \
 	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
-		echo "installing Debian packages: chromium libpango-1.0-0 libpangoft2-1.0-0"; \
+		echo "installing Debian packages: chromium libpango-1.0-0 libpangoft2-1.0-0 ffmpeg"; \
 		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
 			--no-install-recommends chromium libpango-1.0-0 libpangoft2-1.0-0 \
-			fonts-dejavu-core >/dev/null; \
-	else echo "note: install chromium, libpango-1.0-0 and libpangoft2-1.0-0 for the report's PDF and browser test"; fi
+			fonts-dejavu-core ffmpeg >/dev/null; \
+	else echo "note: install chromium, libpango-1.0-0, libpangoft2-1.0-0 and ffmpeg for the report's PDF, its browser test and usvtool animate's MP4s"; fi
 	@mkdir -p $(VENV) && touch $@
 
 # the suite in one worker process per core (pytest-xdist), a test module's tests in one worker
