@@ -3,6 +3,8 @@ interest with a reason, and the margin is the larger of its absolute amount and 
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from usvtool.pipeline import CLAIM_METRICS
@@ -36,3 +38,14 @@ def test_margin_is_the_larger_of_absolute_and_share():
 def test_undeclared_metric_refused():
     with pytest.raises(KeyError):
         margin("runs", "fitness", 1.0)
+
+
+def test_docs_table_lists_every_margin():
+    # docs/statistics.md's table of the smallest effects of interest names every declared
+    # (kind, metric)
+    text = (Path(__file__).parents[2] / "docs" / "statistics.md").read_text()
+    section = text.split("### The smallest effects of interest")[1].split("\n### ")[0]
+    rows = [line.split("|")[1:3] for line in section.splitlines() if line.startswith("| ")]
+    for kind, metrics in MARGINS.items():
+        for metric in metrics:
+            assert any(kind in k and f"`{metric}`" in m for k, m in rows), (kind, metric)

@@ -27,8 +27,8 @@ class Margin:
     reason: str
 
 
-_RATE = Margin(0.10, 0.0, "a difference of 10 percentage points in how often a run fails (3 of "
-                          "30 scenes): fewer is within one or two runs of a family")  # fmt: skip
+_RATE = Margin(0.10, 0.0, "10 percentage points of runs failing (3 of a family's 30 scenes): "
+                          "a smaller difference is one or two runs")  # fmt: skip
 _COUNT = Margin(1.0, 0.0, "a count of encounters: a shift under one encounter is no encounter "
                           "handled differently")  # fmt: skip
 _TIME = Margin(0.005, 0.10, "a tenth of the rival's time, never under 5 ms (5 times the 1 ms "
@@ -89,8 +89,8 @@ MARGINS: dict[str, dict[str, Margin]] = {
         "wall_time_s": _TIME,
     },
     "functions": {
-        "final_cost": Margin(1e-8, 0.01, "1 % of the rival's |cost| (the costs span 20 orders "
-                                         "of magnitude over F1-F10, so only a share compares), "
+        "final_cost": Margin(1e-8, 0.01, "1 % of the rival's absolute cost (the costs span 20 "
+                                         "orders of magnitude over F1-F10: only a share compares), "
                                          "never under 1e-8, below which the CEC 2014 benchmark "
                                          "(Liang, Qu and Suganthan 2013, its technical report) "
                                          "counts an error as 0; F8's optimum is -12 569.5, so its "
