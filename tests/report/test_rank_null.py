@@ -74,6 +74,10 @@ def test_tied_exact_against_enumeration(alternative):
     assert rank_null.rank_sum_p(x, y, alternative, exact=True) == pytest.approx(
         enumerate_rank_sum(x, y, alternative)
     )
+    # the larger side first: its sums mirror the smaller side's
+    assert rank_null.rank_sum_p(y, x, alternative, exact=True) == pytest.approx(
+        enumerate_rank_sum(y, x, alternative)
+    )
 
 
 def test_tied_normal_matches_scipy():

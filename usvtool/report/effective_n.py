@@ -1,5 +1,5 @@
 """The effective n of a comparison and the rule choosing the exact test over the normal
-approximation (docs/statistics.md, "Effective n" and "Exact or normal").
+approximation (docs/statistics.md, "Effective n, exact or normal").
 
 **Effective n.** Paired: the **informative pairs**, those whose difference is not zero (two
 equal values, or two failures, say nothing about which side is better: the signed-rank test

@@ -1,5 +1,5 @@
 """The null distributions of the two rank statistics, exact or normal, and their one-sided p
-(docs/statistics.md, "Exact or normal").
+(docs/statistics.md, "Effective n, exact or normal").
 
 - The **signed-rank** statistic T+ of paired differences (Wilcoxon 1945): the sum of the
   ranks of |d| (average ranks for ties, zeros dropped first) carried by positive d. Under the
@@ -14,10 +14,10 @@
 distribution given the tie pattern, Lehmann 1975, Nonparametrics, sections 1.4 and 3.2),
 computed by the generating function prod_i (1 + x^(2 r_i)) / 2 (signed rank) and the
 coefficient of y^m in prod_i (1 + y x^(2 r_i)) / C(N, m) (rank sum): the ranks are doubled
-so that average ranks are integers. One loop over the N ranks, each step a shift-and-add of
-an array (at most (m + 1) x (N (N + 1) + 1) numbers); no enumeration of the 2^n or C(N, m)
-arrangements. Without ties these are the distributions scipy.stats.wilcoxon and
-mannwhitneyu call exact.
+so that average ranks are integers (then divided by their common factor: 2 without ties).
+One loop over the N ranks, each step a shift-and-add of an array (at most (m + 1) x (N (N +
+1) + 1) numbers); no enumeration of the 2^n or C(N, m) arrangements. Without ties these are
+the distributions scipy.stats.wilcoxon and mannwhitneyu call exact.
 
 **Normal**: the same statistic standardised by its permutation mean and variance (Lehmann
 1975, sections 1.4 and 3.2, written out here): E T+ = sum r / 2, Var T+ = sum r^2 / 4;
@@ -51,8 +51,8 @@ def signed_rank_p(d, alternative: str, *, exact: bool) -> float:
     doubled = _doubled_ranks(np.abs(d))
     t = int(doubled[d > 0].sum())
     if exact:
-        pmf = _subset_sums(doubled)
-        return _tail(pmf, t, alternative)
+        g = int(np.gcd.reduce(doubled))  # 2 without ties: the sums on half the grid
+        return _tail(_subset_sums(doubled // g), t // g, alternative)
     mean, var = doubled.sum() / 2, (doubled**2).sum() / 4
     return _normal_tail(t, mean, var, alternative)
 
@@ -67,7 +67,8 @@ def rank_sum_p(x, y, alternative: str, *, exact: bool) -> float:
         return 1.0
     r, m, n = int(doubled[: x.size].sum()), x.size, y.size
     if exact:
-        return _tail(_subset_sums_of_size(doubled, m), r, alternative)
+        g = int(np.gcd.reduce(doubled))
+        return _tail(_subset_sums_of_size(doubled // g, m), r // g, alternative)
     total = m + n
     mean = m * doubled.sum() / total
     var = m * n / (total * (total - 1)) * ((doubled - doubled.mean()) ** 2).sum()
@@ -150,13 +151,17 @@ def _subset_sums(scores: np.ndarray) -> np.ndarray:
 def _subset_sums_of_size(scores: np.ndarray, m: int) -> np.ndarray:
     """pmf[s] = P(the sum of a uniformly random m-subset of the integer ``scores`` is s)."""
     scores = np.asarray(scores, np.int64)
+    chosen, m = m, min(m, scores.size - m)  # the complement's sums mirror: total - s
     counts = np.zeros((m + 1, int(scores.sum()) + 1))
     counts[0, 0] = 1.0
-    for s in scores:  # one step per rank: take it (one more chosen, sum + s) or leave it
-        taken = np.zeros_like(counts)
-        taken[1:, s:] = counts[:-1, : counts.shape[1] - s]
-        counts = counts + taken
+    reach = 0  # the largest sum reachable so far
+    for i, s in enumerate(scores):  # one step per rank: take it (one more chosen, sum + s)
+        rows, reach = min(i + 1, m), reach + int(s)
+        # numpy reads the overlapping right-hand side as it was before the addition
+        counts[1 : rows + 1, s : reach + 1] += counts[:rows, : reach + 1 - s]
     row = counts[m]
+    if m != chosen:
+        row = row[::-1]
     return row / row.sum()
 
 
