@@ -112,6 +112,8 @@ def metric_tests(results: Results, kind: str, method: str, rival: str,
     runs, independent otherwise, a failed run the worst; its p uncorrected) when both sides
     have :data:`LEAST` runs or more in it (after pairing). Shared with the baselines' section
     (:mod:`.baselines`)."""
+    if kind == "runs" and len(results.pairs(kind, name, method, rival)) < LEAST:
+        return []  # too few pairs whatever their values: spare the test's work
     out = []
     for metric, better, _, _ in MAIN[kind]:
         claim = Claim(f"{method} vs {rival}", "", (), kind, metric, "median", better, method,
