@@ -13,7 +13,7 @@ approximation with the tie and continuity corrections otherwise. Why these bound
 distribution costs one pass over the ranks with an array of at most 51 x 10 101 numbers, so it
 is used wherever the report's cases can reach (30 scenes, 25 or 50 routes a side, 10 functions
 a side); beyond them the statistic is a sum of 50 or more independent bounded terms and the
-normal approximation is close (Lehmann 1975, Nonparametrics, sections 1.3 and 3.2: at the
+normal approximation is close (Lehmann 1975, Nonparametrics, chapters 1 and 3; at the
 bounds, over 200 random samples of 50 pairs and 100 of 50 + 50 runs, the one-sided p of the
 two differed by at most 0.0017 and 0.0008). The bound on pairs is scipy's own for the untied
 exact signed-rank test (scipy.stats.wilcoxon, ``method="auto"``); scipy's rank-sum bound (a

@@ -3,7 +3,7 @@
 
 - :func:`tost`: the **two one-sided tests** (Schuirmann 1987, J. Pharmacokin. Biopharm. 15,
   657-680; their rank forms: Wellek 2010, Testing Statistical Hypotheses of Equivalence and
-  Noninferiority, 2nd ed., sections 5.4 and 6.2, here as shifted rank tests) of the shift
+  Noninferiority, 2nd ed., chapters 5 and 6, here as shifted rank tests) of the shift
   theta of the method's values against the rival's (> 0: the method better, as
   :func:`usvtool.report.inference.compare`) against a margin m > 0 in the metric's units.
   H0: theta <= -m or theta >= m; H1: -m < theta < m. The lower test is the signed-rank test of

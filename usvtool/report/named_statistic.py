@@ -12,27 +12,27 @@ apart, :mod:`usvtool.report.rates`).
 - ``median``: the rank test, Wilcoxon signed-rank (paired) or Mann-Whitney U, as
   :func:`usvtool.report.inference.compare` computes it.
 - ``mean``: the **permutation test of the means** (Fisher 1935, The Design of Experiments,
-  section 21; Good 2005, Permutation, Parametric and Bootstrap Tests of Hypotheses, 3rd ed.,
-  sections 3.1 and 3.6). Paired: every sign of the nonzero improvements d flipped, the
-  statistic |sum of the signed d|; independent: every split of the pooled values into groups of
-  the two sizes, the statistic |mean(a) - mean(b)|. p = the share of rearrangements whose
-  statistic is at least the observed one (within 1e-9 relative: ties of floating sums).
-  **Exhaustive** (exact) when there are at most :data:`EXACT_REARRANGEMENTS` of them (17
-  informative pairs; 10 + 10 runs), each a row of one matrix product; otherwise
+  chapter III, Darwin's paired plants; Good 2005, Permutation, Parametric and Bootstrap Tests
+  of Hypotheses, 3rd ed., chapter 3). Paired: every sign of the nonzero improvements d
+  flipped, the statistic |sum of the signed d|; independent: every split of the pooled values
+  into groups of the two sizes, the statistic |mean(a) - mean(b)|. p = the share of
+  rearrangements whose statistic is at least the observed one (within 1e-9 relative: ties of
+  floating sums). **Exhaustive** (exact) when there are at most
+  :data:`EXACT_REARRANGEMENTS` of them (17 informative pairs; 10 + 10 runs), each a row of
+  one matrix product; otherwise
   ``permutations`` random rearrangements from ``numpy.random.default_rng(seed)``, p = (1 +
   hits) / (1 + permutations) (Phipson and Smyth 2010, Stat. Appl. Genet. Mol. Biol. 9, 39).
 - ``variance``, ``std``: the **Brown-Forsythe** test (Brown and Forsythe 1974, J. Am. Stat.
   Assoc. 69, 364-367: Levene's test on the absolute deviations from each group's median,
-  ``scipy.stats.levene(center="median")``); paired runs are tested as two groups (the test
-  has no paired form; the pairing is then unused, which costs power, not validity
-  against the null of equal spreads when the pairs are exchangeable). p None when every
-  deviation is zero.
+  ``scipy.stats.levene(center="median")``); paired runs are tested as two independent groups
+  (the test has no paired form, and its p assumes independence: say so beside a paired
+  comparison). p None when every deviation is zero.
 - ``min``, ``max`` (a best run): the **bootstrap of the best run's difference** (pairs
   resampled together when paired): p = twice the smaller share of resamples whose difference
   is <= 0 or >= 0, capped at 1 (the smallest level at which the equal-tailed percentile
-  interval excludes 0; Efron and Tibshirani 1993, An Introduction to the Bootstrap, section
-  16.4, reads an interval as a test this way). The bootstrap of an extreme is coarse (a
-  resample's minimum is one of the observed values): read its p with the interval.
+  interval excludes 0; Efron and Tibshirani 1993, An Introduction to the Bootstrap, chapters
+  13 and 16). The bootstrap of an extreme is coarse (a resample's minimum is one of the
+  observed values): read its p with the interval.
 """
 
 from __future__ import annotations

@@ -11,7 +11,7 @@
   equally likely.
 
 **Exact**: the permutation distribution of the observed ranks, ties included (the conditional
-distribution given the tie pattern, Lehmann 1975, Nonparametrics, sections 1.4 and 3.2),
+distribution given the tie pattern, Lehmann 1975, Nonparametrics, chapters 1 and 3),
 computed by the generating function prod_i (1 + x^(2 r_i)) / 2 (signed rank) and the
 coefficient of y^m in prod_i (1 + y x^(2 r_i)) / C(N, m) (rank sum): the ranks are doubled
 so that average ranks are integers (then divided by their common factor: 2 without ties).
@@ -20,7 +20,7 @@ One loop over the N ranks, each step a shift-and-add of an array (at most (m + 1
 the distributions scipy.stats.wilcoxon and mannwhitneyu call exact.
 
 **Normal**: the same statistic standardised by its permutation mean and variance (Lehmann
-1975, sections 1.4 and 3.2, written out here): E T+ = sum r / 2, Var T+ = sum r^2 / 4;
+1975, chapters 1 and 3, written out here): E T+ = sum r / 2, Var T+ = sum r^2 / 4;
 E R = m (N + 1) / 2, Var R = m n / (N (N - 1)) sum (r - (N + 1) / 2)^2 (both equal the
 textbook tie-corrected variances), with the continuity correction of half a rank.
 

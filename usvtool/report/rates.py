@@ -8,7 +8,7 @@ rate - the method's, > 0 when the method fails less (better); its bounds likewis
 - **Paired** (runs of the same scenes): the 2 x 2 table of pairs, ``both`` failed, ``method``
   only, ``rival`` only, ``neither``. Test: the **exact McNemar** test (McNemar 1947,
   Psychometrika 12; its exact form: Agresti 2013, Categorical Data Analysis, 3rd ed., section
-  11.1.4): the two-sided binomial test of the b method-only failures among the b + c
+  11.1): the two-sided binomial test of the b method-only failures among the b + c
   discordant pairs against 1/2 (``scipy.stats.binomtest``); p None when no pair is discordant
   (no evidence either way). Interval: **Newcombe's method 10 for paired data** (Newcombe 1998,
   Stat. Med. 17, 2635-2650): with the Wilson score intervals (l1, u1), (l2, u2) of the two
@@ -16,7 +16,7 @@ rate - the method's, > 0 when the method fails less (better); its bounds likewis
   phi = C / sqrt((a + b)(c + d)(a + c)(b + d)), C = a d - b c - n/2 when a d - b c > n/2, 0
   when 0 <= a d - b c <= n/2, a d - b c when negative (phi = 0 when a margin is 0; Newcombe's
   method 10 as Altman et al. 2000, Statistics with Confidence, 2nd ed., ch. 6, and Fagerland,
-  Lydersen and Laake 2017, Statistical Analysis of Contingency Tables, section 8.5, give it),
+  Lydersen and Laake 2017, Statistical Analysis of Contingency Tables, chapter 8, give it),
   p1 - p2 is bounded by
   p1 - p2 - sqrt((p1 - l1)^2 - 2 phi (p1 - l1)(u2 - p2) + (u2 - p2)^2) and
   p1 - p2 + sqrt((u1 - p1)^2 - 2 phi (u1 - p1)(p2 - l2) + (p2 - l2)^2).
