@@ -16,11 +16,12 @@ metrics over the runs that did not fail and, against each baseline but itself, p
 description, not a claim.
 
 Three layers, kept apart: :func:`groups` and :func:`standings` judge (no page, no file read
-beyond the results table: computed once per :class:`Results`, the summary's line shares them,
-:func:`record`); the tables (:func:`outcomes_table`, :func:`against_table`,
-:func:`comparisons_table`) and
-:func:`section` write the page. No figure: the tables say it, and the part costs the report a
-few hundredths of a second per comparison.
+beyond the results table; computed once per :class:`Results` and process: the summary's line
+is derived from them by :func:`record`); the tables (:func:`outcomes_table`,
+:func:`against_table`, :func:`comparisons_table`) and :func:`section` write the page. No
+figure: the tables say it. The part's cost is its comparisons' (about 60 ms each, most of it
+the bootstrap: 64 on ``pipelines/full.yaml``, about 4 s, paid again by the summary, which the
+report builds in another process).
 """
 
 from __future__ import annotations
