@@ -25,7 +25,7 @@ def python_blocks(text: str) -> list[str]:
 def test_the_blocks_are_found():
     text = "a\n```python\nx = 1\n```\n```sh\nls\n```\n```python\ny = 2\nz = 3\n```\n"
     assert python_blocks(text) == ["x = 1\n", "y = 2\nz = 3\n"]
-    assert len(python_blocks(API.read_text(encoding="utf-8"))) == 6  # one per stage
+    assert len(python_blocks(API.read_text(encoding="utf-8"))) == 7  # one per stage, animate
 
 
 def test_the_examples_run_and_write_what_they_say(tmp_path, monkeypatch, capsys):
@@ -43,5 +43,6 @@ def test_the_examples_run_and_write_what_they_say(tmp_path, monkeypatch, capsys)
     assert run["scenario"] == "env1-head-on" and run["controller"] == "dwa"
     assert "3 jobs done, 0 failed" in printed
     assert (tmp_path / "batch" / "metrics.csv").is_file()
+    assert (tmp_path / "head-on.html").read_bytes().startswith(b"<!DOCTYPE html>")
     assert (tmp_path / "report" / "index.html").is_file()
     assert not (tmp_path / "report" / "report.pdf").exists()  # pdf=False
