@@ -110,8 +110,9 @@ def caveats(results: Results, verdicts: list[judging.Verdict]) -> list[str]:
     out = [
         "Our env1, env2 and grid20 are rebuilt from the papers' descriptions, not their maps: "
         "compare orders and trends, not values.",
-        "The UDWA emergencies, wind fields and Imazu cases run a 15 m USV for minutes (the "
-        "paper's wind runs take an hour), the IWSO-DWA encounters a 2.5 m one.",
+        "The UDWA emergencies and wind fields run a 15 m USV for minutes (the paper's wind "
+        "runs take an hour), the IWSO-DWA encounters a 2.5 m one; the Imazu section gives "
+        "the scale of its cases, read from the runs.",
         "The papers give one figure per method and case, we judge over seeds and scenes.",
     ]
     functions = Counter((j.case, j.method) for j in results.select("functions")).values()
