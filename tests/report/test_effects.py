@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 import pytest
+from scipy.stats import bootstrap
 
 from usvtool.report import inference
 from usvtool.report.effects import bootstrap_difference, hodges_lehmann
@@ -140,3 +141,44 @@ def test_bootstrap_refusals():
         bootstrap_difference([1], [2, 3], statistic="std", paired=False, better="lower")
     with pytest.raises(ValueError, match="size"):
         bootstrap_difference([1, 2], [2], statistic="mean", paired=True, better="lower")
+
+
+@pytest.mark.parametrize("interval", ["percentile", "bca"])
+@pytest.mark.parametrize("statistic", ["mean", "median", "std"])
+def test_bootstrap_intervals_match_scipy(interval, statistic):
+    # the same generator draws the same resamples as scipy.stats.bootstrap (method's first),
+    # so the percentile and BCa intervals are scipy's; higher better: the raw difference
+    rng = np.random.default_rng(1)
+    x, y = rng.gamma(2, 1, 15), rng.gamma(2, 1.5, 12)
+    f = {"mean": np.mean, "median": np.median, "std": lambda a, axis: np.std(a, ddof=1, axis=axis)}
+
+    def gap(a, b, axis=-1):
+        return f[statistic](a, axis=axis) - f[statistic](b, axis=axis)
+
+    method = "BCa" if interval == "bca" else "percentile"
+    for paired, xs in ((False, x), (True, x[:12])):
+        want = bootstrap((xs, y), gap, n_resamples=2000, method=method, paired=paired,
+                         rng=np.random.default_rng(5)).confidence_interval  # fmt: skip
+        got = bootstrap_difference(xs, y, statistic=statistic, paired=paired, better="higher",
+                                   seed=5, interval=interval)  # fmt: skip
+        assert (got.low, got.high) == pytest.approx((want.low, want.high), rel=1e-9)
+        assert got.interval == interval
+        # lower better: the improvement is the negated difference, its interval turned round
+        low = bootstrap_difference(xs, y, statistic=statistic, paired=paired, better="lower",
+                                   seed=5, interval=interval)  # fmt: skip
+        assert (low.low, low.high) == pytest.approx((-got.high, -got.low), rel=1e-9)
+
+
+def test_bca_falls_back_to_percentile_when_undefined():
+    # two values a side: the jackknife's standard deviation of one value is undefined; one
+    # value: its mean of none
+    d = bootstrap_difference([1.0, 2], [3.0, 5], statistic="std", paired=False, better="lower",
+                             interval="bca")  # fmt: skip
+    p = bootstrap_difference([1.0, 2], [3.0, 5], statistic="std", paired=False, better="lower")
+    assert d.interval == "percentile" and (d.low, d.high) == (p.low, p.high)
+    one = bootstrap_difference([1.0], [3.0, 5], statistic="mean", paired=False, better="lower",
+                               interval="bca")  # fmt: skip
+    assert one.interval == "percentile"
+    with pytest.raises(ValueError, match="interval"):
+        bootstrap_difference([1.0], [2.0], statistic="mean", paired=False, better="lower",
+                             interval="basic")  # fmt: skip

@@ -23,12 +23,20 @@ no magnitude; compare the failures apart, :mod:`usvtool.report.rates`).
   whole line, -inf to +inf. With ties the coverage is
   approximate (the depths are the untied distribution's).
 - :func:`bootstrap_difference`: the difference of a named statistic (median, mean, min, max,
-  std, variance: ddof 1) with its percentile bootstrap interval (Efron and Tibshirani 1993, An
-  Introduction to the Bootstrap, chapter 13), pairs resampled together when paired, the
-  resamples drawn from ``numpy.random.default_rng(seed)`` as one (resamples, n) index array;
-  and the **relative change**, the improvement over |the rival's statistic|, with its
-  percentile interval over the same resamples (None when the rival's statistic is 0 in the
-  sample or in some resample).
+  std, variance: ddof 1) with its bootstrap interval, pairs resampled together when paired,
+  the resamples drawn from ``numpy.random.default_rng(seed)`` as one (resamples, n) index
+  array per side (the method's first): the draws, and so the intervals, of
+  ``scipy.stats.bootstrap`` given the same generator. The interval is the **percentile**
+  interval (Efron and Tibshirani 1993, An Introduction to the Bootstrap, chapter 13), or with
+  ``interval="bca"`` the **bias-corrected and accelerated** one (Efron 1987, J. Am. Stat.
+  Assoc. 82, 171-185; Efron and Tibshirani 1993, chapter 14: the percentiles
+  Phi(z0 + (z0 + z_q) / (1 - a (z0 + z_q))), z0 = Phi^-1 of the share of resamples below the
+  estimate, ties counting half, a from the jackknife, :func:`_acceleration`); where BCa is
+  undefined (a side of fewer than 2 values, 3 for a spread; every resample on one side of the
+  estimate) the percentile interval is given, and ``Difference.interval`` says which. And
+  the **relative change**, the improvement over |the rival's statistic|, with its interval of
+  the same kind over the same resamples (None when the rival's statistic is 0 in the sample
+  or in some resample).
 """
 
 from __future__ import annotations
@@ -39,10 +47,14 @@ from dataclasses import dataclass
 from functools import partial
 
 import numpy as np
+from scipy.special import ndtr, ndtri
 
 from usvtool.report import effective_n, rank_null
 
 BETTER = ("lower", "higher")
+PERCENTILE, BCA = "percentile", "bca"
+#: The bootstrap intervals: percentile, or bias-corrected and accelerated.
+INTERVALS = (PERCENTILE, BCA)
 #: The statistics a difference may be of, each over the last axis.
 STATISTICS = {
     "median": np.median,
@@ -74,9 +86,9 @@ class Shift:
 @dataclass(frozen=True)
 class Difference:
     """The bootstrap of a statistic's difference: the improvement ``estimate`` (> 0: the
-    method better) with its percentile interval, the two sides' statistics, and the relative
-    change (the improvement over |the rival's statistic|) with its interval (None: the rival's
-    statistic is 0)."""
+    method better) with its interval (``interval``: ``"percentile"`` or ``"bca"``, the one
+    used), the two sides' statistics, and the relative change (the improvement over |the
+    rival's statistic|) with its interval (None: the rival's statistic is 0)."""
 
     statistic: str
     estimate: float
@@ -91,6 +103,7 @@ class Difference:
     confidence: float
     resamples: int
     seed: int
+    interval: str = PERCENTILE
 
 
 def hodges_lehmann(method: Sequence[float], rival: Sequence[float], *, paired: bool,
@@ -122,10 +135,14 @@ def hodges_lehmann(method: Sequence[float], rival: Sequence[float], *, paired: b
 
 def bootstrap_difference(method: Sequence[float], rival: Sequence[float], *, statistic: str,
                          paired: bool, better: str, seed: int = 0, resamples: int = 2000,
-                         confidence: float = 0.95) -> Difference:  # fmt: skip
-    """The bootstrap of the improvement in ``statistic`` (module docstring)."""
+                         confidence: float = 0.95,
+                         interval: str = PERCENTILE) -> Difference:  # fmt: skip
+    """The bootstrap of the improvement in ``statistic``, ``interval`` ``"percentile"`` or
+    ``"bca"`` (module docstring)."""
     if statistic not in STATISTICS:
         raise ValueError(f"statistic must be one of {tuple(STATISTICS)}, not {statistic!r}")
+    if interval not in INTERVALS:
+        raise ValueError(f"interval must be one of {INTERVALS}, not {interval!r}")
     x, y = _finite(method, rival, paired)
     if statistic in ("std", "variance") and min(x.size, y.size) < 2:
         raise ValueError(f"the {statistic} needs at least two values on each side")
@@ -134,15 +151,68 @@ def bootstrap_difference(method: Sequence[float], rival: Sequence[float], *, sta
     fx, fy = float(f(x)), float(f(y))
     bx, by = resampled(x, y, statistic, paired=paired, seed=seed, resamples=resamples)
     boot = sign * (bx - by)
-    q = [50 * (1 - confidence), 50 * (1 + confidence)]
-    low, high = np.percentile(boot, q)
     estimate = float(sign * (fx - fy))
+    # the jackknife leaves one value out: the statistic must be defined on n - 1 values
+    smallest = 3 if statistic in ("std", "variance") else 2
+    bca = interval == BCA and min(x.size, y.size) >= smallest
+    jx, jy = _jackknife(x, y, f, paired) if bca else (None, None)
+    groups = None if jx is None else [sign * (jx_ - jy_) for jx_, jy_ in zip(jx, jy, strict=True)]
+    low, high, used = _bounds(boot, estimate, groups, confidence)
     relative = (None, None, None)
     if fy != 0 and np.all(by != 0):
-        rel_low, rel_high = np.percentile(boot / np.abs(by), q)
-        relative = (estimate / abs(fy), float(rel_low), float(rel_high))
-    return Difference(statistic, estimate, float(low), float(high), fx, fy, *relative, paired,
-                      confidence, resamples, seed)  # fmt: skip
+        rel_groups = None
+        if groups is not None and all(np.all(g != 0) for g in jy):
+            rel_groups = [g / np.abs(r) for g, r in zip(groups, jy, strict=True)]
+        rel_low, rel_high, _ = _bounds(boot / np.abs(by), estimate / abs(fy), rel_groups,
+                                       confidence)  # fmt: skip
+        relative = (estimate / abs(fy), rel_low, rel_high)
+    return Difference(statistic, estimate, low, high, fx, fy, *relative, paired, confidence,
+                      resamples, seed, used)  # fmt: skip
+
+
+def _bounds(boot: np.ndarray, estimate: float, jackknife: list[np.ndarray] | None,
+            confidence: float) -> tuple[float, float, str]:  # fmt: skip
+    """The percentile bounds of ``boot``, or the BCa bounds when ``jackknife`` (the
+    leave-one-out estimates, one array per sample) is given and BCa is defined (some resample
+    on each side of the estimate, a finite acceleration); which was used."""
+    tail = (1 - confidence) / 2
+    levels, used = np.array([tail, 1 - tail]), PERCENTILE
+    if jackknife is not None:
+        share = (np.sum(boot < estimate) + np.sum(boot <= estimate)) / (2 * boot.size)
+        a = _acceleration(jackknife)
+        if 0 < share < 1 and math.isfinite(a):
+            z0, z = ndtri(share), ndtri(levels)
+            levels, used = ndtr(z0 + (z0 + z) / (1 - a * (z0 + z))), BCA
+    low, high = np.percentile(boot, 100 * levels)
+    return float(low), float(high), used
+
+
+def _jackknife(x: np.ndarray, y: np.ndarray, f, paired: bool):
+    """The leave-one-out statistics, per sample: paired, one group (a pair left out of both);
+    independent, x's values left out one at a time (y whole) and y's (x whole). Returns the
+    method's and the rival's statistic for each group."""
+
+    def loo(v: np.ndarray) -> np.ndarray:
+        keep = ~np.eye(v.size, dtype=bool)
+        return f(np.broadcast_to(v, (v.size, v.size))[keep].reshape(v.size, v.size - 1), axis=-1)
+
+    if paired:
+        return [loo(x)], [loo(y)]
+    return [loo(x), np.full(y.size, f(x))], [np.full(x.size, f(y)), loo(y)]
+
+
+def _acceleration(groups: list[np.ndarray]) -> float:
+    """BCa's acceleration from the jackknife estimates of each sample (Efron and Tibshirani
+    1993, eq. 14.15; for several samples, Davison and Hinkley 1997, Bootstrap Methods and their
+    Application, section 5.3.2): with U = (n - 1)(mean - each) per sample,
+    a = sum_j sum U^3 / n_j^3 / (6 (sum_j sum U^2 / n_j^2)^(3/2)); 0 when every U is 0."""
+    with np.errstate(invalid="ignore"):
+        us = [(g.size - 1) * (g.mean() - g) for g in groups]
+        num = sum(float(np.sum(u**3)) / u.size**3 for u in us)
+        den = sum(float(np.sum(u**2)) / u.size**2 for u in us) ** 1.5
+    if not math.isfinite(num) or not math.isfinite(den):
+        return math.nan
+    return 0.0 if den == 0 else num / (6 * den)
 
 
 def resampled(x: np.ndarray, y: np.ndarray, statistic: str, *, paired: bool, seed: int,
