@@ -4,13 +4,17 @@ seeded, growing as the effect shrinks, giving up above the cap."""
 
 from __future__ import annotations
 
+import pickle
+
 import numpy as np
 import pytest
 from scipy.special import ndtr
 from scipy.stats import mannwhitneyu, wilcoxon
 
 from usvtool.report import equivalence
+from usvtool.report.effects import bootstrap_difference
 from usvtool.report.equivalence import sample_size, tost
+from usvtool.report.named_statistic import compare_statistic
 
 
 def test_identical_samples_are_equivalent():
@@ -101,3 +105,21 @@ def test_sample_size_small_when_already_decisive():
     x = np.arange(30.0)
     s = sample_size(x, x + 5, paired=True, better="lower", simulations=100, cap=1000)
     assert s.n is not None and s.n <= 30 and s.test == "Wilcoxon signed-rank"
+
+
+def test_same_seed_same_bytes():
+    # every seeded primitive, twice with one seed: the same pickled bytes
+    rng = np.random.default_rng(8)
+    x, y = rng.normal(0, 1, 14), rng.normal(0.5, 1, 14)
+    runs = [
+        lambda: sample_size(x, y, paired=True, better="lower", simulations=50, cap=200, seed=2),
+        lambda: bootstrap_difference(
+            x, y, statistic="max", paired=False, better="lower", seed=2, interval="bca"
+        ),
+        lambda: compare_statistic(
+            x, y, statistic="mean", paired=False, better="lower", seed=2, permutations=300
+        ),
+        lambda: tost(x, y, paired=False, better="lower", margin=0.3),
+    ]
+    for run in runs:
+        assert pickle.dumps(run()) == pickle.dumps(run())
