@@ -28,7 +28,7 @@ SCENARIO = ROOT / "charts" / "scenarios" / "emergency-head-on.yaml"
 #: The options through which a command writes a file or a folder.
 WRITES = {"--output", "--summary", "--events", "--tracks", "--table", "--preview",
           "--scenario-out", "--make-fragment"}  # fmt: skip
-READS = {("metrics", "--events")}  # the events JSON of the traces it measures
+READS = {("metrics", "--events"), ("animate", "--events")}  # the events JSON of the runs read
 
 
 def usvtool(*args, cwd=None) -> subprocess.CompletedProcess:

@@ -64,7 +64,6 @@ def animate(trace: str, events: str | None, map_path: str | None, output: str, s
     The summary JSON goes to stdout."""
     from usvtool.atomic import check_outputs, staged
     from usvtool.cli.options import write_summary
-    from usvtool.errors import UsvError
     from usvtool.report.animation import AnimateOptions
     from usvtool.report.animation import animate as make
 
@@ -75,10 +74,6 @@ def animate(trace: str, events: str | None, map_path: str | None, output: str, s
     if fmt == "mp4" and (size[0] % 2 or size[1] % 2):
         raise click.BadParameter(f"{size[0]}x{size[1]}: an MP4's width and height must be even",
                                  param_hint="'--size'")  # fmt: skip
-    inputs = [("TRACE", trace), ("--events", events), ("--map", map_path)]
-    for option, path in inputs:
-        if path is not None and Path(output).resolve() == Path(path).resolve():
-            raise UsvError(f"-o {output}: same file as {option} {path}")
     check_outputs([("-o", output), ("--summary", summary_path)])
     options = AnimateOptions(trace, fmt, events, map_path, speed, size, wake, float(fps),
                              tolerance)  # fmt: skip
