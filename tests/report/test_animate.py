@@ -121,9 +121,11 @@ def synthetic(ships: int, seconds: float, dt: float = 0.1, name_of=None, seed: i
     return trace, events
 
 
-def synthetic_run(d: Path, ships: int, seconds: float, **kwargs) -> Path:
+def synthetic_run(d: Path, ships: int, seconds: float, scenario: str = "synthetic",
+                  **kwargs) -> Path:
     """:func:`synthetic` written as ``trace.csv`` and ``trace.events.json`` in ``d``."""
     trace, events = synthetic(ships, seconds, **kwargs)
+    events["run"]["scenario"] = scenario
     write_trace(d / "trace.csv", trace)
     write_events(d / "trace.events.json", events)
     return d / "trace.csv"
@@ -165,14 +167,19 @@ def test_the_player_of_35_ships_over_10_minutes_is_within_its_bound_and_100_kB(t
 
 
 def test_the_player_is_self_contained_and_escapes_names(usv, tmp_path):
-    trace_path = synthetic_run(tmp_path, 3, 30.0, name_of=lambda j: EVIL if j == 1 else "b&c")
+    other = "b&c\u2028d>"
+    trace_path = synthetic_run(tmp_path, 3, 30.0, scenario=EVIL,
+                               name_of=lambda j: EVIL if j == 1 else other)  # fmt: skip
     out = tmp_path / "p.html"
     r = usv("animate", trace_path, "-o", out)
     assert r.exit_code == 0, r.stderr
     text = out.read_text(encoding="utf-8")
-    assert EVIL not in text and "b&c" not in text and "alert(1)</script>" not in text
+    assert EVIL not in text and other not in text and "alert(1)</script>" not in text
+    assert "<title>&lt;/script&gt;&lt;script&gt;alert(1)&lt;/script&gt; / none</title>" in text
     assert text.count("<script") == 2 and text.count("</script>") == 2
-    assert [s["n"] for s in player_json(text)["ships"]] == ["own", EVIL, "b&c"]
+    data = player_json(text)
+    assert [s["n"] for s in data["ships"]] == ["own", EVIL, other]
+    assert data["title"] == f"{EVIL} / none"
     addresses = set(re.findall(r"https?://[^\s\"'<>)]*", text))
     assert addresses <= {"http://www.w3.org/2000/svg"}  # the SVG namespace, a name
     for external in ("<link", "<img", "<iframe", "@import", "url(", " src=", "src:", "fetch(",
