@@ -287,6 +287,18 @@ def test_table_1_rows_are_ordered_as_statistics_and_f6_is_apart():
     assert {r.case for r in table.rows if not r.comparable} == {"F6"}
 
 
+def test_function_claims_leave_out_what_table_1_cannot_compare():
+    by_id = {c.id: c for c in CLAIMS}
+    apart = {r.case for r in papers.IWSO_DWA_TABLE_1.rows if not r.comparable}
+    for claim_id, rivals in (("iwso-functions-lower-std", 6), ("iwso-functions-lower-mean", 1)):
+        claim = by_id[claim_id]
+        # F1-F10 less F6: 9 functions, each against every rival
+        assert claim.cases == ("F1", "F2", "F3", "F4", "F5", "F7", "F8", "F9", "F10")
+        assert not apart & set(claim.cases) and len(claim.rivals) == rivals
+        assert len(claim.cases) * len(claim.rivals) == 9 * rivals
+        assert "F6 is left out" in claim.note
+
+
 def test_claims_are_well_formed_and_name_what_exists():
     ids = [c.id for c in CLAIMS]
     assert len(set(ids)) == len(ids)
