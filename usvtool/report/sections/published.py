@@ -13,7 +13,8 @@ figure alone. A table whose paper states its number of runs (``runs``) has a run
 (the runs behind our figures, from the results) beside the paper's. An optimisation rate
 (``*_rate``) that the runs do not carry is computed from our medians against the reference
 controller's, as :func:`usvtool.measures.optimisation_rate` defines it (UDWA Table 1: (UDWA -
-CCDWA) / CCDWA of the average distance).
+CCDWA) / CCDWA of the average distance); the reference's own rate, against itself, is shown
+as the reference (:data:`REFERENCE_MARK`), never 0.
 """
 
 from __future__ import annotations
@@ -25,6 +26,8 @@ from usvtool.report.papers import PAPERS, TABLES, PaperTable
 
 #: The reference controller of the optimisation rates (UDWA paper, Table 1).
 REFERENCE = "ccdwa"
+#: What the reference controller's own optimisation rate shows (a rate against itself).
+REFERENCE_MARK = "- (ref.)"
 #: The metrics a failure's penalty enters (a colliding route's fitness).
 PENALISED = frozenset({"fitness"})
 
@@ -34,6 +37,8 @@ def ours(results: Results, table: PaperTable, method: str, case: str, column,
     """Our figure of the column for ``method`` in ``case``: over the runs that succeeded (every
     run when ``succeeded`` is false), in the paper's unit."""
     kind = table.kind
+    if column.metric.endswith("_rate") and method == REFERENCE:
+        return None  # its rate is against itself: the table shows it as the reference
     value = statistic(results, kind, case, method, column.metric, column.statistic, succeeded)
     if value is None and column.metric.endswith("_rate"):
         base = column.metric.removesuffix("_rate") + "_m"
@@ -42,6 +47,11 @@ def ours(results: Results, table: PaperTable, method: str, case: str, column,
         if mine is not None and ref not in (None, 0.0) and method != REFERENCE:
             value = float(measures.optimisation_rate(mine, ref))
     return None if value is None else value * column.scale
+
+
+def is_reference(method: str, column) -> bool:
+    """Whether ``column`` is an optimisation rate and ``method`` the controller it is against."""
+    return column.metric is not None and column.metric.endswith("_rate") and method == REFERENCE
 
 
 def _failed(results: Results, kind: str, case: str, method: str) -> Cell:
@@ -82,8 +92,12 @@ def table(results: Results, paper_table: PaperTable) -> Table:
             i = t.columns.index(c)
             printed = r.printed[i]
             digits = max(_digits(printed), 1)
-            cells.append(_cell(results, t, r.method, r.case, c, digits) if r.comparable
-                         else Cell("n/c", "num untested"))  # fmt: skip
+            if not r.comparable:
+                cells.append(Cell("n/c", "num untested"))
+            elif is_reference(r.method, c):
+                cells.append(Cell(REFERENCE_MARK, "num"))
+            else:
+                cells.append(_cell(results, t, r.method, r.case, c, digits))
             cells.append(Cell(printed or "-", "num paper"))
         rows.append(cells)
     headings = ["method", "case", *(["runs", "paper"] if t.runs is not None else []), "failed"]
@@ -99,11 +113,15 @@ def table(results: Results, paper_table: PaperTable) -> Table:
     kinds = "collision-free routes" if t.kind == "routes" else "runs that arrived without collision"
     penalised = (" (in brackets: over every run, the failures' penalties included)"
                  if any(c.metric in PENALISED for c in columns) else "")  # fmt: skip
+    rates = any(is_reference(r.method, c) for r in t.rows for c in columns)
+    reference = (f" The optimisation rates are against the reference controller {REFERENCE}: "
+                 f"its own rate is {REFERENCE_MARK} (reference), not 0 against itself."
+                 if rates else "")  # fmt: skip
     caption = (f"{t.caption} Ours (statistics{runs}, in the paper's units) beside the "
                f"paper's printed figures (grey): over the {kinds}{penalised}; failed: the "
                f"others (failures, and any whose table does not say how they ended), never "
                f"counted in a figure; n/c: our setup is not the paper's. Setup: "
-               f"{t.setup}")  # fmt: skip
+               f"{t.setup}{reference}")  # fmt: skip
     return Table(f"paper-{t.id}", f"{t.label} of the {paper.id.upper()} paper", caption,
                  headings, rows)
 
