@@ -54,5 +54,20 @@ def test_table_1_shows_our_small_mean_with_its_digits_and_our_runs_beside_the_pa
 def test_the_section_says_how_many_runs_we_have_and_the_paper_had(tmp_path):
     section = benchmark_functions.section(results(tmp_path))
     assert "5 run(s) each (the paper's Table 1 25" in section.paragraphs[0]
-    ours = cells(section.blocks[-1], "F3", "gwo")  # function, algorithm, runs, best, ...
-    assert ours["runs"] == ["5"] and ours["mean"] == ["0.0027"]
+    ours = cells(section.blocks[-1], "gwo", "F3")  # Table 1 with ours beside the paper's
+    assert ours["runs"] == ["5"] and ours["Mean"] == ["0.0027"]
+    # every row of ours is Table 1's: no second table repeats it
+    assert [b.id for b in section.blocks] == ["paper-iwso-dwa-table-1"]
+
+
+def test_the_every_optimizer_table_shows_only_what_table_1_does_not(tmp_path):
+    rows = [Row(f"g{s}", "functions", "F3", "gwo", s, "final_cost", v)
+            for s, v in enumerate(GWO_F3)]  # fmt: skip
+    rows += [Row("i1", "functions", "F3", "issa", 1, "final_cost", "0.5"),  # no Table 1 column
+             Row("g6", "functions", "F6", "gwo", 1, "final_cost", "2.0")]  # F6: n/c in Table 1
+    write_results(tmp_path / "metrics.csv", rows)
+    section = benchmark_functions.section(load([tmp_path / "metrics.csv"]))
+    rest = section.blocks[-1]
+    assert rest.id == "functions-table"
+    assert [(r[0].text, r[1].text) for r in rest.rows] == [("F3", "issa"), ("F6", "gwo")]
+    assert "beside the paper's for gwo; on F6, which it marks n/c" in rest.caption
