@@ -8,7 +8,6 @@ import importlib.util
 import io
 import json
 import os
-import shutil
 import signal
 import subprocess
 import sys
@@ -163,15 +162,21 @@ def test_job_json_says_what_ran_and_where_its_inputs_are(reference):
 
 
 def _pipeline(tmp_path: Path, scenarios: dict[str, str]) -> Path:
-    """The tiny pipeline in tmp_path with these scenario files (name: YAML text)."""
-    (tmp_path / "charts").mkdir()
-    shutil.copy(ROOT / "charts" / "grid20.geojson", tmp_path / "charts")
+    """The tiny pipeline's runs and functions in tmp_path, its runs those of these scenario files
+    (name: YAML text). No grid and no routes: the tests that use it are about runs, and the
+    functions' jobs, after the runs in a batch's order, stand by them (a job that must still
+    run after a worker died)."""
     (tmp_path / "s").mkdir()
     for name, text in scenarios.items():
         (tmp_path / "s" / f"{name}.yaml").write_text(text)
-    pipeline = TINY.read_text().replace("root: ../..", "root: .")
+    tiny = TINY.read_text()
+    pipeline = "root: .\n" + tiny[tiny.index("simulation:"):]
     (tmp_path / "p.yaml").write_text(pipeline.replace("tests/batch/scenarios/*.yaml", "s/*.yaml"))
     return tmp_path / "p.yaml"
+
+
+#: The jobs of :func:`_pipeline` but its runs: the function runs (F1 x pso, gwo at seeds 1, 2).
+FUNCTION_JOBS = 4
 
 
 def _failing_pipeline(tmp_path):
@@ -200,15 +205,18 @@ def test_a_worker_killed_at_any_point_of_a_job_fails_that_job_alone(tmp_path, po
     summary = json.loads(proc.stdout)
     errors = {(f["case"], f["method"]): f["error"] for f in summary["failures"]}
     assert all("max_speed must be > 0" in errors.pop(("bad", c)) for c in ("dwa", "gdwa"))
+    jobs = FUNCTION_JOBS + 3 * 2  # and the runs: good, bad and killed with dwa and gdwa
+    assert summary["jobs"] == jobs
+    assert {r.kind for r in read_results(out / "metrics.csv")} == {"runs", "functions"}
     if point in ("written", "sending"):
-        assert errors == {} and (summary["done"], summary["failed"]) == (JOBS + 2, 2)
+        assert errors == {} and (summary["done"], summary["failed"]) == (jobs - 2, 2)
         assert {r.case for r in read_results(out / "metrics.csv") if r.kind == "runs"} == {
             "good", "killed"}
     else:
         assert errors == {("killed", c): "its worker process died (killed by SIGKILL)"
                           for c in ("dwa", "gdwa")}  # fmt: skip
-        assert (summary["done"], summary["failed"]) == (JOBS, 4)
-        assert f"4 of {JOBS + 4} jobs failed" in proc.stderr
+        assert (summary["done"], summary["failed"]) == (jobs - 4, 4)
+        assert f"4 of {jobs} jobs failed" in proc.stderr
         assert {r.case for r in read_results(out / "metrics.csv") if r.kind == "runs"} == {"good"}
     recorded = sorted(p.read_text() for p in out.glob("runs/*/error.txt"))
     assert len(recorded) == summary["failed"] and all(t.count("\n") == 1 for t in recorded)
