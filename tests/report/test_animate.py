@@ -291,3 +291,19 @@ def test_the_facade_gives_the_player_fragment_and_a_summary(run):
     assert result.fragment in result.content.decode("utf-8")
     s = result.summary()
     assert s["format"] == "html" and s["bytes"] == len(result.content) and s["frames"] is None
+
+
+def test_animate_imports_neither_the_report_sections_nor_scipy():
+    """usvtool.report's entry points are imported when asked for: an animation does not pay
+    for the comparison report's sections and SciPy (3-5 s of imports on a loaded machine)."""
+    import subprocess
+    import sys
+
+    code = ("import sys\nfrom usvtool.report import AnimateOptions, animate\n"
+            "from usvtool.report.animation import encode, frames, player, scene\n"
+            "import usvtool.cli.animate\n"
+            "bad = [m for m in sys.modules if m.startswith(('scipy', 'usvtool.report.sections',"
+            " 'usvtool.report.build', 'usvtool.report.figures'))]\n"
+            "assert not bad, bad\n")  # fmt: skip
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr

@@ -22,6 +22,7 @@ import numpy as np
 from usvtool import encounter
 from usvtool.errors import UsvError
 from usvtool.grid import Grid
+from usvtool.measures import target_distances
 from usvtool.trace import Trace, read_events, read_trace
 
 #: Where the events JSON of ``TRACE.csv`` is looked for, in this order: ``usvtool batch``'s and
@@ -127,9 +128,8 @@ def scene_of(trace: Trace, events: dict, events_path, map_path=None) -> Scene:
     classes, latched, marks = _encounters(trace, events, where)
     nearest = None
     if len(trace.ships) > 1:
-        from usvtool.report.figures.runs import nearest_ship_distance
-
-        nearest = nearest_ship_distance(trace)
+        nearest = target_distances(trace.x[:, 0], trace.y[:, 0], trace.x[:, 1:],
+                                   trace.y[:, 1:]).min(axis=1)  # fmt: skip
     a, b = encounter.domain_semi_axes(float(lengths[0]))
     return Scene(trace, lengths, title, (float(a), float(b)), goal, tolerance, route, grid,
                  chart, classes, latched, nearest, marks,
@@ -208,14 +208,14 @@ def _map(trace: Trace, run: dict, base: Path, where: str, map_path):
         raise UsvError(f"{label}: the own ship starts at ({x:.0f}, {y:.0f}) m, outside the map "
                        f"(x {left:.0f}..{right:.0f}, y {bottom:.0f}..{top:.0f}): not the "
                        "trace's map or frame")  # fmt: skip
-    from usvtool.report.figures.raster import preview_chart
-
-    chart = None
     for candidate in (path.with_name(path.stem + ".preview.png"), path.with_name("preview.png")):
-        chart = preview_chart(candidate, grid)
-        if chart is not None:
-            break
-    return grid, chart
+        if candidate.is_file():  # the report's figures (and their imports) only then
+            from usvtool.report.figures.raster import preview_chart
+
+            chart = preview_chart(candidate, grid)
+            if chart is not None:
+                return grid, chart
+    return grid, None
 
 
 def _crs_name(crs) -> str:
