@@ -112,7 +112,8 @@ def animate(options: AnimateOptions) -> AnimateResult:
                        "lower --fps")  # fmt: skip
     w, h = o.size
     if o.format == "gif":
-        content = encode.gif_bytes(frames.render(scene, w, h, times, o.wake), o.fps)
+        content = encode.gif_bytes(frames.render(scene, w, h, times, o.wake), o.fps,
+                                   frames.drawn_colours(k))  # fmt: skip
         extra = {"frame_ms": encode.gif_frame_ms(o.fps)}
     else:
         content = encode.mp4_bytes(frames.render(scene, w, h, times, o.wake), w, h, o.fps)

@@ -1,8 +1,8 @@
 """Frames into a GIF (Pillow) or an MP4 (ffmpeg), byte for byte the same for the same frames.
 
-GIF: one palette for every frame, Pillow's median cut (deterministic) of the first frame (which
-holds every colour drawn: the map, the ships, the domain, the timeline), each frame mapped to it
-without dithering; the frame time in whole
+GIF: one palette for every frame: the colours drawn (the ships', the timeline's, a grey ramp)
+and Pillow's median cut (deterministic) of the first frame for the rest (the map, blends), each
+frame mapped to it without dithering; the frame time in whole
 hundredths of a second (GIF's unit), looping. MP4: ffmpeg's libx264 fed the raw RGB frames on
 its standard input, fixed settings (preset ``medium``, CRF 23, yuv420p, one thread, no
 metadata, bit-exact flags), written to a temporary folder and read back.
@@ -33,14 +33,20 @@ def ffmpeg() -> str:
     return program
 
 
-def gif_bytes(frames: Iterator[np.ndarray], fps: float) -> bytes:
-    """The GIF of ``frames`` (module docstring)."""
+def gif_bytes(frames: Iterator[np.ndarray], fps: float, colours=()) -> bytes:
+    """The GIF of ``frames`` (module docstring); ``colours`` (``#rrggbb``) have entries of their
+    own in its palette (a ship's colour, barely in the first frame, would be merged away)."""
     from PIL import Image
 
     frames = iter(frames)
     start = next(frames)
-    palette = Image.fromarray(start).quantize(colors=255, method=Image.Quantize.MEDIANCUT,
-                                              dither=Image.Dither.NONE)  # fmt: skip
+    fixed = [tuple(int(c[i:i + 2], 16) for i in (1, 3, 5)) for c in dict.fromkeys(colours)]
+    fixed += [(v, v, v) for v in range(0, 256, 32)] + [(255, 255, 255)]
+    cut = Image.fromarray(start).quantize(colors=255 - len(fixed), method=Image.Quantize.MEDIANCUT,
+                                          dither=Image.Dither.NONE)  # fmt: skip
+    entries = cut.getpalette()[: 3 * (255 - len(fixed))]
+    palette = Image.new("P", (1, 1))
+    palette.putpalette(entries + [v for rgb in fixed for v in rgb])
 
     def paletted(items: Iterable[np.ndarray]):
         for rgb in items:

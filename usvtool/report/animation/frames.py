@@ -49,6 +49,15 @@ def ship_colours(k: int) -> list[str]:
     return [OWN_COLOUR] + [TARGET_COLOURS[i % len(TARGET_COLOURS)] for i in range(k - 1)]
 
 
+def drawn_colours(k: int) -> list[str]:
+    """The colours the frames of ``k`` ships draw in (``#rrggbb``): ships, verdict events, the
+    map, the goal."""
+    rgb = ["#{:02x}{:02x}{:02x}".format(*MAP_RGB[v]) for v in sorted(MAP_RGB)]
+    return [*ship_colours(min(k, 1 + len(TARGET_COLOURS))),
+            *(c for c, _ in MARK_STYLE.values()), *rgb, "#ffd700", "#595959",
+            MAP_BACKGROUND.lower()]  # fmt: skip
+
+
 def frame_times(scene: Scene, speed: float, fps: float) -> np.ndarray:
     """The frames' times: from the first step, ``speed / fps`` s of the run apart, and the
     last step."""
