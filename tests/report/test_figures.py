@@ -297,6 +297,20 @@ def test_a_preview_png_gives_its_map_over_the_grid_and_its_outside(tmp_path):
     assert F.preview_chart(path, small_grid()) is None
 
 
+def test_a_route_along_the_edges_is_marked_in_the_map_its_legend_and_its_data():
+    plots = []
+    fig = capture_figures(lambda: plots.append(F.routes_on_grid(
+        small_grid(), two_routes(), (5, 5), (95, 95), "", hugging=["wso"])))[0]
+    texts = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert texts[:2] == ["wso (edges)", "astar"] and texts[-1] == "hugs the grid's edges"
+    band = [line for line in fig.axes[0].get_lines() if line.get_linewidth() == 6.5]
+    assert len(band) == 1 and band[0].get_xydata().tolist() == two_routes()["wso"].tolist()
+    kinds = [r[0] for r in rows(plots[0])[1:]]
+    assert kinds == ["route-edges"] * 3 + ["route"] * 3 + ["start", "goal"]
+    with pytest.raises(UsvError, match="hugging names no route: pso"):
+        F.routes_on_grid(small_grid(), two_routes(), (5, 5), (95, 95), "", hugging=["pso"])
+
+
 def test_a_long_route_is_shown_in_its_reach_not_the_whole_chart():
     """A 1 km route east across the north of a 10 x 10 km chart: the view is the route's box
     padded by 80 m each side (8 % of 1 km), widened to a width / height of 4: 1160 x 290 m,

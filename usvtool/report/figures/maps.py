@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from usvtool.errors import UsvError
 from usvtool.grid import Grid
 from usvtool.report.figures.canvas import Plot, csv_text, figure, finite_array, fixed, png
 from usvtool.report.figures.raster import (
@@ -50,10 +51,15 @@ ENTRY_HEIGHT = 0.17
 LEGEND_COLUMNS = 5
 #: Markers along a route: each optimizer's waypoints, at most about this many on a route.
 MARKS = 12
+#: A route that hugs the grid's edges (usvtool.report.edges) is drawn over a wide dotted band
+#: (no method's line is that wide or dotted so), also in the legend.
+EDGE_BAND = {"color": "#000000", "linewidth": 6.5, "linestyle": (0, (0.6, 0.9)), "alpha": 0.45,
+             "solid_capstyle": "butt", "dash_capstyle": "butt"}  # fmt: skip
+EDGE_LABEL = "hugs the grid's edges"
 
 
 def routes_on_grid(grid: Grid, routes: dict[str, np.ndarray], start, goal, title: str,
-                   chart: ChartImage | None = None) -> Plot:
+                   chart: ChartImage | None = None, hugging=()) -> Plot:
     """Every route ``(m, 2)`` (map metres) in its registered style
     (:func:`~usvtool.report.figures.styles.style`: colour, and its family's line and marker,
     whatever the order of ``routes``; drawn and listed family by family,
@@ -63,10 +69,12 @@ def routes_on_grid(grid: Grid, routes: dict[str, np.ndarray], start, goal, title
     view shows some) or else the grid (obstacles dark, margin grey). The view is the box around the
     routes padded by :data:`VIEW_PAD`, widened to an aspect within :data:`ASPECT` and kept within
     the grid: the whole of env1, the harbour reach of a large chart, never the empty rest of its
-    frame. The figure is as wide as the page's text and as high as the view needs.
+    frame. The figure is as wide as the page's text and as high as the view needs. The routes
+    named in ``hugging`` (those that hug the grid's edges, :mod:`usvtool.report.edges`) are
+    drawn over :data:`EDGE_BAND`, labelled ``NAME (edges)``, with a legend entry of the band.
 
-    Data: ``kind,algorithm,vertex,x,y``, one row per route vertex (``kind`` ``route``, the
-    routes in the legend's order), then
+    Data: ``kind,algorithm,vertex,x,y``, one row per route vertex (``kind`` ``route``, or
+    ``route-edges`` for a route in ``hugging``; the routes in the legend's order), then
     the start and the goal (``kind`` ``start``, ``goal``; ``algorithm`` empty); metres to 3
     decimals. The grid itself is the grid file's.
     """
@@ -84,7 +92,11 @@ def routes_on_grid(grid: Grid, routes: dict[str, np.ndarray], start, goal, title
     else:
         rows, cols, _ = chart_window(chart, view)
         background = chart_handles(bool(chart.outside[rows, cols].any()))[1:]
-    entries = len(points) + 2 + len(background)
+    hugging = set(hugging)
+    unknown = sorted(hugging - set(points))
+    if unknown:
+        raise UsvError(f"routes_on_grid: hugging names no route: {', '.join(unknown)}")
+    entries = len(points) + 2 + len(background) + bool(hugging)
     size, box, wide = map_layout((right - left) / (top - bottom), entries)
     halo = [patheffects.withStroke(linewidth=2.8, foreground="white", alpha=0.75)]
     with figure(*size, layout=None) as fig:
@@ -95,8 +107,11 @@ def routes_on_grid(grid: Grid, routes: dict[str, np.ndarray], start, goal, title
             draw_chart(ax, chart, view)
         for name, p in points.items():
             look = style(name)
+            if name in hugging:
+                ax.plot(p[:, 0], p[:, 1], zorder=1.9, **EDGE_BAND)
+            label = f"{look.label} (edges)" if name in hugging else look.label
             ax.plot(p[:, 0], p[:, 1], linewidth=1.5, marker=look.marker, markersize=3.5,
-                    markevery=max(1, len(p) // MARKS), label=look.label, path_effects=halo,
+                    markevery=max(1, len(p) // MARKS), label=label, path_effects=halo,
                     **look.line())  # fmt: skip
         ax.plot(*start, label="start", **START, zorder=5)
         ax.plot(*goal, label="goal", **GOAL, zorder=5)
@@ -105,6 +120,10 @@ def routes_on_grid(grid: Grid, routes: dict[str, np.ndarray], start, goal, title
         map_axes(ax, max(right - left, top - bottom), grid.crs)
         ax.set_title(title)
         handles = ax.get_legend_handles_labels()[0] + background
+        if hugging:
+            from matplotlib.lines import Line2D
+
+            handles.append(Line2D([], [], label=EDGE_LABEL, **EDGE_BAND))
         if wide:
             fig.legend(handles=handles, loc="lower center", ncols=LEGEND_COLUMNS,
                        bbox_to_anchor=(0.5, 0.0))  # fmt: skip
@@ -112,8 +131,8 @@ def routes_on_grid(grid: Grid, routes: dict[str, np.ndarray], start, goal, title
             ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.03, 1.0),
                       borderaxespad=0.0)  # fmt: skip
         image = png(fig)
-    rows = [("route", name, i, *fixed(xy, 3)) for name, p in points.items()
-            for i, xy in enumerate(p)]  # fmt: skip
+    rows = [("route-edges" if name in hugging else "route", name, i, *fixed(xy, 3))
+            for name, p in points.items() for i, xy in enumerate(p)]  # fmt: skip
     rows += [("start", "", 0, *fixed(start, 3)), ("goal", "", 0, *fixed(goal, 3))]
     return Plot(image, csv_text(("kind", "algorithm", "vertex", "x", "y"), rows))
 

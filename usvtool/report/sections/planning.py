@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from usvtool.grid import read_grid
-from usvtool.report import figures
+from usvtool.report import edges, figures
 from usvtool.report.data import JobResults, Results, seed_text, stats
 from usvtool.report.document import APPENDIX, HTML, Cell, Figure, Section, Table, number
 from usvtool.report.papers import TABLES
@@ -60,6 +60,9 @@ def chart_section(results: Results, chart: str) -> Section:
     section.paragraphs.append(
         f"{len(methods)} algorithms, {len(seeds)} seed(s) each for the optimizers "
         f"(seeds {seed_text(seeds)}); the exact planners run once.")
+    along = edge_counts(jobs)
+    if along:
+        section.paragraphs.append(edge_paragraph(along))
     first = {m: _first(js) for m, js in jobs.items()}
     grid = next((g for g in map(grid_of, first.values()) if g is not None), None)
     routes = {m: r[0] for m, r in ((m, _route(j)) for m, j in first.items()) if r is not None}
@@ -67,15 +70,19 @@ def chart_section(results: Results, chart: str) -> Section:
         start, goal = next(iter(routes.values()))[[0, -1]]
         where = next(d for d in (j.grid_dir() for j in first.values()) if d)
         image = figures.preview_chart(where / "preview.png", grid) if grid.crs else None
+        hugging = [m for m in routes if edges.hugs(first[m])]
         plot = figures.routes_on_grid(grid, routes, tuple(start), tuple(goal),
-                                      f"{chart}: routes (first seed)", image)  # fmt: skip
+                                      f"{chart}: routes (first seed)", image,
+                                      hugging)  # fmt: skip
         under = ("over the chart (its preview: obstacles tinted red, safety margin yellow, "
                  "outside the chart hatched)" if image else
                  "on the navigation grid (obstacles dark, safety margin grey)")  # fmt: skip
         section.blocks.append(Figure(f"routes-{chart}-map", f"Routes on {chart}",
                                      f"Each algorithm's route of its first seed {under}; line "
                                      "and marker give the family (papers' optimizers solid, "
-                                     "our variants dashed, exact planners dash-dot).",
+                                     "our variants dashed, exact planners dash-dot)."
+                                     + (f" {EDGE_RULE} are drawn over a wide dotted band and "
+                                        "labelled (edges)." if hugging else ""),
                                      plot.png, plot.data))  # fmt: skip
     curves = {m: [c for c in (_convergence(j) for j in js) if c] for m, js in jobs.items()}
     curves = {m: c for m, c in curves.items() if c}
@@ -98,6 +105,30 @@ def chart_section(results: Results, chart: str) -> Section:
                                      plot.png, plot.data))  # fmt: skip
     section.blocks.append(metrics_table(results, chart, methods))
     return section
+
+
+#: The edge rule in words (usvtool/report/edges.py, docs/report-figures.md).
+EDGE_RULE = (f"Routes that hug the grid's edges (more than {edges.THRESHOLD * 100:g} % of their "
+             f"length within {edges.BAND:g} cell of its border)")
+
+
+def edge_counts(jobs: dict[str, list[JobResults]]) -> dict[str, tuple[int, int]]:
+    """Per method with some: (routes that hug the edges, routes whose files were read)."""
+    counts = {}
+    for m, js in jobs.items():
+        flags = [f for f in map(edges.hugs, js) if f is not None]
+        if any(flags):
+            counts[m] = (sum(flags), len(flags))
+    return counts
+
+
+def edge_paragraph(counts: dict[str, tuple[int, int]]) -> str:
+    """The chart's routes that hug the edges, per method, in words."""
+    each = ", ".join(f"{m} {k} of {n}" for m, (k, n) in counts.items())
+    return (f"{EDGE_RULE}: {each}. Such a route follows the map's frame (where an optimizer's "
+            "waypoints clipped to the map's box also land) rather than the water between the "
+            "obstacles: it turns little and runs long, so a turns claim it decides says more "
+            "of the frame's shape than of the planner.")
 
 
 def _free_label(method: str, jobs: list[JobResults]) -> str:
