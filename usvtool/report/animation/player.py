@@ -397,7 +397,10 @@ SCRIPT = r"""
     play.addEventListener("click", function () { setPlaying(!playing); });
     slider.addEventListener("input", function () { seek(Number(slider.value)); });
     root.addEventListener("keydown", function (e) {
-      var step = e.shiftKey ? 10000 : 1000;
+      var step = e.shiftKey ? 10000 : 1000, tag = e.target.tagName;
+      if (tag === "SELECT" || (tag === "BUTTON" && (e.key === " " || e.key === "Enter"))) {
+        return;  // the control's own keys
+      }
       if (e.key === " " || e.key === "k") { setPlaying(!playing); }
       else if (e.key === "ArrowRight") { seek(now + step); }
       else if (e.key === "ArrowLeft") { seek(now - step); }

@@ -254,12 +254,15 @@ def _encounters(trace: Trace, events: dict, where: str):
             steps = (t >= onset - 5e-4) & (t < (np.inf if released is None else released - 5e-4))
             classes[steps, j] = code
             latched[steps, j] = True
-            marks.append(Mark(onset, onset, "onset", j, f"{names[j]}: {cls} onset"))
+            marks.append(Mark(onset, onset, "onset", j, f"{names[j]}: {cls} encounter onset"))
             m = e.get("first_manoeuvre")
             if m:
                 mt = float(m["t"])
+                turn = (f"to {m['side']}" if m.get("side") else "of speed") + (
+                    f", {float(m['course_change_deg']):+.0f} deg"
+                    if m.get("course_change_deg") is not None else "")  # fmt: skip
                 marks.append(Mark(mt, mt, "manoeuvre", j,
-                                  f"{names[j]}: manoeuvre to {m.get('side') or 'none'}"))
+                                  f"own ship's first manoeuvre for {names[j]}: {turn}"))
             if released is not None:
                 verdict = {True: "compliant", False: "not compliant", None: "not judged"}
                 text = f"{names[j]}: released, {verdict.get(e.get('compliant'), 'not judged')}"
