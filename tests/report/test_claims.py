@@ -9,7 +9,7 @@ import json
 from dataclasses import replace
 
 import pytest
-from scipy.stats import beta
+from scipy.stats import beta, levene
 
 from usvtool.report import judging
 from usvtool.report.data import ENDING, load, statistic
@@ -63,7 +63,12 @@ def test_does_not_hold_when_significantly_worse(tmp_path):
     rows = SEPARATED + _routes("env1", "ssa", [600, 601, 602, 603, 604, 605])
     v = judging.judge(_results(tmp_path, rows), _claim(rivals=("wso", "ssa")))
     assert v.verdict == judging.FAILS
-    assert claims.headline(v) == "1/2 better; worse env1/ssa δ -1.00 [-1.00, -1.00]"
+    # iwso - ssa: the 36 cross differences 95 ... 105 (100 six times), their median 100; the
+    # exact 95 % interval of 6 + 6 runs drops the 5 lowest and highest (U critical value 5):
+    # 97, 103; the medians' relative change (602.5 - 702.5) / 602.5 = -16.6 %
+    head = claims.headline(v)
+    assert head.startswith("1/2 better; worse env1/ssa: median 702 (2.5) vs 602 (2.5), "
+                           "shift 100 m [97, 103]; -16.6 % [")
 
 
 def test_inconclusive_when_neither_and_on_ties(tmp_path):
@@ -103,39 +108,60 @@ def test_holm_across_the_table(tmp_path):
     assert one.verdict == two.verdict == judging.HOLDS
 
 
-def test_a_colliding_route_is_the_worst_never_a_success(tmp_path):
+def test_colliding_routes_are_failures_compared_apart_never_measured(tmp_path):
     crashed = [(f"env1-iwso-{i}", "routes", "env1", "iwso", i, "collision_free", "False")
                for i in range(6)]  # fmt: skip
-    v = judging.judge(_results(tmp_path, SEPARATED + crashed), _claim())
-    # the colliding iwso routes are shorter, but count as the longest
-    assert v.verdict == judging.FAILS
-    a, b = v.tests[0].sides
-    assert a.failed == 6 and a.median == float("inf") and a.figure == 702.5 and a.clean is None
+    v = judging.judge(_results(tmp_path / "a", SEPARATED + crashed), _claim())
+    # every iwso route collides: shorter, but no route; 6/6 failed against 0/6: Fisher's
+    # exact p = 2 / C(12, 6) (the two most extreme tables), so it does not hold
+    (t,) = v.tests
+    a, b = t.sides
+    assert (a.n, a.failed, a.measured, a.median) == (6, 6, 0, None) and t.statistic is None
+    assert t.failures.test == "Fisher's exact" and t.failures_p == pytest.approx(2 / 924)
+    assert t.failure_outcome == "worse" and v.verdict == judging.FAILS
+    # two of them collide: 2/6 against 0/6, Fisher p = (15 + 15) / 66 (the tables of 0 and 2
+    # failures among iwso's 6), a Holm family of its own; the 4 others all below wso: U = 0,
+    # p = 2 / C(10, 4)
+    v = judging.judge(_results(tmp_path / "b", SEPARATED + crashed[:2]), _claim())
+    (t,) = v.tests
+    assert t.failures_p == pytest.approx(30 / 66) and t.p == pytest.approx(2 / 210)
+    assert (t.sides[0].measured, t.sides[0].failed) == (4, 2) and v.verdict == judging.HOLDS
+    assert claims.failures_text(t) == "failed 2/6 vs 0/6, Fisher p 0.45"
 
 
-def test_penalised_fitness_beside_the_collision_free_figure(tmp_path):
-    # mean fitness: iwso 10, 11, 90 (the last collided, penalised) against wso 20, 21, 22
+def test_a_mean_claim_is_tested_on_the_means_of_the_measured_runs(tmp_path):
+    # mean fitness: iwso 10, 11, 90 (the last collided: left out) against wso 20, 21, 22
     rows = (_routes("env1", "iwso", [10, 11, 90], "fitness")
             + _routes("env1", "wso", [20, 21, 22], "fitness")
             + [("env1-iwso-2", "routes", "env1", "iwso", 2, "collision_free", "False")])
     claim = _claim(metric="fitness", statistic="mean")
     (t,) = judging.judge(_results(tmp_path, rows), claim).tests
     a, b = t.sides
-    assert a.figure == pytest.approx(37.0) and a.clean == pytest.approx(10.5) and b.figure == 21
-    assert claims.change(a.figure, b.figure, "lower") == pytest.approx(100 * (21 - 37) / 21)
-    assert "without failures +50.0" in claims._figures(t, claim)
+    assert a.figure == pytest.approx(10.5) and b.figure == 21 and a.measured == 2
+    # the permutation test of the means, exhaustive: of the C(5, 2) = 10 splits of 10, 11,
+    # 20, 21, 22, only the observed one has |mean difference| >= 10.5
+    assert t.statistic.test == "permutation test of the means"
+    assert t.statistic.p == pytest.approx(0.1) and t.statistic.exact
+    assert t.statistic.difference.estimate == pytest.approx(10.5)  # an improvement
+    assert claims.effect_text(t, claim).startswith("Δmean -10.5 [")
+    assert "; +50.0 % [" in claims.effect_text(t, claim)  # 10.5 of the rival's 21
 
 
-def test_spread_claims_compare_deviations_from_the_median(tmp_path):
+def test_spread_claims_use_brown_forsythe(tmp_path):
     # iwso 10, 11, 12, 13, 14, 15 (|dev| from 12.5: 0.5-2.5), wso 0, 5, 10, 15, 20, 25 (|dev|
     # 2.5-12.5): deviations 0.5, 0.5, 1.5, 1.5, 2.5, 2.5 vs 2.5, 2.5, 7.5, 7.5, 12.5, 12.5
-    rows = (_routes("env1", "iwso", [10, 11, 12, 13, 14, 15], "fitness")
-            + _routes("env1", "wso", [0, 5, 10, 15, 20, 25], "fitness"))
+    iwso, wso = [10, 11, 12, 13, 14, 15], [0, 5, 10, 15, 20, 25]
+    rows = _routes("env1", "iwso", iwso, "fitness") + _routes("env1", "wso", wso, "fitness")
     v = judging.judge(_results(tmp_path, rows), _claim(metric="fitness", statistic="variance"))
-    c = v.tests[0].comparison
-    # pairs: iwso's 2.5s tie wso's two 2.5s (4 ties of 36); all else lower: (32 - 0) / 36
-    assert c.effect == pytest.approx(32 / 36)
-    assert v.tests[0].sides[0].figure == pytest.approx(3.5)  # the sample variance
+    (t,) = v.tests
+    assert t.statistic.test == "Brown-Forsythe"
+    assert t.statistic.p == pytest.approx(levene(iwso, wso, center="median").pvalue)
+    # the variances 3.5 and 87.5: an improvement of 84
+    assert t.sides[0].figure == pytest.approx(3.5)
+    assert t.statistic.difference.estimate == pytest.approx(84.0)
+    # the rank effect on the deviations: iwso's 2.5s tie wso's two 2.5s (4 ties of 36), all
+    # else lower: (32 - 0) / 36
+    assert t.comparison.effect == pytest.approx(32 / 36)
 
 
 def _runs(group, method, values, metric, tag=""):
@@ -158,11 +184,30 @@ def test_runs_pair_by_scene(tmp_path):
     assert t.comparison.test == "Wilcoxon signed-rank" and t.p == pytest.approx(2 / 64)
     assert t.comparison.effect == 1.0 and (t.sides[0].n, t.sides[1].n) == (6, 6)
     assert v.verdict == judging.HOLDS
-    # a scene where udwa did not arrive is its worst, not its 1 m gain
+    # a scene where udwa did not arrive keeps its measured closest distance: the six +1 m
+    # stay, and its failure is compared apart (McNemar: 1 discordant pair, p = 1)
     stopped = [("udwa-0", "runs", "emergency/head-on/s000", "udwa", 1, "arrived", "False")]
-    (t,) = judging.judge(_results(tmp_path, rows + stopped), claim).tests
-    # differences +1 x 5 and -inf: ranks 3 (the five tied +1) and 6: r = (15 - 6) / 21
-    assert t.comparison.effect == pytest.approx(9 / 21) and t.sides[0].failed == 1
+    v = judging.judge(_results(tmp_path / "b", rows + stopped), claim)
+    (t,) = v.tests
+    assert t.p == pytest.approx(2 / 64) and t.sides[0].measured == 6
+    assert t.sides[0].failed == 1 and t.failures.cells.method == 1 and t.failures_p == 1.0
+    assert v.verdict == judging.HOLDS
+    # one where it collided measures nothing: five pairs of +1, p = 2 / 2^5, not significant;
+    # but within the closest distance's margin, 5 % of ccdwa's median 70 m: 3.5 m, TOST's two
+    # one-sided signed-rank tests of d + 3.5 > 0 and d - 3.5 < 0 each p = 1 / 2^5
+    crashed = [("udwa-0", "runs", "emergency/head-on/s000", "udwa", 1, "collision", "target")]
+    v = judging.judge(_results(tmp_path / "c", rows + stopped + crashed), claim)
+    (t,) = v.tests
+    assert t.p == pytest.approx(2 / 32) and t.sides[0].measured == 5
+    assert t.equivalence.margin == pytest.approx(3.5) and t.equivalence.p == pytest.approx(1 / 32)
+    assert v.verdict == judging.EQUIVALENT and t.outcome == "equivalent"
+    assert claims.entered_text(t, paired=True) == "5 of 6 pairs measured"
+    # a margin of 1 m (ccdwa's median 20 m: 5 % of it) no longer holds +1: inconclusive, with
+    # the n it would need
+    near = [(*r[:6], str(float(r[6]) - 50)) if r[2].startswith("emergency/head-on/") else r
+            for r in rows]  # fmt: skip
+    v = judging.judge(_results(tmp_path / "d", near + stopped + crashed), claim)
+    assert v.verdict == judging.INCONCLUSIVE and "runs a group for 80 % power" in v.reason
 
 
 def test_a_job_that_does_not_say_how_it_ended_is_no_evidence(tmp_path):
@@ -329,8 +374,11 @@ def test_the_section_counts_five_verdicts_and_judges_variants_apart(tmp_path):
     row = next(r for r in main.rows if r[0].text == "iwso-shorter")
     assert row[5].text == f"iwso+g: {judged['iwso-shorter (iwso+g)'].verdict}"
     assert row[1].text.count("Compared with the WSO") == 1  # the quote once
-    # medians (IQR: 701.25 to 703.75) and the runs of each case
-    assert row[2].text == "env1: 702 (2.5) vs 802 (2.5); env2: 1.5 (0.5) vs 3.5 (0.5); n 6/6, 2/2"
+    # medians (IQR: 701.25 to 703.75) and the runs of each case; env2's 2 against 2 cannot
+    # reach p < 0.05 (at best 2 / C(4, 2)): inconclusive, with the n it would need
+    assert row[2].text.startswith("env1: median 702 (2.5) vs 802 (2.5), n 6/6; env2: median "
+                                  "1.5 (0.5) vs 3.5 (0.5), n 2/2 (about ")
+    assert row[-1].text == judging.INCONCLUSIVE
     counts = claims.counts([s])
     assert list(counts) == list(judging.VERDICTS)
     assert sum(counts.values()) == len(CLAIMS)

@@ -1,25 +1,40 @@
 """How the report judges a claim on our runs (docs/statistics.md): the tests, Holm's correction
-within a family of claims and the five verdicts, for the papers' claims
+within a family of claims and the six verdicts, for the papers' claims
 (:data:`usvtool.report.papers.CLAIMS`, each followed by our variants of its method:
 :func:`paper_verdicts`) and the user's (a pipeline's ``claims:``,
 :attr:`usvtool.report.data.Results.claims`: :func:`user_verdicts`) alike, each source a Holm
 family of its own. Nothing here writes a page: the sections (:mod:`.sections.claims`,
-:mod:`.sections.your_claims`, :mod:`.sections.summary`, :mod:`.sections.other_methods`) build
-their tables from the :class:`Verdict` and :class:`Test` given here.
+:mod:`.sections.your_claims`, :mod:`.sections.summary`, :mod:`.sections.other_methods`,
+:mod:`.sections.baselines`) build their tables from the :class:`Verdict` and :class:`Test`
+given here.
 
-A **relative** claim compares the method with each rival in each case (:func:`comparison`):
+A **relative** claim compares the method with each rival in each case (:func:`comparison`),
 runs paired by scene and seed (a scene family's runs: :meth:`usvtool.report.data.Results.pairs`)
-or independent runs (routes and functions, which share no randomness by seed). How a
-comparison is made is the claim's ``statistic``'s: one function per statistic in
-:data:`RELATIVE` (the location statistics by the rank tests of
-:func:`usvtool.report.inference.compare`, the spreads on the runs' absolute deviations from
-their median), so that another statistic is one function and one entry. A run that failed (a
-colliding route; a run that collided or did not arrive) is the worst outcome in the claim's
-direction. The p of one family's comparisons are Holm-corrected together
-(:func:`judge_family`). The claim **holds** when the method is better with corrected p <
-:data:`ALPHA` against every rival in every case, **does not hold** when it is significantly
-worse in some, is **inconclusive** otherwise, **not testable** when a declared precondition
-fails (:data:`CHECKS`) and **not tested** when runs are missing.
+or independent (routes and functions, which share no randomness by seed), in two comparisons:
+
+- **the failures** as their own outcome, every run counted (a run that collided, never
+  arrived, or whose controller failed; a route through an obstacle): exact McNemar on scene
+  pairs, Fisher's exact test otherwise, the rates' difference with its interval
+  (:mod:`usvtool.report.rates`);
+- **the metric on the measured values** (:func:`measured`: a run that broke, collided or
+  whose controller failed, or a colliding route, measures nothing and is left out; a run that
+  only never arrived keeps its closest distance; paired, the pairs where both are measured),
+  by the test of the statistic the claim names (:data:`TESTED`,
+  :mod:`usvtool.report.named_statistic`), with the effective n, the rank effect (r or δ) with
+  its bootstrap interval, the Hodges-Lehmann shift in the metric's units with its
+  distribution-free interval, the named statistic's difference and relative change with
+  their bootstrap intervals, and, for a location statistic, TOST against the metric's
+  smallest effect of interest (:mod:`usvtool.report.margins`).
+
+The p of one family's metric comparisons are Holm-corrected together, and those of its failure
+comparisons apart, as a second family (:func:`judge_family`). The claim **holds** when the method is better with corrected p <
+:data:`ALPHA` against every rival in every case (and fails no more often, significantly,
+anywhere), **does not hold** when it is significantly worse in some, or fails significantly
+more often, is **equivalent** when every comparison lies within the margin (TOST, each at
+ALPHA: the intersection-union test needs no correction), is **inconclusive** otherwise, with
+the n a group it would need for 80 % power (:func:`needed`), **not testable** when a declared
+precondition fails (:data:`CHECKS`) and **not tested** when runs are missing. A claim's
+``context`` rivals are compared and shown, outside the verdict and the Holm family.
 
 An **absolute** claim (no rivals) is counted per case by its statistic's function in
 :data:`ABSOLUTE` (``every``: the runs meeting the target, with the 95 % Clopper-Pearson
@@ -41,13 +56,20 @@ from scipy.stats import binomtest
 
 from usvtool.report import inference
 from usvtool.report.data import JobResults, Results, in_group, summarise
+from usvtool.report.effective_n import EffectiveN, effective_n
+from usvtool.report.effects import Shift, hodges_lehmann
+from usvtool.report.equivalence import Equivalence, SampleSize, sample_size, tost
 from usvtool.report.inference import Comparison
+from usvtool.report.margins import MARGINS, margin
+from usvtool.report.named_statistic import StatisticTest, compare_statistic
 from usvtool.report.papers import CLAIMS, TABLES, Claim
+from usvtool.report.rates import RateComparison, compare_failures
 
-HOLDS, FAILS, INCONCLUSIVE = "holds", "does not hold", "inconclusive"
+HOLDS, FAILS, EQUIVALENT = "holds", "does not hold", "equivalent"
+INCONCLUSIVE = "inconclusive"
 UNTESTABLE, UNTESTED = "not testable", "not tested"
 #: The five verdicts, in the order the counts are given.
-VERDICTS = (HOLDS, FAILS, INCONCLUSIVE, UNTESTABLE, UNTESTED)
+VERDICTS = (HOLDS, FAILS, EQUIVALENT, INCONCLUSIVE, UNTESTABLE, UNTESTED)
 #: The corrected p below which a difference counts.
 ALPHA = 0.05
 #: The bootstrap's seed and resamples (inference.compare).
@@ -58,40 +80,87 @@ EVENTS = ("collision", "controller_failed")
 
 @dataclass(frozen=True)
 class Side:
-    """One method's runs in one case: how many, how many failed, their median and IQR (failures
-    the worst), the claim's statistic over every run as measured (a failed route's length or
-    penalised fitness; None when a failed run has no value, as a run that never arrived has no
-    arrival time) and over the runs that did not fail."""
+    """One method's runs in one comparison: how many (``n``, those whose table says how they
+    ended), how many failed (:attr:`JobResults.failed`: collided, never arrived, a colliding
+    route), how many entered the metric's test (``measured``: :func:`measured`), and over
+    those the median, the IQR and the claim's own statistic (``figure``)."""
 
     method: str
     n: int
     failed: int
+    measured: int
     median: float | None
     iqr: float | None
     figure: float | None
-    clean: float | None
 
 
 @dataclass(frozen=True)
 class Test:
-    """The method against one rival in one case: ``comparison`` None when a side has no runs;
-    ``p`` the Holm-corrected p."""
+    """The method against one rival in one case, in two comparisons: the failures
+    (``failures``, every run) and the metric on the measured values (``statistic``: the
+    claim's statistic's test, :func:`usvtool.report.named_statistic.compare_statistic`;
+    ``comparison``: the rank effect, r or δ, with its interval; ``shift``: the Hodges-Lehmann
+    shift in the metric's units; ``entered``: the effective n; ``equivalence``: TOST against
+    the metric's smallest effect of interest, for a location statistic). ``p`` and
+    ``failures_p`` are Holm-corrected (:func:`judge_family`); ``needed``: the n a group an
+    inconclusive comparison would need for 80 % power. ``context``: a rival compared for
+    context only, outside the verdict and the Holm family (its p uncorrected)."""
 
     case: str
     rival: str
     sides: tuple[Side, Side]
     comparison: Comparison | None
     p: float | None = None
+    statistic: StatisticTest | None = None
+    shift: Shift | None = None
+    entered: EffectiveN | None = None
+    equivalence: Equivalence | None = None
+    failures: RateComparison | None = None
+    failures_p: float | None = None
+    needed: SampleSize | None = None
+    context: bool = False
+
+    @property
+    def metric_outcome(self) -> str:
+        """``better`` or ``worse`` (corrected p < ALPHA, by the direction of the claim's
+        statistic), ``equivalent`` (TOST), ``neither``, or ``missing`` (no measured values)."""
+        if self.statistic is None:
+            return "missing"
+        if self.p is not None and self.p < ALPHA and (sign := self.direction):
+            return "better" if sign > 0 else "worse"
+        if self.equivalence is not None and self.equivalence.equivalent:
+            return "equivalent"
+        return "neither"
+
+    @property
+    def direction(self) -> float:
+        """The sign of the method's advantage: the rank effect's for a location statistic,
+        the named statistic's difference's otherwise (> 0: the method better)."""
+        if self.statistic is None:
+            return 0.0
+        if self.statistic.statistic == "median" and self.comparison is not None:
+            return float(math.copysign(1.0, self.comparison.effect)) if self.comparison.effect \
+                else 0.0  # fmt: skip
+        estimate = self.statistic.difference.estimate
+        return float(math.copysign(1.0, estimate)) if estimate else 0.0
+
+    @property
+    def failure_outcome(self) -> str:
+        """``better`` or ``worse`` (the failure rates differ with corrected p < ALPHA), or
+        ``neither``."""
+        f = self.failures
+        if f is None or self.failures_p is None or self.failures_p >= ALPHA or f.difference == 0:
+            return "neither"
+        return "better" if f.difference > 0 else "worse"
 
     @property
     def outcome(self) -> str:
-        """``better``, ``worse`` (corrected p < ALPHA, by the effect's sign), ``neither`` or
-        ``missing``."""
-        if self.comparison is None:
-            return "missing"
-        if self.p is None or self.p >= ALPHA or self.comparison.effect == 0:
-            return "neither"
-        return "better" if self.comparison.effect > 0 else "worse"
+        """``worse`` when the method fails significantly more often or its metric is
+        significantly worse; else its metric's outcome (``better``, ``equivalent``,
+        ``neither``; ``missing`` without measured values)."""
+        if "worse" in (self.metric_outcome, self.failure_outcome):
+            return "worse"
+        return self.metric_outcome
 
 
 @dataclass(frozen=True)
@@ -110,8 +179,9 @@ class Tally:
 @dataclass(frozen=True)
 class Verdict:
     """A claim's verdict, why (``reason``: what fails of a precondition, with ``why`` the
-    precondition's own reason; the runs missing), and its comparisons (relative) or tallies
-    (absolute). ``variant``: our variant of the method."""
+    precondition's own reason; the runs missing; the n an inconclusive claim would need), and
+    its comparisons (relative) or tallies (absolute). ``variant``: our variant of the
+    method."""
 
     claim: Claim
     verdict: str
@@ -132,58 +202,51 @@ def value(job: JobResults, metric: str) -> float | None:
     return job.number(metric)
 
 
-def _worst(claim: Claim) -> float:
-    return math.inf if claim.better == "lower" else -math.inf
+def broke(job: JobResults) -> bool:
+    """Whether the job's metrics measure no work of the method: a run that collided or whose
+    controller failed, a route through an obstacle. A run that only never arrived did its work:
+    its closest distance, its COLREGs counts are measured (it has no arrival time)."""
+    if job.kind == "routes":
+        return job.text("collision_free") == "False"
+    return bool(job.text("collision")) or bool(job.text("controller_failed"))
 
 
-def outcome(job: JobResults, claim: Claim) -> float | None:
-    """The run's value as the claim is judged: the worst for a failed run; None when it has no
-    value, or the table does not say how it ended (:attr:`JobResults.settled`)."""
-    if not job.settled:
+def measured(job: JobResults, claim: Claim) -> float | None:
+    """The run's value entering the claim's metric test: None when its table does not say how
+    it ended, when it broke (:func:`broke`; but for a claim on :data:`EVENTS`, which counts
+    them) or has no value."""
+    if not job.settled or (claim.metric not in EVENTS and broke(job)):
         return None
-    return _worst(claim) if job.failed else value(job, claim.metric)
+    return value(job, claim.metric)
 
 
-def _side(method: str, jobs: Sequence[JobResults], claim: Claim,
-          judged: Sequence[float]) -> Side:  # fmt: skip
-    measured = [value(j, claim.metric) for j in jobs]
-    fitness = [j.number("fitness") for j in jobs]
-    ok = [i for i, j in enumerate(jobs) if not j.failed and measured[i] is not None]
-    whole = None if any(v is None for v in measured) else summarise(measured, claim.statistic,
-                                                                    fitness)  # fmt: skip
-    clean = summarise([measured[i] for i in ok], claim.statistic, [fitness[i] for i in ok])
-    return Side(method, len(judged), sum(j.failed for j in jobs),
-                inference.median(judged) if judged else None,
-                inference.iqr(judged) if judged else None, whole, clean)  # fmt: skip
+def _side(method: str, jobs: Sequence[JobResults], values: Sequence[float],
+          claim: Claim) -> Side:  # fmt: skip
+    """The side's figures over its measured ``values`` (of ``jobs``, the runs compared)."""
+    figure = summarise(values, claim.statistic, [j.number("fitness") for j in jobs
+                                                 if measured(j, claim) is not None])  # fmt: skip
+    return Side(method, len(jobs), sum(j.failed for j in jobs), len(values),
+                inference.median(values) if values else None,
+                inference.iqr(values) if values else None, figure)  # fmt: skip
 
 
-# --- the claims' statistics: one function each -------------------------------------------------
+# --- the claims' statistics --------------------------------------------------------------------
 
-#: A relative statistic's comparison of the method's outcomes with a rival's (paired: element
-#: i of each is the same scene and seed; better: ``lower`` or ``higher``).
-Compare = Callable[[Sequence[float], Sequence[float], bool, str], Comparison]
-
-
-def location(x: Sequence[float], y: Sequence[float], paired: bool, better: str) -> Comparison:
-    """Where the runs lie: the Wilcoxon signed-rank test (paired) or the Mann-Whitney U test
-    with the rank-biserial effect (:func:`usvtool.report.inference.compare`). The statistics a
-    paper states a claim by (a mean, a best run, one figure) are judged by where the runs lie,
-    which is what a claim about the method rather than about one draw of it needs."""
-    return inference.compare(x, y, paired=paired, better=better, seed=SEED,
-                             resamples=RESAMPLES, shift=False)  # fmt: skip
-
-
-def spread(x: Sequence[float], y: Sequence[float], paired: bool, better: str) -> Comparison:
-    """A variance or a standard deviation: the runs' absolute deviations from their own median
-    compared as :func:`location` compares values (Brown and Forsythe 1974, with ranks)."""
-    return location(inference.dispersion(x), inference.dispersion(y), paired, better)
+#: Each relative statistic of a claim (:data:`usvtool.report.papers.STATISTICS`) -> the
+#: statistic its test compares (:mod:`usvtool.report.named_statistic`): a median, a paper's
+#: single figure (``value``) and the best-fitness run's metric (``of-best``: one draw, judged by
+#: where the runs lie) by the rank test; a mean by the means; a spread by Brown-Forsythe; a
+#: best run by the bootstrap of the best.
+TESTED = {"value": "median", "median": "median", "of-best": "median", "mean": "mean",
+          "min": "min", "max": "max", "variance": "variance", "std": "std"}  # fmt: skip
+#: The statistics whose equivalence is tested (a shift of location; TOST on spreads and best
+#: runs is not defined here: those stay inconclusive when not significant).
+LOCATION = ("median", "mean")
+#: The power an inconclusive comparison's n is computed for.
+POWER = 0.8
 
 
-#: Each relative statistic's comparison (:data:`usvtool.report.papers.STATISTICS`).
-RELATIVE: dict[str, Compare] = {
-    "value": location, "median": location, "mean": location, "min": location, "max": location,
-    "of-best": location, "variance": spread, "std": spread,
-}  # fmt: skip
+# --- absolute claims ------------------------------------------------------------------------
 
 
 def meets(job: JobResults, claim: Claim) -> bool:
@@ -250,26 +313,74 @@ ABSOLUTE: dict[str, Count] = {"every": every}
 # --- comparisons -----------------------------------------------------------------------------
 
 
-def comparison(results: Results, claim: Claim, case: str, rival: str) -> Test:
-    """The claim's method against ``rival`` in ``case`` (a results case or a group of them,
-    :func:`usvtool.report.data.in_group`), by the claim's statistic (:data:`RELATIVE`); runs
-    pair by scene and seed when the claim's kind is ``runs``. ``p`` is left uncorrected (the
-    comparison's own p): :func:`judge_family` corrects a family's."""
-    if claim.kind == "runs":  # scenes: paired by (case, seed)
+def _jobs(results: Results, claim: Claim, case: str,
+          rival: str) -> tuple[list[JobResults], list[JobResults]]:  # fmt: skip
+    """The runs compared: scene and seed pairs of the family's runs, each side's routes or
+    function runs otherwise; only those whose table says how they ended."""
+    if claim.kind == "runs":
         pairs = [(a, b) for a, b in results.pairs(claim.kind, case, claim.method, rival)
-                 if outcome(a, claim) is not None and outcome(b, claim) is not None]  # fmt: skip
-        mine, theirs = [a for a, _ in pairs], [b for _, b in pairs]
-    else:
-        mine, theirs = (
-            [j for j in results.group(claim.kind, case, m) if outcome(j, claim) is not None]
-            for m in (claim.method, rival)
-        )
-    x, y = [outcome(j, claim) for j in mine], [outcome(j, claim) for j in theirs]
-    sides = (_side(claim.method, mine, claim, x), _side(rival, theirs, claim, y))
+                 if a.settled and b.settled]  # fmt: skip
+        return [a for a, _ in pairs], [b for _, b in pairs]
+    mine, theirs = ([j for j in results.group(claim.kind, case, m) if j.settled]
+                    for m in (claim.method, rival))  # fmt: skip
+    return mine, theirs
+
+
+def _values(mine: Sequence[JobResults], theirs: Sequence[JobResults], claim: Claim,
+            paired: bool) -> tuple[list[float], list[float]]:  # fmt: skip
+    """The measured values of each side (:func:`measured`); paired, of the pairs where both
+    are measured."""
+    x = [measured(j, claim) for j in mine]
+    y = [measured(j, claim) for j in theirs]
+    if paired:
+        kept = [(a, b) for a, b in zip(x, y, strict=True) if a is not None and b is not None]
+        return [a for a, _ in kept], [b for _, b in kept]
+    return [a for a in x if a is not None], [b for b in y if b is not None]
+
+
+def comparison(results: Results, claim: Claim, case: str, rival: str,
+               context: bool = False) -> Test:  # fmt: skip
+    """The claim's method against ``rival`` in ``case`` (a results case or a group of them,
+    :func:`usvtool.report.data.in_group`): the failure rates over every run (paired by scene
+    and seed for a family's runs: exact McNemar; else Fisher), and the claim's statistic over
+    the measured values (:func:`measured`; paired: the pairs where both are measured). The p
+    are left uncorrected: :func:`judge_family` corrects a family's."""
+    paired = claim.kind == "runs"
+    mine, theirs = _jobs(results, claim, case, rival)
+    failures = None
+    if mine and theirs and claim.kind != "functions":
+        failures = compare_failures([j.failed for j in mine], [j.failed for j in theirs],
+                                    paired=paired)  # fmt: skip
+    x, y = _values(mine, theirs, claim, paired)
+    sides = (_side(claim.method, mine, x, claim), _side(rival, theirs, y, claim))
     if not x or not y:
-        return Test(case, rival, sides, None)
-    found = RELATIVE[claim.statistic](x, y, claim.kind == "runs", claim.better)
-    return Test(case, rival, sides, found, found.p)
+        return Test(case, rival, sides, None, failures=failures,
+                    failures_p=None if failures is None else failures.p, context=context)
+    named = TESTED[claim.statistic]
+    found = compare_statistic(x, y, statistic=named, paired=paired, better=claim.better,
+                              seed=SEED, resamples=RESAMPLES)  # fmt: skip
+    spread = named in ("variance", "std")  # the rank effect on the absolute deviations
+    ranks = inference.compare(*((inference.dispersion(x), inference.dispersion(y)) if spread
+                                else (x, y)), paired=paired, better=claim.better, seed=SEED,
+                              resamples=RESAMPLES, shift=False)  # fmt: skip
+    shift = hodges_lehmann(x, y, paired=paired, better=claim.better)
+    equivalent = None
+    if named in LOCATION and claim.metric in MARGINS.get(claim.kind, {}):
+        bound = margin(claim.kind, claim.metric, inference.median(y))
+        if bound > 0:
+            equivalent = tost(x, y, paired=paired, better=claim.better, margin=bound)
+    return Test(case, rival, sides, ranks, found.p, found, shift,
+                effective_n(x, y, paired=paired), equivalent, failures,
+                None if failures is None else failures.p, context=context)  # fmt: skip
+
+
+def needed(results: Results, claim: Claim, test: Test, alpha: float) -> SampleSize:
+    """The n a group the inconclusive ``test`` would need for :data:`POWER` at ``alpha``, by
+    simulation from its measured values (:func:`usvtool.report.equivalence.sample_size`)."""
+    paired = claim.kind == "runs"
+    x, y = _values(*_jobs(results, claim, test.case, test.rival), claim, paired)
+    return sample_size(x, y, paired=paired, better=claim.better, power=POWER, alpha=alpha,
+                       seed=SEED)  # fmt: skip
 
 
 # --- preconditions ---------------------------------------------------------------------------
@@ -323,16 +434,36 @@ def _unmet(results: Results, claim: Claim) -> tuple[str, str]:
 
 
 def _relative(claim: Claim, tests: Sequence[Test]) -> Verdict:
-    outcomes = {t.outcome for t in tests}
-    missing = [f"{t.case} ({t.rival})" for t in tests if t.outcome == "missing"]
+    """Holds when the method is better against every rival in every case, does not hold when
+    it is worse in one (its metric, or fails more often), is equivalent when every comparison
+    is (TOST), inconclusive otherwise (with the largest n a group the inconclusive comparisons
+    would need); not tested when runs are missing. Context rivals do not count."""
+    judged = [t for t in tests if not t.context]
+    outcomes = {t.outcome for t in judged}
+    missing = [f"{t.case} ({t.rival})" for t in judged if t.outcome == "missing"]
+    reason = f"no runs: {', '.join(missing)}" if missing else ""
     if "worse" in outcomes:
         verdict = FAILS
     elif missing:
         verdict = UNTESTED
+    elif outcomes == {"better"}:
+        verdict = HOLDS
+    elif outcomes == {"equivalent"}:
+        verdict = EQUIVALENT
     else:
-        verdict = HOLDS if outcomes == {"better"} else INCONCLUSIVE
-    reason = f"no runs: {', '.join(missing)}" if missing else ""
+        verdict, reason = INCONCLUSIVE, _power(judged)
     return Verdict(claim, verdict, reason, tuple(tests))
+
+
+def _power(tests: Sequence[Test]) -> str:
+    """What the inconclusive comparisons would need: the largest n a group for 80 % power."""
+    sizes = [t.needed for t in tests if t.outcome == "neither" and t.needed is not None]
+    if not sizes:
+        return ""
+    short = [s for s in sizes if s.n is None]
+    if short:
+        return f"more than {short[0].cap} runs a group for {100 * POWER:.0f} % power"
+    return f"about {max(s.n for s in sizes)} runs a group for {100 * POWER:.0f} % power"
 
 
 def _absolute(results: Results, claim: Claim) -> Verdict:
@@ -363,23 +494,32 @@ def _absolute(results: Results, claim: Claim) -> Verdict:
 
 
 def judge_family(results: Results, claims: Sequence[Claim]) -> list[Verdict]:
-    """The verdicts of ``claims``, one Holm family: the p of all their comparisons corrected
-    together (a comparison whose p is undefined is not counted)."""
+    """The verdicts of ``claims``: the p of their metrics' comparisons one Holm family, the p
+    of their failure rates' another (two questions; a p that is undefined is not counted;
+    context rivals are outside both). An inconclusive comparison gets the n a group it would
+    need at the metrics' family's first Holm step, ALPHA over the p counted
+    (:func:`needed`)."""
     pending: list[tuple[Claim, tuple[str, str], list[Test]]] = []
     for claim in claims:
-        has_runs = any(outcome(j, claim) is not None for case in claim.cases
-                       for j in results.group(claim.kind, case, claim.method))  # fmt: skip
+        has_runs = any(j.settled for case in claim.cases
+                       for j in results.group(claim.kind, case, claim.method))
         unmet = _unmet(results, claim) if has_runs else ("", "")
         tests = [] if unmet[0] or not claim.rivals else [
-            comparison(results, claim, case, rival) for case in claim.cases
-            for rival in claim.rivals]  # fmt: skip
+            comparison(results, claim, case, rival, context=rival in claim.context)
+            for case in claim.cases for rival in (*claim.rivals, *claim.context)]  # fmt: skip
         pending.append((claim, unmet, tests))
-    tests = [t for _, _, ts in pending for t in ts]
-    corrected = iter(inference.holm([None if t.comparison is None else t.comparison.p
-                                     for t in tests]))  # fmt: skip
+    counted = [t for _, _, ts in pending for t in ts if not t.context]
+    metrics = inference.holm([t.statistic and t.statistic.p for t in counted])
+    failures = inference.holm([t.failures_p for t in counted])
+    fixed = {id(t): pair for t, pair in zip(counted, zip(metrics, failures, strict=True),
+                                            strict=True)}  # fmt: skip
+    family = sum(t.statistic is not None and t.statistic.p is not None for t in counted)
     out = []
     for claim, unmet, ts in pending:
-        ts = [replace(t, p=next(corrected)) for t in ts]
+        ts = [replace(t, p=fixed[id(t)][0], failures_p=fixed[id(t)][1]) if id(t) in fixed
+              else t for t in ts]  # fmt: skip
+        ts = [replace(t, needed=needed(results, claim, t, ALPHA / max(family, 1)))
+              if not t.context and t.outcome == "neither" else t for t in ts]  # fmt: skip
         if unmet[0]:
             out.append(Verdict(claim, UNTESTABLE, unmet[0], why=unmet[1]))
         elif claim.rivals:

@@ -9,8 +9,8 @@ named statistic with its bootstrap interval and relative change
 claim's direction). The values must be finite (measured values; the failures are compared
 apart, :mod:`usvtool.report.rates`).
 
-- ``median``: the rank test, Wilcoxon signed-rank (paired) or Mann-Whitney U, as
-  :func:`usvtool.report.inference.compare` computes it.
+- ``median``: the rank test, Wilcoxon signed-rank (paired) or Mann-Whitney U, two-sided,
+  exact (ties included) or normal by the effective-n rule (:func:`rank_p`).
 - ``mean``: the **permutation test of the means** (Fisher 1935, The Design of Experiments,
   chapter III, Darwin's paired plants; Good 2005, Permutation, Parametric and Bootstrap Tests
   of Hypotheses, 3rd ed., chapter 3). Paired: every sign of the nonzero improvements d
@@ -44,7 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.stats import levene
 
-from usvtool.report import inference
+from usvtool.report import effective_n, inference, rank_null
 from usvtool.report.effects import Difference, bootstrap_difference, oriented, resampled
 
 PERMUTATION, BROWN_FORSYTHE = "permutation test of the means", "Brown-Forsythe"
@@ -80,8 +80,9 @@ def compare_statistic(method: Sequence[float], rival: Sequence[float], *, statis
     difference = bootstrap_difference(method, rival, statistic=statistic, paired=paired,
                                       better=better, seed=seed, resamples=resamples)  # fmt: skip
     if statistic == "median":
-        c = inference.compare(a, b, paired=paired, better="higher", resamples=1, shift=False)
-        return StatisticTest(statistic, c.test, c.p, None, 0, difference)
+        p, exact = rank_p(a, b, paired=paired)
+        test = inference.WILCOXON if paired else inference.MANN_WHITNEY
+        return StatisticTest(statistic, test, p, exact, 0, difference)
     if statistic == "mean":
         p, exact, draws = permutation_p(a, b, paired=paired, seed=seed,
                                         permutations=permutations)  # fmt: skip
@@ -95,6 +96,28 @@ def compare_statistic(method: Sequence[float], rival: Sequence[float], *, statis
     boot = bx - by
     p = min(1.0, 2 * min(np.mean(boot <= 0), np.mean(boot >= 0)))
     return StatisticTest(statistic, BOOTSTRAP_BEST, float(p), None, resamples, difference)
+
+
+def rank_p(a: np.ndarray, b: np.ndarray, *, paired: bool) -> tuple[float | None, bool]:
+    """The two-sided p of the rank test of the oriented values ``a`` against ``b`` (Wilcoxon
+    signed-rank on a - b when paired, zeros dropped; Mann-Whitney U otherwise): twice the
+    smaller one-sided p of :mod:`usvtool.report.rank_null`, capped at 1, exact or normal by
+    :func:`usvtool.report.effective_n.exact` (so a handful of informative pairs gets the exact
+    distribution, ties included). None when nothing is informative (every pair a zero
+    difference, every value tied). Also whether it was exact."""
+    if paired:
+        d = a - b
+        informative = int(np.count_nonzero(d))
+        exact = effective_n.exact(True, informative)
+        if informative == 0:
+            return None, exact
+        tails = [rank_null.signed_rank_p(d, t, exact=exact) for t in rank_null.ALTERNATIVES]
+    else:
+        exact = effective_n.exact(False, a.size + b.size)
+        if np.all(np.concatenate([a, b]) == a[0]):
+            return None, exact
+        tails = [rank_null.rank_sum_p(a, b, t, exact=exact) for t in rank_null.ALTERNATIVES]
+    return min(1.0, 2 * min(tails)), exact
 
 
 def permutation_p(a: np.ndarray, b: np.ndarray, *, paired: bool, seed: int,

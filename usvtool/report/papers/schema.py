@@ -136,7 +136,9 @@ class Claim:
     (:class:`Precondition`). ``target`` (an absolute claim's: a number, or another metric of
     the same run) is met by a run whose metric is at least as good in the claim's direction;
     ``share``: the share of the runs that must meet it (1: every run, the papers'; a user's
-    claim may ask less, docs/statistics.md). A user's claim (a pipeline's ``claims:``) has no
+    claim may ask less, docs/statistics.md). ``context``: rivals compared and shown beside the
+verdict, outside it and its Holm family (the UDWA paper's dwa, whose weights also differ, beside
+the weather ablation). A user's claim (a pipeline's ``claims:``) has no
     paper (``paper`` empty, no quotes)."""
 
     id: str
@@ -156,6 +158,7 @@ class Claim:
     paper_cases: tuple[tuple[str, ...], ...] = ()
     preconditions: tuple[Precondition, ...] = ()
     share: float = 1.0
+    context: tuple[str, ...] = ()
 
     def table_cases(self, case: str) -> tuple[str, ...]:
         """The cases of the paper's table that ``case`` (one of :attr:`cases`) stands for."""
