@@ -89,25 +89,30 @@ def _column(claim: Claim) -> Column | None:
 
 
 def paper_figure(claim: Claim, named: bool = True) -> str:
-    """The paper's figures of the claim: method against its first rival, per paper case
-    (``named``: after the two methods' names)."""
+    """The paper's figures of the claim: method against its first rival the paper ran, per
+    paper case (``named``: after the two methods' names)."""
     column = _column(claim)
     if column is None or not claim.rivals:
         return "-"
     table = TABLES[claim.table]
+    # the first rival the paper ran (a context rival when the claim is judged on an ablation)
+    rival = next((r for r in (*claim.rivals, *claim.context)
+                  if any(row.method == r for row in table.rows)), None)  # fmt: skip
+    if rival is None:
+        return "-"
     unit = f" {column.unit}" if column.unit and column.unit != "%" else ""
     index = table.columns.index(column)
     parts = []
     for case in claim.cases:
         rows = [[table.row(m, c) for c in claim.table_cases(case)]
-                for m in (claim.method, claim.rivals[0])]
+                for m in (claim.method, rival)]
         if any(r is None or r.printed[index] is None for side in rows for r in side):
             continue
         mine, theirs = (", ".join(r.printed[index] for r in side) for side in rows)
         parts.append(f"{mine} vs {theirs}{unit}")
     if len(parts) > LISTED:
         return f"{len(parts)} cases ({table.label})"
-    head = f"{claim.method} vs {claim.rivals[0]}: " if parts and named else ""
+    head = f"{claim.method} vs {rival}: " if parts and named else ""
     return head + "; ".join(parts) if parts else "-"
 
 
