@@ -47,14 +47,15 @@ class Size(click.ParamType):
               help="The animation; its suffix says the format.")  # fmt: skip
 @click.option("--speed", type=POSITIVE, default=10.0, show_default=True,
               help="Times real time (a player's initial speed).")
-@click.option("--size", type=Size(), default="800x600", show_default=True,
+@click.option("--size", type=Size(), default="800x600", show_default=True, metavar="WxH",
               help="Width x height in pixels (at a fixed dpi).")
 @click.option("--wake", type=NON_NEGATIVE, default=60.0, show_default=True,
               help="Seconds of track drawn behind each ship.")
 @click.option("--fps", type=click.IntRange(1, 60), default=10, show_default=True,
               help="Frames per second of a GIF or MP4.")
 @click.option("--tolerance", type=POSITIVE, default=0.5, show_default=True,
-              help="A player's decimation bound in metres (docs/animate.md).")
+              help="A player's decimation tolerance in metres: what it draws is within 1.15 "
+              "times this of the trace (docs/animate.md).")
 @summary_option
 def animate(trace: str, events: str | None, map_path: str | None, output: str, speed: float,
             size: tuple[int, int], wake: float, fps: int, tolerance: float,
