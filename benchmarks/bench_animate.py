@@ -22,6 +22,7 @@ Usage: python benchmarks/bench_animate.py [--repeat 1] [--ais] [--formats gif,mp
 from __future__ import annotations
 
 import argparse
+import os
 import shutil
 import subprocess
 import sys
@@ -107,6 +108,7 @@ def main(argv=None) -> None:
         header = f"{'run':24} {'ships':>5} {'run s':>6} {'read s':>7}"
         for f in formats:
             header += f" | {f + ' s':>7} {f + ' bytes':>11} {'frames':>6}"
+        print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores at the start")
         print(header)
         for name, trace in runs.items():
             read, scene = best(lambda trace=trace: load_scene(trace), args.repeat)
@@ -117,6 +119,7 @@ def main(argv=None) -> None:
                 frames = "" if result.frames is None else str(result.frames)
                 line += f" | {seconds:7.2f} {len(result.content):11d} {frames:>6}"
             print(line, flush=True)
+        print(f"load average {os.getloadavg()[0]:.1f} at the end")
 
 
 if __name__ == "__main__":
