@@ -291,8 +291,8 @@ def statistic(results: Results, kind: str, case: str, method: str, metric: str,
     ``std`` (ddof 1), ``of-best`` the metric of the run with the lowest ``fitness``; None when
     there is no data (or one run for a spread). With ``succeeded``, over the jobs that
     succeeded only (:attr:`JobResults.succeeded`)."""
-    jobs = [j for j in results.select(kind, case, method) if j.number(metric) is not None
-            and (j.succeeded or not succeeded)]  # fmt: skip
+    jobs = sorted((j for j in results.select(kind, case, method) if j.number(metric) is not None
+                   and (j.succeeded or not succeeded)), key=pairing_key)  # fmt: skip
     return summarise([j.number(metric) for j in jobs], name,
                      [j.number("fitness") for j in jobs])  # fmt: skip
 
@@ -300,7 +300,9 @@ def statistic(results: Results, kind: str, case: str, method: str, metric: str,
 def summarise(values: Sequence[float], name: str,
               fitness: Sequence[float | None] = ()) -> float | None:  # fmt: skip
     """The figure ``name`` (:func:`statistic`) of ``values``; ``of-best`` takes the value whose
-    ``fitness`` (one per value, None: unknown) is lowest."""
+    ``fitness`` (one per value, None: unknown) is lowest, of equal fitnesses the first: give
+    the values in :func:`pairing_key` order (case, then seed), the one tie rule of the
+    report (docs/statistics.md)."""
     if name == "of-best":
         known = [(f, v) for f, v in zip(fitness, values, strict=True) if f is not None]
         return min(known, key=lambda fv: fv[0])[1] if known else None
