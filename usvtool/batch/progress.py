@@ -1,7 +1,8 @@
 """Progress on stderr: a rich progress bar on a terminal, plain lines otherwise.
 
 Both print each failure as it happens and a final line with the counts and the time. The plain
-lines come every :data:`EVERY_S` seconds (and are what a log file or CI shows).
+lines come every :data:`EVERY_S` seconds (and are what a log file or CI shows), each with the
+time left at the pace so far (:func:`remaining`), as the bar shows it.
 """
 
 from __future__ import annotations
@@ -14,6 +15,18 @@ EVERY_S = 5.0
 
 def counts(done: int, skipped: int, failed: int) -> str:
     return f"{done} done, {skipped} skipped, {failed} failed"
+
+
+def remaining(elapsed: float, ran: int, left: int) -> str:
+    """``, about N s left``: the jobs left at the pace of the jobs run so far (the skipped ones,
+    already done, took no time); '' before any job ran or when none is left.
+
+    >>> remaining(50.0, 10, 30), remaining(50.0, 0, 30), remaining(9.0, 10, 0)
+    (', about 150 s left', '', '')
+    """
+    if ran == 0 or left == 0:
+        return ""
+    return f", about {elapsed / ran * left:.0f} s left"
 
 
 class Lines:
@@ -42,7 +55,9 @@ class Lines:
             self.last = now
             finished = self.skipped + self.done + self.failed
             tally = counts(self.done, self.skipped, self.failed)
-            self.say(f"batch: {finished}/{self.total} ({tally}) after {now - self.started:.0f} s")
+            elapsed = now - self.started
+            left = remaining(elapsed, self.done + self.failed, self.total - finished)
+            self.say(f"batch: {finished}/{self.total} ({tally}) after {elapsed:.0f} s{left}")
 
     def close(self) -> None:
         elapsed = time.monotonic() - self.started

@@ -42,35 +42,50 @@ def report(tables, output, pdf, allow_missing, summary_path) -> None:
     if summary_path:
         write_summary(summary_path, summary)
     emit(summary)
+    click.echo(summary_line(summary), err=True)
 
 
 def summary_line(summary: dict) -> str:
-    """The one line ``make report`` ends with (from the summary JSON): where the report is, the
-    PDF's pages (main body and in all) and how many of the papers' claims get each verdict,
+    """The one line ``make report`` and ``usvtool report`` end with (from the summary JSON):
+    where the report is and its size (the HTML with its figures inline; the PDF), the PDF's
+    pages (main body and in all) and how many of the papers' claims get each verdict,
     then, when the pipelines declared any, the user's claims' (kept apart).
 
     >>> summary_line({"output": "build/report/index.html", "pdf": "build/report/report.pdf",
     ...               "pdf_pages": 41, "main_pages": 28, "pdf_hint": None,
+    ...               "html_bytes": 12_345_678, "pdf_bytes": 2_100_000,
     ...               "claims": {"holds": 3, "does not hold": 1, "not tested": 0}})
-    'report: build/report/index.html and build/report/report.pdf, 28 pages of main body, 41 in \
-all; claims: 3 holds, 1 does not hold, 0 not tested'
+    'report: build/report/index.html (12.3 MB) and build/report/report.pdf (2.1 MB), 28 pages \
+of main body, 41 in all; claims: 3 holds, 1 does not hold, 0 not tested'
     >>> summary_line({"output": "r/index.html", "pdf": None, "pdf_hint": None,
     ...               "claims": {"holds": 3}, "your_claims": {"holds": 1, "inconclusive": 1}})
     'report: r/index.html, no PDF (--no-pdf); claims: 3 holds; your claims: 1 holds, 1 \
 inconclusive'
     """
+    html = _size(summary.get("html_bytes"))
     if summary.get("pdf"):
-        where = (f"{summary['output']} and {summary['pdf']}, {summary['main_pages']} pages of "
-                 f"main body, {summary['pdf_pages']} in all")  # fmt: skip
+        where = (f"{summary['output']}{html} and {summary['pdf']}{_size(summary.get('pdf_bytes'))}"
+                 f", {summary['main_pages']} pages of main body, {summary['pdf_pages']} in all")
     else:
         why = "WeasyPrint cannot run: pdf_hint" if summary.get("pdf_hint") else "--no-pdf"
-        where = f"{summary['output']}, no PDF ({why})"
+        where = f"{summary['output']}{html}, no PDF ({why})"
     claims = ", ".join(f"{n} {verdict}" for verdict, n in summary["claims"].items())
     line = f"report: {where}; claims: {claims or 'none'}"
     yours = summary.get("your_claims") or {}
     if any(yours.values()):
         line += "; your claims: " + ", ".join(f"{n} {verdict}" for verdict, n in yours.items())
     return line
+
+
+def _size(n: int | None) -> str:
+    """`` (12.3 MB)`` of ``n`` bytes; '' when unknown.
+
+    >>> _size(12_345_678), _size(5_400), _size(None)
+    (' (12.3 MB)', ' (5.4 kB)', '')
+    """
+    if n is None:
+        return ""
+    return f" ({n / 1e6:.1f} MB)" if n >= 1e6 else f" ({n / 1e3:.1f} kB)"
 
 
 def stage_methods() -> tuple[str, ...]:
