@@ -307,3 +307,19 @@ def test_animate_imports_neither_the_report_sections_nor_scipy():
             "assert not bad, bad\n")  # fmt: skip
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
+
+
+def test_a_failure_while_writing_leaves_no_output_nor_temporary(run, usv, outdir, monkeypatch):
+    """The animation and its --summary are renamed into place together, or neither."""
+    import usvtool.cli.options
+    from usvtool.errors import UsvError
+
+    def fail(path, summary):
+        raise UsvError(f"{path}: no space left on device")
+
+    monkeypatch.setattr(usvtool.cli.options, "write_summary", fail)
+    r = usv("animate", run / "trace.csv", "-o", outdir / "old.gif", "--summary",
+            outdir / "s.json", *SMALL)  # fmt: skip
+    assert r.exit_code == 1
+    one_line_error(r, "no space left")
+    assert listing(outdir) == ["old.gif"] and (outdir / "old.gif").read_bytes() == b"earlier"
