@@ -24,6 +24,7 @@ from usvtool.report import figures as F
 from usvtool.report.figures.encounters import draw_ship
 from usvtool.report.figures.raster import PREVIEW_HATCH, PREVIEW_STRIP_PX, ChartImage, display_rgb
 from usvtool.report.figures.styles import DPI, MIN_FONT_PT, ship_styles, style
+from usvtool.report.figures.wind import Difference, arrival_differences
 from usvtool.trace import Trace, format_events
 
 pytestmark = pytest.mark.slow  # every figure drawn
@@ -91,7 +92,18 @@ def all_plots() -> dict[str, F.Plot]:
         "states": F.states_against_time(trace),
         "nearest": F.nearest_distance({"ccdwa": trace, "udwa": other}, "nearest", limit=20),
         "preprocessing": F.preprocessing(chart_image(), grid, "preprocessing"),
+        "boxplots_clipped": F.boxplots({"turns": FAR_TURNS}, "one far value"),
+        "differences_clipped": arrival_differences(FAR_DIFFERENCES, "one far scene"),
     }
+
+
+#: astar's one route turns 33 times beside the optimizers' 1-5: beyond the axis.
+FAR_TURNS = {"wso": [3.0, 3.0, 2.0, 5.0], "iwso": [1.0, 3.0, 3.0], "astar": [33.0]}
+#: udwa+ arrives 105 s later on one scene, the others within 5 s of the reference.
+FAR_DIFFERENCES = [
+    Difference("udwa - dwa", "udwa", {"s0": -3.0, "s1": -2.0, "s2": -4.0}, 0, -3.0, -4.0, -2.0),
+    Difference("udwa+ - dwa", "udwa+", {"s0": -1.0, "s1": 105.0, "s2": 1.0}, 0, 0.0, -1.0, 1.0),
+]
 
 
 # --- helpers ----------------------------------------------------------------------------------
@@ -152,10 +164,12 @@ def plots(drawn) -> dict[str, F.Plot]:
 #: 7.165 - 0.85 - 0.15 - 2.3 = 3.865) and 0.35 + 0.55 in of margins, 4.4 in; convergence
 #: 7.2 x 4.4; boxplots two panels in one row, 2.9 + 0.4 in; snapshots three panels of
 #: (7.165 - 0.6) / 3 in and 0.25 in each, 0.9 in more, 3.338 in; states 7.2 x 5.6; nearest
-#: 7.2 x 3.9; preprocessing two panels of (7.165 - 0.5) / 2 in, a square grid, and 1.1 in, 4.433 in.
+#: 7.2 x 3.9; preprocessing two panels of (7.165 - 0.5) / 2 in, a square grid, and 1.1 in, 4.433 in;
+#: boxplots_clipped one panel, 7.2 x 3.3 in; differences_clipped two rows, 7.2 x (0.9 + 2 x 0.7).
 SIZES = {"routes": (1074, 660), "routes_chart": (1074, 660), "convergence": (1080, 660),
          "boxplots": (1080, 495), "snapshots": (1074, 500), "states": (1080, 840),
-         "nearest": (1080, 585), "preprocessing": (1074, 664)}  # fmt: skip
+         "nearest": (1080, 585), "preprocessing": (1074, 664), "boxplots_clipped": (1080, 495),
+         "differences_clipped": (1080, 345)}  # fmt: skip
 
 
 @pytest.mark.parametrize("name", sorted(SIZES))
@@ -309,6 +323,21 @@ def test_a_route_along_the_edges_is_marked_in_the_map_its_legend_and_its_data():
     assert kinds == ["route-edges"] * 3 + ["route"] * 3 + ["start", "goal"]
     with pytest.raises(UsvError, match="hugging names no route: pso"):
         F.routes_on_grid(small_grid(), two_routes(), (5, 5), (95, 95), "", hugging=["pso"])
+
+
+def test_a_far_value_is_marked_at_the_axis_edge_and_kept_in_the_data(drawn):
+    plots, figs = drawn
+    names = list(plots)
+    boxes = figs[names.index("boxplots_clipped")].axes[0]
+    # the rest 1..5 padded by 12 % of 4 each side; astar's 33 a mark with its value
+    assert boxes.get_ylim() == pytest.approx((1 - 0.48, 5 + 0.48))
+    assert [t.get_text() for t in boxes.texts] == ["33"]
+    assert ["turns", "astar", "0", "33.000000"] in rows(plots["boxplots_clipped"])
+    differences = figs[names.index("differences_clipped")].axes[0]
+    # every scene and interval but the 105 s: -4..1 s, padded by 12 % of 5
+    assert differences.get_xlim() == pytest.approx((-4 - 0.6, 1 + 0.6))
+    assert [t.get_text() for t in differences.texts] == ["105"]
+    assert ["udwa+ - dwa", "s1", "105.000", "", ""] in rows(plots["differences_clipped"])
 
 
 def test_a_long_route_is_shown_in_its_reach_not_the_whole_chart():

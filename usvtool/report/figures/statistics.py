@@ -15,6 +15,7 @@ from usvtool.report.figures.canvas import (
     panel_grid,
     png,
 )
+from usvtool.report.figures.outliers import limits, mark
 from usvtool.report.figures.styles import ordered, style
 
 #: Decimals of the costs and metric values in the data CSV.
@@ -69,6 +70,20 @@ def convergence(curves: dict[str, list[list[float]]], title: str) -> Plot:
     return Plot(image, csv_text(("algorithm", "iteration", "median", "q1", "q3"), rows))
 
 
+def _clip(ax, boxes: list[np.ndarray]) -> None:
+    """Clip the panel's value axis by :func:`~usvtool.report.figures.outliers.limits` over every
+    box's values, each box's values beyond marked at the edge above or below it."""
+    found = limits(np.concatenate([np.ravel(b) for b in boxes])) if boxes else None
+    if found is None or not found.clipped:
+        return
+    ax.set_ylim(found.low, found.high)
+    for i, b in enumerate(boxes, start=1):
+        if found.above is not None:
+            mark(ax, i, b[b > found.above], "high")
+        if found.below is not None:
+            mark(ax, i, b[b < found.below], "low")
+
+
 def _marks(n: int, k: int, of: int) -> tuple[int, int]:
     """``markevery`` of the ``k``-th of ``of`` curves of ``n`` points: every ``n // 10`` points
     from an offset of ``k / of`` of that step.
@@ -87,7 +102,8 @@ def boxplots(values: dict[str, dict[str, list[float]]], title: str,
     the quartile box, whiskers to the furthest value within 1.5 IQR, the values beyond as points. An
     algorithm without values in a metric keeps its place, empty. Each algorithm's box in its
     registered colour, its edge in its family's line style, under its name or its ``labels``
-    entry.
+    entry. A panel's axis leaves out the values a few far ones would squash
+    (:mod:`~usvtool.report.figures.outliers`): those are marked at its edge with their value.
 
     Data: ``metric,algorithm,seed_index,value``, one row per value (6 decimals).
     """
@@ -108,6 +124,7 @@ def boxplots(values: dict[str, dict[str, list[float]]], title: str,
                 patch.set_facecolor(look.color)
                 patch.set_alpha(0.6)
                 patch.set_linestyle(look.linestyle)
+            _clip(ax, list(per.values()))
             ax.set_title(metric)
             ax.tick_params(axis="x", labelrotation=60)
         for ax in axes[len(data):]:

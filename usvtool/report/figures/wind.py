@@ -19,6 +19,7 @@ import numpy as np
 from usvtool.errors import UsvError
 from usvtool.report.figures.canvas import Plot, csv_text, figure, finite_array, fixed, png
 from usvtool.report.figures.maps import GOAL, START
+from usvtool.report.figures.outliers import limits, mark
 from usvtool.report.figures.raster import MAX_SIDE, map_axes
 from usvtool.report.figures.styles import style
 from usvtool.trace import OWN, Trace
@@ -234,10 +235,31 @@ def speed_made_good(runs: dict[str, list[tuple[Trace, tuple[float, float]]]],
     return Plot(picture, csv_text(("controller", "t", "under_way", "median", "q25", "q75"), rows))
 
 
+def _clip(ax, differences: Sequence[Difference]) -> None:
+    """Clip the time axis by :func:`~usvtool.report.figures.outliers.limits` over every scene's
+    difference and every estimate and interval, the scenes beyond marked at the row's edge."""
+    ends = [v for d in differences if d.estimate is not None
+            for v in (d.estimate, d.low, d.high)]  # fmt: skip
+    found = limits([v for d in differences for v in d.scenes.values()] + ends)
+    if found is None or not found.clipped:
+        return
+    ax.set_xlim(found.low, found.high)
+    for i, d in enumerate(differences):
+        values = np.array(list(d.scenes.values()), float)
+        if found.above is not None:
+            mark(ax, i, values[values > found.above], "high", axis="x")
+        if found.below is not None:
+            mark(ax, i, values[values < found.below], "low", axis="x")
+
+
 def arrival_differences(differences: Sequence[Difference], title: str) -> Plot:
     """One row per comparison: each scene's arrival difference (dots, where both arrived), the
     estimate with its 95 % interval (a bar), zero dotted, and beside it the estimate, the
     interval and the pairs where a run did not arrive (or why there is no estimate).
+
+    The time axis leaves out the few scenes' differences that would squash the rest
+    (:mod:`~usvtool.report.figures.outliers`): each is marked at the edge of its row with its
+    value.
 
     Data: ``comparison,case,difference_s,low_s,high_s``: a row per scene drawn, then the
     estimate (case ``estimate``; empty when undefined), 3 decimals.
@@ -266,6 +288,7 @@ def arrival_differences(differences: Sequence[Difference], title: str) -> Plot:
                 note = d.note
             total = len(d.scenes) + d.failed
             notes.append(note + (f"\n{d.failed} of {total} pairs failed" if d.failed else ""))
+        _clip(ax, differences)
         ax.axvline(0.0, color="0.3", linewidth=0.8, linestyle=":")
         ax.set_yticks(range(len(differences)), [d.label for d in differences])
         ax.set_ylim(len(differences) - 0.5, -0.5)
