@@ -101,7 +101,10 @@ def chart_section(results: Results, chart: str) -> Section:
                                      "Length, turns, smoothness mot and planning time over "
                                      "the collision-free routes of each algorithm's seeds (a "
                                      "label says how many when some collide: a route through "
-                                     "land is a failure, not a short route).",
+                                     "land is a failure, not a short route). A value far "
+                                     "enough to squash a panel is a triangle at its edge with "
+                                     "its value (docs/report-figures.md, 'Outliers at the "
+                                     "axis's edge'); the data keep it.",
                                      plot.png, plot.data))  # fmt: skip
     section.blocks.append(metrics_table(results, chart, methods))
     return section

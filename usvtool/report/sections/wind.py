@@ -203,8 +203,10 @@ def group_blocks(group: str, runs: Group, controllers: list[str]) -> list[Figure
             f"wind-{name}-differences", f"Arrival differences in wind: {group}",
             f"Each scene's arrival time less {REFERENCE}'s (dots: the scenes where both "
             "arrived) and the Hodges-Lehmann estimate with its 95 % bootstrap interval (diamond "
-            "and bar; over every pair, so undefined when a run did not arrive).", plot.png,
-            plot.data))
+            "and bar; over every pair, so undefined when a run did not arrive). A scene far "
+            "enough to squash the axis is a triangle at its edge with its value "
+            "(docs/report-figures.md, 'Outliers at the axis's edge'); the data keep it.",
+            plot.png, plot.data))
     blocks.append(table)
     return blocks
 
