@@ -323,3 +323,12 @@ def test_a_failure_while_writing_leaves_no_output_nor_temporary(run, usv, outdir
     assert r.exit_code == 1
     one_line_error(r, "no space left")
     assert listing(outdir) == ["old.gif"] and (outdir / "old.gif").read_bytes() == b"earlier"
+
+
+def test_names_are_drawn_as_text_in_a_gif(usv, tmp_path):
+    """A scenario or ship name with Matplotlib's mathtext signs is drawn as it is."""
+    trace_path = synthetic_run(tmp_path, 2, 5.0, scenario="a$\\frac{x$_{b}$ $",
+                               name_of=lambda j: "$x^2$")  # fmt: skip
+    r = usv("animate", trace_path, "-o", tmp_path / "a.gif", "--size", "200x160", "--speed",
+            "10", "--fps", "2")  # fmt: skip
+    assert r.exit_code == 0, r.stderr

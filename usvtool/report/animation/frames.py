@@ -158,7 +158,8 @@ def render(scene: Scene, width: int, height: int, times: np.ndarray,
                     zorder=1.5)  # fmt: skip
         if scene.title:
             ax.text(0.01, 0.985, scene.title, transform=ax.transAxes, va="top", fontsize=9,
-                    bbox={"fc": "white", "ec": "none", "alpha": 0.75, "pad": 2})  # fmt: skip
+                    parse_math=False, bbox={"fc": "white", "ec": "none", "alpha": 0.75,
+                                            "pad": 2})  # a name's $ is no mathtext  # fmt: skip
         left = 62 / width  # room for the kinds' names
         tl = fig.add_axes((left, 0.3 * timeline / height, 0.985 - left, 0.62 * timeline / height))
         _draw_timeline(tl, scene)
