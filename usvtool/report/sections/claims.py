@@ -132,9 +132,15 @@ def _raw(better: str, *values: float) -> tuple[float, ...]:
 
 
 def _span(low: float, high: float, digits: int = 3) -> str:
-    """``[low, high]`` to ``digits`` significant digits (``-inf``, ``inf`` as themselves)."""
+    """``[low, high]`` to ``digits`` significant digits (``-inf``, ``inf`` as themselves: a
+    distribution-free interval too few values can reach).
+
+    >>> _span(-137.2, -106.8), _span(float("inf"), float("-inf"))
+    ('[-137, -107]', '[-inf, inf]')
+    """
     low, high = min(low, high), max(low, high)
-    return f"[{_g(low, digits)}, {_g(high, digits)}]".replace("failed", "inf")
+    bound = [("-inf" if x < 0 else "inf") if math.isinf(x) else _g(x, digits) for x in (low, high)]
+    return f"[{bound[0]}, {bound[1]}]"
 
 
 def effect_text(t: Test, claim: Claim) -> str:
