@@ -1,7 +1,8 @@
 """The part "Against the field's baselines" (usvtool/report/sections/baselines.py) and the
 summary's line on it, on a hand-made results table: which groups it covers, each controller's
-outcomes (a controller's failure a failure), its medians and its paired comparisons with vo and
-sbmpc, the effects and p worked out by hand."""
+outcomes (a controller's failure a failure), its medians over the measured runs and its paired
+comparisons with vo and sbmpc (the failures by exact McNemar, the metrics on the pairs where
+both runs measured them), the effects and p worked out by hand."""
 
 from __future__ import annotations
 
@@ -94,59 +95,111 @@ def test_each_controllers_outcomes_count_every_failure(results):
     assert rows[0][2:] == ["6", "5", "1", "0", "10", "0", "0", "2", "0"]
     # the plugin's failed program: did not arrive, and counted as a controller failure
     assert rows[3][2:6] == ["6", "5", "0", "1"] and rows[3][-1] == "1"
-    # the medians over the runs that arrived without collision: udwa 105..109 -> 107 (IQR
-    # 108 - 106), 30..34 -> 32; mine without its failed run's 90 m: 91..95, 26..30; vo
-    # 100..105 -> 102.5 (IQR 103.75 - 101.25)
+    # the medians over the measured runs (a run that collided or whose controller failed
+    # measures nothing): udwa 105..109 -> 107 (IQR 108 - 106), its collided run's 1 m left
+    # out: 30..34 -> 32; mine without its failed program's 90 m: 91..95, 26..30; vo 100..105
+    # -> 102.5 (IQR 103.75 - 101.25)
     rows = [r[2:4] for r in texts(against)]
     assert rows[0] == ["107.0 (2.0)", "32.0 (2.0)"]  # udwa
-    assert rows[3] == ["93.0 (2.0)", "28.0 (2.0)"]  # mine
-    assert rows[1][0] == "102.5 (2.5)"  # vo
-    # sbmpc did not run the imazu cases; 2 paired runs are too few for a comparison
-    assert texts(against)[4][4:] == ["-", "-", "did not run", "did not run"]
-    assert texts(against)[5][4:] == ["itself", "itself", "did not run", "did not run"]
+    assert rows[4] == ["93.0 (2.0)", "28.0 (2.0)"]  # mine, after its row against sbmpc
+    assert rows[2][0] == "102.5 (2.5)"  # vo
+    # sbmpc did not run the imazu cases: no row against it; 2 paired runs are too few for a
+    # comparison; vo alone there has no other baseline
+    assert texts(against)[6][1:] == ["udwa", "301.0 (0.0)", "33.0 (0.0)", "vo", "-", "-", "-"]
+    assert texts(against)[7][1:] == ["vo (baseline)", "300.0 (0.0)", "13.0 (0.0)", "-", "-",
+                                     "-", "-"]  # fmt: skip
     assert every.placement == "appendix" and outcomes.placement == against.placement == "main"
 
 
 def test_the_comparisons_with_each_baseline_by_hand(results):
     every = baselines.section(results).tables()[-1]
+    assert every.columns == [
+        "group", "controller", "baseline", "metric", "medians (IQR); runs entered",
+        "effect [95 %]; change %", "test: p (uncorrected), rank effect [95 %]", "failures",
+        "outcome"]  # fmt: skip
     got = {(r[1], r[2], r[3]): r for r in texts(every)}
     assert {r[0] for r in texts(every)} == {"emergency"}  # imazu: 2 runs a side, left out
-    # udwa against vo, arrival: 5 s later in 5 scenes and a collision (the worst): every pair
-    # worse, r = -1, the interval the point, exact p of 6 pairs all one sign 2 / 2^6; udwa's
-    # median (IQR) over 105..109 and the collision (the worst): 107.5 (108.75 - 106.25)
+    # udwa against vo, arrival: the collided scene measures nothing and leaves the test: 5
+    # pairs, udwa 5 s later in each: r = -1, its bootstrap interval the point; exact p of 5
+    # pairs all one sign 2 / 2^5 = 0.0625, not significant. Medians over the 5 pairs: 105..109
+    # -> 107 (IQR 2), 100..104 -> 102 (2). The shift +5 s: with 5 pairs no 95 %
+    # distribution-free interval exists (the smallest two-sided p is 1/16), so it is
+    # unbounded; the medians' change -(107 - 102) / 102 = -4.9 %. The failures: udwa's one
+    # collision against none, one discordant pair: McNemar p = 1
     row = got[("udwa", "vo", "arrival_time_s")]
-    assert row[4:] == ["6/6 (1/0)", "108 (2.5)", "102 (2.5)", "W", "r -1.00 [-1.00, -1.00]",
-                       f"{2 / 64:.2g}", "worse"]  # fmt: skip
-    # closest: 10 m further in 5 scenes (signed ranks tied at 3: W+ 15), the collision the
-    # worst (rank 6: W- 6): r = (15 - 6) / 21; p 34/64 by the sign flips' distribution
+    assert row[4] == "107 (2) vs 102 (2); 5 of 6 pairs measured"
+    assert row[5].startswith("shift 5 s [-inf, inf]; -4.9 % [")
+    assert row[6] == f"Wilcoxon signed-rank p {2 / 32:.2g}, r -1.00 [-1.00, -1.00]"
+    assert row[7:] == ["failed 1/6 vs 0/6, McNemar p 1", "n.s."]
+    # closest: the collided run's 1 m left out as well: 10 m further in the 5 pairs, r +1,
+    # p 2/32, n.s.; change (32 - 22) / 22 = +45.5 %
     row = got[("udwa", "vo", "closest_distance_m")]
-    assert row[8].startswith(f"r {9 / 21:+.2f} [") and row[-1] == "n.s."
-    assert float(row[9]) > 0.05
-    # against sbmpc: 5 s earlier but the collision (r +9/21, n.s.); 10 m closer (worse)
+    assert row[4] == "32 (2) vs 22 (2); 5 of 6 pairs measured"
+    assert row[5].startswith("shift 10 m [-inf, inf]; +45.5 % [")
+    assert row[6].startswith(f"Wilcoxon signed-rank p {2 / 32:.2g}, r 1.00")
+    assert row[-1] == "n.s."
+    # against sbmpc: 5 s earlier, 10 m closer in the same 5 pairs: both n.s. (p 2/32)
     assert got[("udwa", "sbmpc", "arrival_time_s")][-1] == "n.s."
-    assert got[("udwa", "sbmpc", "closest_distance_m")][-1] == "worse"
-    # the baselines against each other, both ways
-    assert got[("vo", "sbmpc", "arrival_time_s")][-1] == "better"
+    assert got[("udwa", "sbmpc", "closest_distance_m")][-1] == "n.s."
+    # the baselines against each other, both ways: 6 pairs all one sign, p = 2/64 = 0.031,
+    # shift 10 s [10, 10] (6 pairs reach a 95 % interval: 2/64 < 0.05); no run failed
+    row = got[("vo", "sbmpc", "arrival_time_s")]
+    assert row[4:] == ["102 (2.5) vs 112 (2.5); 6 of 6 pairs measured",
+                       row[5], f"Wilcoxon signed-rank p {2 / 64:.2g}, r 1.00 [1.00, 1.00]",
+                       "-", "better"]  # fmt: skip
+    assert row[5].startswith("shift -10 s [-10, -10]; +8.9 % [")  # (112.5 - 102.5) / 112.5
     assert got[("sbmpc", "vo", "closest_distance_m")][-1] == "better"
+    assert got[("vo", "sbmpc", "closest_distance_m")][-1] == "worse"
     assert ("vo", "vo", "arrival_time_s") not in got
-    # the failed program counts as the worst: 5 scenes better by 10 s, one failure
+    # the failed program measures nothing: 5 pairs 10 s earlier (r +1, p 2/32, n.s.), its
+    # failure against none (McNemar p 1)
     row = got[("mine", "vo", "arrival_time_s")]
-    assert row[4] == "6/6 (1/0)" and row[8].startswith(f"r {9 / 21:+.2f}")
-    # the main table gives the same comparisons' outcomes and effects
+    assert row[4] == "93 (2) vs 103 (2); 5 of 6 pairs measured"
+    assert row[6].startswith("Wilcoxon signed-rank p 0.062, r 1.00")
+    assert row[7:] == ["failed 1/6 vs 0/6, McNemar p 1", "n.s."]
+    # the main table gives the same comparisons in short: the outcome, the shift in units with
+    # the medians' change, r; the failures beside, a row per baseline
     against = baselines.section(results).tables()[1]
-    assert against.columns[4:] == ["against vo: arrival", "against vo: closest",
-                                   "against sbmpc: arrival", "against sbmpc: closest"]
-    rows = {r[1]: r[4:] for r in texts(against)[:4]}
-    assert rows["udwa"] == ["worse, r -1.00", f"n.s., r {9 / 21:+.2f}",
-                            f"n.s., r {9 / 21:+.2f}", "worse, r -1.00"]  # fmt: skip
-    assert rows["vo (baseline)"] == ["itself", "itself", "better, r +1.00", "worse, r -1.00"]
+    assert against.columns == ["group", "controller", "arrival (s): median (IQR)",
+                               "closest (m): median (IQR)", "against", "arrival", "closest",
+                               "failures"]  # fmt: skip
+    rows = [r[4:] for r in texts(against)]
+    assert rows[0] == ["vo", "n.s., +5 s (-4.9 %), r -1.00", "n.s., +10 m (+45.5 %), r +1.00",
+                       "failed 1/6 vs 0/6, McNemar p 1"]  # udwa  # fmt: skip
+    # udwa against sbmpc: (112 - 107) / 112 = +4.5 %, (32 - 42) / 42 = -23.8 %
+    assert rows[1] == ["sbmpc", "n.s., -5 s (+4.5 %), r +1.00",
+                       "n.s., -10 m (-23.8 %), r -1.00", "failed 1/6 vs 0/6, McNemar p 1"]
+    # vo against sbmpc over all 6: (112.5 - 102.5) / 112.5 = +8.9 %, (22.5 - 42.5) / 42.5
+    assert rows[2] == ["sbmpc", "better, -10 s (+8.9 %), r +1.00",
+                       "worse, -20 m (-47.1 %), r -1.00", "none failed"]  # fmt: skip
+    cells = against.rows[2]
+    assert (cells[5].css, cells[6].css) == ("holds", "fails")
+
+
+def test_failing_every_run_is_worse_with_nothing_measured(tmp_path):
+    # crash collides in each of vo's 6 scenes: no pair measures either metric, but its 6
+    # failures against none are 6 discordant pairs all one way: McNemar's exact p = 2 / 2^6
+    rows = []
+    for i in SCENES:
+        rows += _run(_scene(i), "vo", arrival_time_s=100 + i, closest_distance_m=20 + i)
+        rows += _run(_scene(i), "crash", arrived=False, collision="ts1", closest_distance_m=0.5)
+    (found,) = baselines.standings(_results(tmp_path, rows))
+    crash = next(s for s in found.standings if s.method == "crash")
+    assert baselines.record(crash) == (0, 2, 0, 2)
+    tests = {m: t for _, m, t in crash.tests}
+    assert tests["arrival_time_s"].statistic is None
+    assert tests["arrival_time_s"].failures.p == pytest.approx(2 / 64)
+    row = next(r for r in baselines.against_table([found]).rows if r[1].text == "crash")
+    assert [c.text for c in row[2:]] == ["-", "-", "vo", "worse", "worse",
+                                         f"failed 6/6 vs 0/6, McNemar p {2 / 64:.2g}"]
+    assert row[-1].css == "fails"
 
 
 def test_the_summary_counts_each_controllers_wins_and_losses(results):
     line = summary.against_baselines(results)
-    # udwa: worse in arrival (vo) and closest (sbmpc); vo better in arrival, worse in closest
-    # against sbmpc, sbmpc the mirror; mine worse in closest against sbmpc
-    assert ("emergency: udwa 0/2 of 4, vo 1/1 of 2, sbmpc 1/1 of 2, mine 0/1 of 4; "
+    # udwa and mine: every comparison n.s. (5 measured pairs: p 2/32; the one failure: p 1);
+    # vo better in arrival, worse in closest against sbmpc, sbmpc the mirror
+    assert ("emergency: udwa 0/0 of 4, vo 1/1 of 2, sbmpc 1/1 of 2, mine 0/0 of 4; "
             "imazu: too few paired runs.") in line
     assert line in summary.section(results).paragraphs
 

@@ -9,19 +9,21 @@ part covers every group in which a baseline ran, and in it every controller that
 papers', ours, a pipeline's variants and plugins'). Per controller: its runs, their outcomes and
 COLREGs counts (:class:`usvtool.report.runs.RunTally`: a run that collided or did not arrive, a
 controller that failed among them, is a failure, never a success), the median (IQR) of the main
-metrics over the runs that did not fail and, against each baseline but itself, per main metric
-(arrival time, closest distance), the paired-by-scene comparison of the judging module
+metrics over the measured runs (:func:`usvtool.report.sections.other_methods.measured_values`)
+and, against each baseline but itself, per main metric (arrival time, closest distance), the
+paired-by-scene comparison of the judging module, the claims' own
 (:func:`usvtool.report.sections.other_methods.metric_tests`, on
-:func:`usvtool.report.judging.comparison`: a failed run the worst) with the uncorrected p: a
-description, not a claim.
+:func:`usvtool.report.judging.comparison`: the failures as their own outcome, exact McNemar;
+the metric on the measured pairs, Wilcoxon signed-rank, the Hodges-Lehmann shift in the
+metric's units, TOST) with the uncorrected p: a description, not a claim.
 
 Three layers, kept apart: :func:`groups` and :func:`standings` judge (no page, no file read
 beyond the results table; computed once per :class:`Results` and process: the summary's line
 is derived from them by :func:`record`); the tables (:func:`outcomes_table`,
 :func:`against_table`, :func:`comparisons_table`) and :func:`section` write the page. No
-figure: the tables say it. The part's cost is its comparisons' (about 60 ms each, most of it
-the bootstrap: 64 on ``pipelines/full.yaml``, about 4 s, paid again by the summary, which the
-report builds in another process).
+figure: the tables say it. The part's cost is its comparisons' (most of it the bootstraps: 64
+on ``pipelines/full.yaml``, paid again by the summary, which the report builds in another
+process).
 """
 
 from __future__ import annotations
@@ -39,15 +41,20 @@ from usvtool.report.runs import (
     controller_failed,
     is_family,
 )
+from usvtool.report.sections.claims import _percent, _raw, failures_text, units
 from usvtool.report.sections.other_methods import (
     BUNDLED,
+    CSS,
     LEAST,
     MAIN,
-    effect_text,
+    ROW_CAPTION,
+    ROW_COLUMNS,
+    WORDS,
+    claim_of,
     group,
+    measured_values,
     metric_tests,
-    p_text,
-    value_text,
+    row_cells,
 )
 
 #: The field's baseline controllers (docs/controllers.md) and what each is.
@@ -65,9 +72,10 @@ SHORT = {"arrival_time_s": "arrival", "closest_distance_m": "closest"}
 @dataclass(frozen=True)
 class Standing:
     """One controller in one group: its runs' outcomes and COLREGs counts, how many of them
-    ended because the controller failed, each main metric's values over the runs that did not
-    fail, and its comparisons against each baseline but itself: (baseline, metric, test), when
-    both sides have :data:`LEAST` paired runs or more."""
+    ended because the controller failed, each main metric's measured values
+    (:func:`~.other_methods.measured_values`), and its comparisons against each baseline but
+    itself: (baseline, metric, test), when both sides have :data:`LEAST` paired runs or
+    more."""
 
     method: str
     runs: int
@@ -105,8 +113,7 @@ def standing(results: Results, name: str, method: str, jobs: list[JobResults],
              baselines: tuple[str, ...]) -> Standing:  # fmt: skip
     """The controller ``method``'s :class:`Standing` in the group ``name``."""
     failed_controller = sum(controller_failed(j) for j in jobs)
-    values = {metric: [v for j in jobs if j.succeeded and (v := j.number(metric)) is not None]
-              for metric, *_ in MAIN["runs"]}  # fmt: skip
+    values = {metric: measured_values(jobs, "runs", metric) for metric, *_ in MAIN["runs"]}
     tests = tuple((b, metric, t) for b in baselines if b != method
                   for metric, t in metric_tests(results, "runs", method, b, name))  # fmt: skip
     return Standing(method, len(jobs), RunTally.of(jobs), failed_controller, values, tests)
@@ -128,19 +135,17 @@ def standings(results: Results) -> list[Group]:
     return _DONE[0][1]
 
 
-def record(s: Standing, baseline: str | None = None) -> tuple[int, int, int]:
-    """The controller's comparisons (against ``baseline``, or every baseline): how many it is
-    better in, worse in (uncorrected p < :data:`ALPHA`, by the effect's sign) and of how many."""
+def record(s: Standing, baseline: str | None = None) -> tuple[int, int, int, int]:
+    """The controller's comparisons (against ``baseline``, or every baseline), by their
+    outcome (:attr:`usvtool.report.judging.Test.outcome`): how many it is better in, worse in
+    (its metric at uncorrected p < :data:`ALPHA`, or failing significantly more often),
+    equivalent in (TOST), and of how many."""
     mine = [t for b, _, t in s.tests if baseline in (None, b)]
-    return (sum(t.outcome == "better" for t in mine), sum(t.outcome == "worse" for t in mine),
+    return (*(sum(t.outcome == o for t in mine) for o in ("better", "worse", "equivalent")),
             len(mine))  # fmt: skip
 
 
 # --- the page --------------------------------------------------------------------------------
-
-#: An outcome as the tables word it.
-WORDS = {"better": "better", "worse": "worse", "neither": "n.s."}
-CSS = {"better": "holds", "worse": "fails"}
 
 
 def _figure(values: list[float]) -> Cell:
@@ -177,81 +182,95 @@ def outcomes_table(found: list[Group]) -> Table:
         ["group", "controller", "runs", *TALLY_COLUMNS, "controller failed"], rows)
 
 
-def _against(s: Standing, baseline: str, metric: str) -> Cell:
-    """The controller against a baseline on a metric: better, worse or n.s. with the
-    effect; ``itself``; ``-`` with too few paired runs."""
-    if s.method == baseline:
-        return Cell("itself")
-    t = next((t for b, m, t in s.tests if b == baseline and m == metric), None)
+def _test(s: Standing, baseline: str, metric: str) -> Test | None:
+    return next((t for b, m, t in s.tests if b == baseline and m == metric), None)
+
+
+def _against(t: Test | None, metric: str) -> Cell:
+    """A comparison on one metric in short: the outcome, the Hodges-Lehmann shift in the
+    metric's units (controller - baseline), the relative change (> 0 better) and the rank
+    effect r; ``-`` with too few paired runs, the outcome alone without measured pairs."""
     if t is None:
         return Cell("-")
-    return Cell(f"{WORDS.get(t.outcome, t.outcome)}, r {t.comparison.effect:+.2f}",
-                CSS.get(t.outcome, ""))
+    word = WORDS.get(t.outcome, t.outcome)
+    if t.statistic is None or t.shift is None or t.comparison is None:
+        return Cell(word, CSS.get(t.outcome, ""))
+    better = next(b for m, b, _, _ in MAIN["runs"] if m == metric)
+    (shift,) = _raw(better, t.shift.estimate)
+    unit = f" {units(metric)}" if units(metric) else ""
+    relative = t.statistic.difference.relative
+    change = "" if relative is None else f" ({_percent(100 * relative)} %)"
+    return Cell(f"{word}, {shift:+.3g}{unit}{change}, r {t.comparison.effect:+.2f}",
+                CSS.get(t.outcome, ""))  # fmt: skip
+
+
+def _failures(t: Test | None) -> Cell:
+    """The failures against the baseline (:func:`~.claims.failures_text`), coloured when they
+    differ significantly (uncorrected)."""
+    if t is None:
+        return Cell("-")
+    css = {"better": "holds", "worse": "fails"}.get(t.failure_outcome, "")
+    return Cell(failures_text(t) or "none failed", css)
 
 
 def against_table(found: list[Group]) -> Table:
-    """Per group and controller: the main metrics' median (IQR) over the runs that did not
-    fail, and against each baseline per metric the outcome of the paired comparison."""
-    ran = [b for b in BASELINES if any(b in g.baselines for g in found)]
+    """Per group and controller: the main metrics' median (IQR) over the measured runs, then a
+    row against each other baseline that ran there: per metric the paired comparison in short
+    (:func:`_against`), and the failures' comparison."""
     metrics = MAIN["runs"]
     rows = []
     for g in found:
         for i, s in enumerate(g.standings):
-            rows.append([_first(g, i), Cell(_name(s.method)),
-                         *(_figure(s.values[m]) for m, *_ in metrics),
-                         *(_against(s, b, m) if b in g.baselines else Cell("did not run")
-                           for b in ran for m, *_ in metrics)])  # fmt: skip
+            head = [_first(g, i), Cell(_name(s.method)),
+                    *(_figure(s.values[m]) for m, *_ in metrics)]  # fmt: skip
+            others = [b for b in g.baselines if b != s.method]
+            if not others:
+                rows.append([*head, *(Cell("-") for _ in range(len(metrics) + 2))])
+            for k, b in enumerate(others):
+                tests = [_test(s, b, m) for m, *_ in metrics]
+                first = next((t for t in tests if t is not None), None)
+                rows.append([*(head if k == 0 else [Cell("") for _ in head]), Cell(b),
+                             *(_against(t, m) for t, (m, *_) in zip(tests, metrics,
+                                                                      strict=True)),
+                             _failures(first)])  # fmt: skip
     return Table(
         "baselines-against", "Every controller against the baselines",
-        "Per group and controller: the median (IQR) of the arrival time and of the closest "
-        "centre distance to a target over the runs that arrived without collision; then, "
-        "against each baseline, per metric, the paired-by-scene comparison (a run that "
-        "collided or did not arrive the worst): better or worse at uncorrected p < "
-        f"{ALPHA} (a description, not a claim), n.s. otherwise, with the matched-pairs "
-        "rank-biserial effect r (> 0: the controller better than the baseline); '-' with fewer "
-        f"than {LEAST} paired runs. Each comparison's n, medians, interval and p in the "
-        "appendix.",
-        ["group", "controller", *(f"{h}: median (IQR)" for _, _, h, _ in metrics),
-         *(f"against {b}: {SHORT.get(m, m)}" for b in ran for m, *_ in metrics)],
-        rows)  # fmt: skip
-
-
-def _side(side) -> str:
-    return f"{value_text(side.median)} ({value_text(side.iqr)})"
+        "Per group and controller: the median (IQR) of the arrival time (over the runs that "
+        "arrived without collision) and of the closest centre distance to a target (also over "
+        "those that only never arrived: a run that collided or whose controller failed "
+        "measures nothing); then a row against each other baseline that ran there, per metric "
+        "the paired-by-scene comparison on the pairs where both are measured: better or worse "
+        f"at uncorrected p < {ALPHA} (a description, not a claim; worse also when the "
+        "controller fails significantly more often), equivalent (TOST against the metric's "
+        "smallest effect of interest), n.s. otherwise, with the Hodges-Lehmann shift in the "
+        "metric's units (controller - baseline), the relative change of the medians (> 0 "
+        "better) and the matched-pairs rank-biserial r (> 0: the controller better); and the "
+        "failures, each side's failed of the paired runs with exact McNemar's p, uncorrected. "
+        f"'-' with fewer than {LEAST} paired runs. Each comparison's runs, intervals and p in "
+        "the appendix.",
+        ["group", "controller", *(f"{h}: median (IQR)" for _, _, h, _ in metrics), "against",
+         *(SHORT.get(m, m) for m, *_ in metrics), "failures"], rows)  # fmt: skip
 
 
 def comparisons_table(found: list[Group]) -> Table | None:
-    """Every comparison of a controller with a baseline, per group and main metric: the runs
-    n (failed) of each side, their median (IQR; failures the worst), the test, the effect with
-    its 95 % interval, the uncorrected p and the outcome."""
+    """Every comparison of a controller with a baseline, per group and main metric, as the
+    claims section gives them (:func:`~.other_methods.row_cells`)."""
     rows = []
     for g in found:
         for s in g.standings:
             for baseline, metric, t in s.tests:
-                a, b = t.sides
-                c = t.comparison
-                test = "W" if c.test == inference.WILCOXON else "U"
+                claim = claim_of("runs", s.method, baseline, metric, g.name)
                 rows.append([Cell(g.name), Cell(s.method), Cell(baseline), Cell(metric),
-                             Cell(f"{a.n}/{b.n} ({a.failed}/{b.failed})", "num"),
-                             Cell(_side(a), "num"), Cell(_side(b), "num"), Cell(test),
-                             Cell(effect_text(c), "num"), Cell(p_text(c.p), "num"),
-                             Cell(WORDS.get(t.outcome, t.outcome),
-                                  CSS.get(t.outcome, ""))])  # fmt: skip
+                             *row_cells(t, claim)])  # fmt: skip
     if not rows:
         return None
     return Table(
         "baselines-comparisons", "Every comparison with the baselines",
-        "Per group, controller, baseline and metric: the runs paired by scene, n (failed) of "
-        "each side; the median (IQR) of each over every paired run, a run that collided or did "
-        "not arrive the worst ('failed' where the median or a quartile reaches one); the test "
-        "(W: Wilcoxon signed-rank on the paired differences); the effect (r: matched-pairs "
-        "rank-biserial, > 0 the controller better than the baseline) with its 95 % bootstrap "
-        "interval; the test's two-sided p, uncorrected (a description: a pipeline's claims are "
-        f"judged with Holm's correction in Your claims) and the outcome at p < {ALPHA}. "
-        f"Controllers with fewer than {LEAST} paired runs are left out.",
-        ["group", "controller", "baseline", "metric", "n (failed)", "controller: median (IQR)",
-         "baseline: median (IQR)", "test", "effect [95 %]", "p (uncorrected)", "outcome"],
-        rows, placement=APPENDIX)  # fmt: skip
+        "Per group, controller, baseline and metric, the runs paired by scene, as the claims "
+        f"section gives its comparisons: {ROW_CAPTION}. Controllers with fewer than {LEAST} "
+        "paired runs are left out.",
+        ["group", "controller", "baseline", "metric", *ROW_COLUMNS], rows,
+        placement=APPENDIX)  # fmt: skip
 
 
 def section(results: Results) -> Section | None:
@@ -264,12 +283,16 @@ def section(results: Results) -> Section | None:
         f"The field's baseline controllers {', '.join(f'{b}, {BASELINES[b]}' for b in ran)} "
         "(docs/controllers.md) beside every controller that ran the same scenes, in each scene "
         f"family group where a baseline ran ({', '.join(g.name for g in found)}): per "
-        "controller its outcomes and COLREGs counts, and against each baseline its arrival "
-        "time and closest distance to a target compared scene by scene (the Wilcoxon "
-        "signed-rank test with the matched-pairs rank-biserial effect and its 95 % bootstrap "
-        "interval, the claims' comparison; a run that collided or did not arrive counts as the "
-        "worst). The p are uncorrected, each comparison alone: they describe, they judge no "
-        "claim (to have one judged, declare it in the pipeline: docs/pipelines.md).")
+        "controller its outcomes and COLREGs counts, and against each baseline, compared scene "
+        "by scene as the claims are: its failures (a run that collided or did not arrive, "
+        "exact McNemar), and its arrival time and closest distance to a target on the pairs "
+        "where both runs measured them (a run that collided or whose controller failed "
+        "measures nothing; one that only never arrived keeps its closest distance), by the "
+        "Wilcoxon signed-rank test, with the Hodges-Lehmann shift in seconds or metres and "
+        "its 95 % interval, the relative change, the matched-pairs rank-biserial r and TOST "
+        "against the metric's smallest effect of interest (equivalent). The p are "
+        "uncorrected, each comparison alone: they describe, they judge no claim (to have one "
+        "judged, declare it in the pipeline: docs/pipelines.md).")
     top.blocks += [outcomes_table(found), against_table(found)]
     if (table := comparisons_table(found)) is not None:
         top.blocks.append(table)

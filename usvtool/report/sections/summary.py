@@ -168,18 +168,20 @@ def section(results: Results) -> Section:
 
 def against_baselines(results: Results) -> str:
     """One line: per scene family group where the field's baselines ran, each controller's
-    comparisons with them better / worse of all (:func:`baselines.record`, the section's own
-    standings); '' when no baseline ran."""
+    comparisons with them better / worse of all, and how many equivalent when any
+    (:func:`baselines.record`, the section's own standings); '' when no baseline ran."""
     found = baselines.standings(results)
     if not found:
         return ""
     parts = []
     for g in found:
         counted = [(s.method, baselines.record(s)) for s in g.standings]
-        mine = ", ".join(f"{m} {w}/{lost} of {n}" for m, (w, lost, n) in counted if n)
+        mine = ", ".join(f"{m} {w}/{lost} of {n}" + (f" ({same} equivalent)" if same else "")
+                         for m, (w, lost, same, n) in counted if n)  # fmt: skip
         parts.append(f"{g.name}: {mine or 'too few paired runs'}")
     ran = [b for b in baselines.BASELINES if any(b in g.baselines for g in found)]
     return (f"Against the field's baselines ({' and '.join(ran)}; the section Against the "
             "field's baselines): each controller's comparisons with them, arrival time and "
-            "closest distance paired by scene, better / worse (uncorrected p < "
-            f"{judging.ALPHA}, a description) of all: {'; '.join(parts)}.")
+            "closest distance paired by scene on the runs that measured them, better / worse "
+            f"(uncorrected p < {judging.ALPHA}, a description; worse also when failing "
+            f"significantly more often, exact McNemar) of all: {'; '.join(parts)}.")
