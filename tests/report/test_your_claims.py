@@ -105,6 +105,23 @@ def test_a_relative_claim_holds_fails_or_is_inconclusive(tmp_path):
     rows = _routes("env1", "iwso", [700, 720, 800]) + _routes("env1", "wso", [730, 740])
     (v,) = judging.user_verdicts(load([_table(tmp_path / "b", rows, [relative()])]))
     assert v.verdict == judging.INCONCLUSIVE and v.tests[0].p == pytest.approx(0.8)
+    # wso's routes half a metre longer, interleaved with iwso's: the U test far from
+    # significant; the margin, 1 % of wso's median 703 m = 7.03 m: iwso + 7.03 lies above every
+    # wso route and iwso - 7.03 below every one, each one-sided U test at its extreme, p = 1 /
+    # C(12, 6) = 1 / 924 < 0.05: equivalent
+    rows = (_routes("env1", "iwso", [700, 701, 702, 703, 704, 705])
+            + _routes("env1", "wso", [700.5, 701.5, 702.5, 703.5, 704.5, 705.5]))  # fmt: skip
+    results = load([_table(tmp_path / "e", rows, [relative("same")])])
+    (v,) = judging.user_verdicts(results)
+    (t,) = v.tests
+    assert v.verdict == judging.EQUIVALENT and t.p > 0.05
+    assert t.equivalence.margin == pytest.approx(7.03)
+    assert t.equivalence.p == pytest.approx(1 / 924)
+    section = your_claims.section(results)
+    assert ": 1 equivalent. " in section.paragraphs[0]
+    row = section.tables()[0].rows[0]
+    assert row[4].text.endswith(f"; equivalent within ±7 (TOST p {1 / 924:.2g})")
+    assert (row[-1].text, row[-1].css) == ("equivalent", "equivalent")
     # a case without runs of the rival: not tested
     (v,) = judging.user_verdicts(
         load([_table(tmp_path / "c", SEPARATED, [relative(cases=("env1", "env9"))])])
@@ -185,9 +202,18 @@ def test_your_claims_come_before_the_papers_and_are_counted_apart(tmp_path):
     assert [r[0] for r in rows] == ["mine", "lost"]
     assert rows[0][1] == "iwso against wso: length_m lower (median) in env1"
     assert rows[0][-1] == judging.HOLDS and rows[1][-1] == judging.FAILS
-    # medians 702.5 and 802.5, IQR 2.5 each; U's p, corrected over the two: 2 x 2 / 924
-    assert rows[0][2] == "702 (2.5) vs 802 (2.5); n 6/6"
-    assert rows[0][4] == "U p 0.0043, δ 1.00 [1.00, 1.00]"
+    # medians 702.5 and 802.5, IQR 2.5 each, every route measured; the differences iwso - wso,
+    # (i - j) - 100 for i, j in 0..5, have the median -100 m (the Hodges-Lehmann shift); the
+    # medians' change (802.5 - 702.5) / 802.5 = +12.5 %; U's p, corrected over the two:
+    # 2 x 2 / 924 = 0.0043; no route failed: no failures' test
+    assert rows[0][2] == "median 702 (2.5) vs 802 (2.5), n 6/6"
+    assert rows[0][3].startswith("shift -100 m [") and "; +12.5 % [" in rows[0][3]
+    assert rows[0][4] == "Mann-Whitney U p 0.0043, δ 1.00 [1.00, 1.00]"
+    assert table_.columns == ["claim", "what it says", "ours", "effect [95 %]", "tests",
+                              "verdict"]  # fmt: skip
+    # two metric p in the family, no failure: none of the failures'
+    assert "The 2 p of these claims' metric comparisons are Holm-corrected together, in " in (
+        section.paragraphs[0])
     # the summary: the papers' verdicts and the user's, in two tables, counted apart
     page1 = next(s for s in parts if s.id == "summary")
     yours = next(t for t in page1.tables() if t.id == "summary-your-verdicts")
@@ -198,8 +224,8 @@ def test_your_claims_come_before_the_papers_and_are_counted_apart(tmp_path):
         for p in page1.paragraphs
     )
     assert claims.counts(parts, your_claims.TABLE) == {
-        judging.HOLDS: 1, judging.FAILS: 1, judging.INCONCLUSIVE: 0, judging.UNTESTABLE: 0,
-        judging.UNTESTED: 0}  # fmt: skip
+        judging.HOLDS: 1, judging.FAILS: 1, judging.EQUIVALENT: 0, judging.INCONCLUSIVE: 0,
+        judging.UNTESTABLE: 0, judging.UNTESTED: 0}  # fmt: skip
     papers = claims.counts(parts)
     assert sum(papers.values()) == len(judging.paper_verdicts(results)) - sum(
         v.variant for v in judging.paper_verdicts(results)
