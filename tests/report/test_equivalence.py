@@ -123,3 +123,25 @@ def test_same_seed_same_bytes():
     ]
     for run in runs:
         assert pickle.dumps(run()) == pickle.dumps(run())
+
+
+def test_noether_by_hand_and_beside_the_simulation():
+    from scipy.special import ndtri
+
+    from usvtool.report.equivalence import noether
+
+    z = ndtri(0.975) + ndtri(0.8)  # 2.8016
+    # independent: every a above every b, q = 1: N = z^2 / (3 / 4) for both groups, half each
+    a, b = np.array([1.0, 2.0]), np.array([0.0, 0.0])
+    assert noether(a, b, paired=False, power=0.8, alpha=0.05) == pytest.approx(z * z / 0.75 / 2)
+    # paired: d = 1, 1, -1: Walsh sums over i < j are 2, 0, 0: q = (1 + 0.5 * 2) / 3 = 2 / 3
+    d = np.array([1.0, 1.0, -1.0])
+    got = noether(d, np.zeros(3), paired=True, power=0.8, alpha=0.05)
+    assert got == pytest.approx(z * z / (3 * (2 / 3 - 0.5) ** 2))
+    assert noether(np.array([1.0, -1.0]), np.zeros(2), paired=True, power=0.8,
+                   alpha=0.05) == float("inf")  # fmt: skip
+    # the search starts there and the simulation lands near it (a shift of 0.3 sd)
+    rng = np.random.default_rng(3)
+    x, y = rng.normal(0.3, 1, 40), rng.normal(0, 1, 40)
+    s = sample_size(x, y, paired=False, better="higher")
+    assert 0.7 < s.n / noether(x, y, paired=False, power=0.8, alpha=0.05) < 1.3

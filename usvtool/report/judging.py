@@ -27,14 +27,14 @@ or independent (routes and functions, which share no randomness by seed), in two
   smallest effect of interest (:mod:`usvtool.report.margins`).
 
 The p of one family's metric comparisons are Holm-corrected together, and those of its failure
-comparisons apart, as a second family (:func:`judge_family`). The claim **holds** when the method is better with corrected p <
-:data:`ALPHA` against every rival in every case (and fails no more often, significantly,
-anywhere), **does not hold** when it is significantly worse in some, or fails significantly
-more often, is **equivalent** when every comparison lies within the margin (TOST, each at
-ALPHA: the intersection-union test needs no correction), is **inconclusive** otherwise, with
-the n a group it would need for 80 % power (:func:`needed`), **not testable** when a declared
-precondition fails (:data:`CHECKS`) and **not tested** when runs are missing. A claim's
-``context`` rivals are compared and shown, outside the verdict and the Holm family.
+comparisons apart, as a second family (:func:`judge_family`). The claim **holds** when the method is
+better with corrected p < :data:`ALPHA` against every rival in every case (and fails no more often,
+significantly, anywhere), **does not hold** when it is significantly worse in some, or fails
+significantly more often, is **equivalent** when every comparison lies within the margin (TOST, each
+at ALPHA: the intersection-union test needs no correction), is **inconclusive** otherwise, with the
+n a group it would need for 80 % power (:func:`needed`), **not testable** when a declared
+precondition fails (:data:`CHECKS`) and **not tested** when runs are missing. A claim's ``context``
+rivals are compared and shown, outside the verdict and the Holm family.
 
 An **absolute** claim (no rivals) is counted per case by its statistic's function in
 :data:`ABSOLUTE` (``every``: the runs meeting the target, with the 95 % Clopper-Pearson
@@ -57,8 +57,8 @@ from scipy.stats import binomtest
 from usvtool.report import inference
 from usvtool.report.data import JobResults, Results, in_group, summarise
 from usvtool.report.effective_n import EffectiveN, effective_n
-from usvtool.report.effects import Shift, hodges_lehmann
-from usvtool.report.equivalence import Equivalence, SampleSize, sample_size, tost
+from usvtool.report.effects import Shift, hodges_lehmann, oriented
+from usvtool.report.equivalence import Equivalence, SampleSize, noether, sample_size, tost
 from usvtool.report.inference import Comparison
 from usvtool.report.margins import MARGINS, margin
 from usvtool.report.named_statistic import StatisticTest, compare_statistic
@@ -374,13 +374,26 @@ def comparison(results: Results, claim: Claim, case: str, rival: str,
                 None if failures is None else failures.p, context=context)  # fmt: skip
 
 
-def needed(results: Results, claim: Claim, test: Test, alpha: float) -> SampleSize:
+def _needed_values(results: Results, claim: Claim, test: Test) -> tuple[list, list]:
+    """The values whose rank test's power :func:`needed` simulates: the measured values, their
+    absolute deviations from each side's median for a spread."""
+    x, y = _values(*_jobs(results, claim, test.case, test.rival), claim, claim.kind == "runs")
+    if TESTED[claim.statistic] in ("variance", "std"):
+        return list(inference.dispersion(x)), list(inference.dispersion(y))
+    return x, y
+
+
+def needed(results: Results, claim: Claim, test: Test, alpha: float) -> SampleSize | None:
     """The n a group the inconclusive ``test`` would need for :data:`POWER` at ``alpha``, by
-    simulation from its measured values (:func:`usvtool.report.equivalence.sample_size`)."""
-    paired = claim.kind == "runs"
-    x, y = _values(*_jobs(results, claim, test.case, test.rival), claim, paired)
-    return sample_size(x, y, paired=paired, better=claim.better, power=POWER, alpha=alpha,
-                       seed=SEED)  # fmt: skip
+    simulation from its measured values (:func:`usvtool.report.equivalence.sample_size`): the
+    rank test's power, on the values for a median or a mean (the rank test standing in for
+    the permutation of the means), on the absolute deviations from each side's median for a
+    spread; None for a best run (no power of the bootstrap of an extreme is computed)."""
+    if TESTED[claim.statistic] in ("min", "max"):
+        return None
+    x, y = _needed_values(results, claim, test)
+    return sample_size(x, y, paired=claim.kind == "runs", better=claim.better, power=POWER,
+                       alpha=alpha, seed=SEED)  # fmt: skip
 
 
 # --- preconditions ---------------------------------------------------------------------------
@@ -456,14 +469,35 @@ def _relative(claim: Claim, tests: Sequence[Test]) -> Verdict:
 
 
 def _power(tests: Sequence[Test]) -> str:
-    """What the inconclusive comparisons would need: the largest n a group for 80 % power."""
-    sizes = [t.needed for t in tests if t.outcome == "neither" and t.needed is not None]
-    if not sizes:
+    """What the weakest inconclusive comparison would need (:func:`_weakest`): the n a group
+    for 80 % power, and which comparison."""
+    t = next((t for t in tests if t.needed is not None), None)
+    if t is None:
         return ""
-    short = [s for s in sizes if s.n is None]
-    if short:
-        return f"more than {short[0].cap} runs a group for {100 * POWER:.0f} % power"
-    return f"about {max(s.n for s in sizes)} runs a group for {100 * POWER:.0f} % power"
+    which = f"{t.case} vs {t.rival}"
+    if t.needed.n is None:
+        return (f"more than {t.needed.cap} runs a group for {100 * POWER:.0f} % power "
+                f"({which})")  # fmt: skip
+    return f"about {t.needed.n} runs a group for {100 * POWER:.0f} % power ({which})"
+
+
+def _weakest(results: Results, claim: Claim, tests: Sequence[Test]) -> Test | None:
+    """The claim's inconclusive comparison that would need the most runs, by Noether's
+    approximation (:func:`usvtool.report.equivalence.noether`); None when the claim has
+    none, or names a best run."""
+    if TESTED.get(claim.statistic, "min") in ("min", "max"):  # absolute claims: none
+        return None
+    paired = claim.kind == "runs"
+    found, most = None, -1.0
+    for t in tests:
+        if t.context or t.outcome != "neither":
+            continue
+        x, y = _needed_values(results, claim, t)
+        a, b = oriented(x, y, claim.better, paired)
+        guess = noether(a, b, paired=paired, power=POWER, alpha=ALPHA)
+        if guess > most:
+            found, most = t, guess
+    return found
 
 
 def _absolute(results: Results, claim: Claim) -> Verdict:
@@ -518,8 +552,9 @@ def judge_family(results: Results, claims: Sequence[Claim]) -> list[Verdict]:
     for claim, unmet, ts in pending:
         ts = [replace(t, p=fixed[id(t)][0], failures_p=fixed[id(t)][1]) if id(t) in fixed
               else t for t in ts]  # fmt: skip
+        weakest = _weakest(results, claim, ts)
         ts = [replace(t, needed=needed(results, claim, t, ALPHA / max(family, 1)))
-              if not t.context and t.outcome == "neither" else t for t in ts]  # fmt: skip
+              if t is weakest else t for t in ts]  # fmt: skip
         if unmet[0]:
             out.append(Verdict(claim, UNTESTABLE, unmet[0], why=unmet[1]))
         elif claim.rivals:

@@ -138,6 +138,13 @@ def _doubled_ranks(v: np.ndarray) -> np.ndarray:
 
 def _subset_sums(scores: np.ndarray) -> np.ndarray:
     """pmf[s] = P(the sum of a uniformly random subset of the integer ``scores`` is s)."""
+    return _subset_sums_cached(tuple(int(s) for s in scores))
+
+
+@lru_cache(maxsize=64)
+def _subset_sums_cached(scores: tuple[int, ...]) -> np.ndarray:
+    """:func:`_subset_sums` of the scores as a tuple, kept: a report asks for the same ranks
+    (untied, or shifted by a margin) many times."""
     scores = np.asarray(scores, np.int64)
     pmf = np.zeros(int(scores.sum()) + 1)
     pmf[0] = 1.0
@@ -145,11 +152,19 @@ def _subset_sums(scores: np.ndarray) -> np.ndarray:
         shifted = np.zeros_like(pmf)
         shifted[s:] = pmf[: pmf.size - s]
         pmf = (pmf + shifted) / 2
+    pmf.flags.writeable = False  # kept: no caller may change it
     return pmf
 
 
 def _subset_sums_of_size(scores: np.ndarray, m: int) -> np.ndarray:
     """pmf[s] = P(the sum of a uniformly random m-subset of the integer ``scores`` is s)."""
+    return _subset_sums_of_size_cached(tuple(int(s) for s in scores), int(m))
+
+
+@lru_cache(maxsize=64)
+def _subset_sums_of_size_cached(scores: tuple[int, ...], m: int) -> np.ndarray:
+    """:func:`_subset_sums_of_size` of the scores as a tuple, kept (as
+    :func:`_subset_sums_cached`)."""
     scores = np.asarray(scores, np.int64)
     chosen, m = m, min(m, scores.size - m)  # the complement's sums mirror: total - s
     counts = np.zeros((m + 1, int(scores.sum()) + 1))
@@ -162,7 +177,9 @@ def _subset_sums_of_size(scores: np.ndarray, m: int) -> np.ndarray:
     row = counts[m]
     if m != chosen:
         row = row[::-1]
-    return row / row.sum()
+    pmf = row / row.sum()
+    pmf.flags.writeable = False  # kept: no caller may change it
+    return pmf
 
 
 def _tail(pmf: np.ndarray, t: int, alternative: str) -> float:
