@@ -37,8 +37,8 @@ def test_the_summary_states_what_was_compared_and_the_claims_own_verdicts(tmp_pa
     s = summary.section(results)
     assert s.id == "summary"
     text = s.paragraphs[0]
-    assert "24 routes of 2 optimizers and planners (env1, env2: 6 seeds)" in text
-    assert "10 benchmark-function runs of 1 optimizers (F1, F2: 5 seeds)" in text
+    assert "24 routes of 2 optimizers and planners (env1, env2: 6 runs a method)" in text
+    assert "10 benchmark-function runs of 1 optimizers (F1, F2: 5 runs a method)" in text
     assert ("19 simulated runs of 2 controllers on the scene families emergency (3 kinds x 3 "
             "scenes), paired by scene, and on 1 bundled scenario (one run each") in text
     (table,) = s.tables()

@@ -21,27 +21,29 @@ def _natural(case: str) -> tuple:
 
 
 def _by_seeds(results: Results, kind: str) -> str:
-    """The cases grouped by their seeds per method: ``env1, env2 25; grid20 50``."""
+    """The cases grouped by their runs per method: ``env1, env2: 25 runs a method; grid20: 50
+    runs a method``."""
     per = Counter((j.case, j.method) for j in results.select(kind))
     seeds: dict[int, list[str]] = {}
     for case in sorted(results.cases(kind), key=_natural):
         seeds.setdefault(max(n for (c, _), n in per.items() if c == case), []).append(case)
-    return "; ".join(f"{_names(cases)}: {n} seed{'s' * (n > 1)}"
+    return "; ".join(f"{_names(cases)}: {n} run{'s' * (n > 1)} a method"
                      for n, cases in seeds.items())  # fmt: skip
 
 
 def _names(cases: list[str]) -> str:
-    """``F1-F10`` for a run of numbered names, else the names (their number, beyond three).
+    """``F1-F10`` for a run of numbered names, else every name (never "4 others": a reader
+    must see which cases a count is of).
 
     >>> _names(["F1", "F2", "F3"]), _names(["env1", "env2"]), _names(list("abcd"))
-    ('F1-F3', 'env1, env2', '4 others')
+    ('F1-F3', 'env1, env2', 'a, b, c, d')
     """
     numbered = [re.fullmatch(r"([A-Za-z]+)(\d+)", c) for c in cases]
     if len(cases) > 2 and all(numbered) and len({m.group(1) for m in numbered}) == 1:
         numbers = [int(m.group(2)) for m in numbered]
         if numbers == list(range(numbers[0], numbers[0] + len(numbers))):
             return f"{cases[0]}-{cases[-1]}"
-    return ", ".join(cases) if len(cases) <= 3 else f"{len(cases)} others"
+    return ", ".join(cases)
 
 
 def _families(results: Results) -> str:
@@ -137,11 +139,12 @@ def section(results: Results) -> Section:
     tally = ", ".join(f"{counts[k]} {k}" for k in judging.VERDICTS if counts[k])
     s.blocks.append(Table(
         "summary-verdicts", f"The papers' {len(verdicts)} claims for their own methods: {tally}",
-        "The paper's figure (its method against its first rival); ours: the medians and the "
-        "effect (r paired, δ Cliff's delta; > 0 better) [95 % interval], for several "
-        "comparisons the effect of the one that decides, or the runs meeting an absolute "
-        "claim [95 % interval]; the verdict after "
-        "Holm's correction (the claims section gives the tests; docs/statistics.md the rules).",
+        "The paper's figure (its method against its first rival); ours: the claim's own "
+        "statistic of the method and the rival over the runs that measured it, the effect in "
+        "the metric's units (method - rival) [95 % interval] and the relative change (> 0 "
+        "better), the failed runs beside them; for several comparisons the one that decides; "
+        "or the runs meeting an absolute claim [95 % interval]; the verdict after Holm's "
+        "correction (the claims section gives the tests; docs/statistics.md the rules).",
         ["claim", "paper's figure", "ours", "verdict"],
         [[Cell(v.claim.id), Cell(claims.paper_figure(v.claim, named=False), "paper"),
           Cell(claims.headline(v)), Cell(v.verdict, claims.CSS[v.verdict])]
