@@ -11,6 +11,17 @@ comparisons in the same order, and no fused multiply-add: numba contracts none w
 (tests/sim/test_rollout_kernels.py compares them). The inner loops run over samples in
 contiguous memory, branch-free where it counts, so that LLVM vectorises them.
 
+The rest of a step's array work on its few hundred samples runs here too, where NumPy's
+dispatch cost more than the work (a microsecond or more a call): the window's axes and pairs
+(:func:`window_axes`), the candidates (:func:`candidates`), the critics' sum
+(:func:`weighted_shares`: NumPy's pairwise sums are left to NumPy), the heading rewards and the
+side bonus; and ``vo``'s candidates and velocity obstacles (:func:`vo_candidates`,
+:func:`vo_contacts`, :func:`vo_near`). Their ``sqrt`` (correctly rounded) and ``hypot`` (the C
+library's in both) give NumPy's bits (tests/sim/test_step_kernels.py); ``arctan2``, ``sin`` and
+``cos`` of arrays stay NumPy's, whose SIMD loops need not give the C library's bits. ``VEL_EPS``
+(:mod:`usvtool.encounter`) is compiled in as a constant: after changing it, touch this file
+(numba's cache keys a kernel on this file only).
+
 Layout: positions ``x``, ``y`` are ``(T, N)``, time-major, sample ``n = i·R + k`` the speed ``i``
 and the yaw rate ``k`` of the window's grid (:class:`usvtool.sim.vessel.Fan`).
 
@@ -28,7 +39,8 @@ import numpy as np
 from numba import njit, vectorize
 from numba import types as nt
 
-from usvtool.sim.vessel import SINC_ZERO
+from usvtool.encounter import VEL_EPS
+from usvtool.sim.vessel import SINC_ZERO, ZERO_TOLERANCE
 
 _B, _F, _I, _C = nt.boolean, nt.float64, nt.int64, nt.complex128
 _ROWS = _F[:, ::1]  # a C-ordered 2-D array: (T, N), (V, R), (T, V), (k, 2)
@@ -67,6 +79,35 @@ def axis(lo, hi, n, extra, tolerance) -> np.ndarray:
     for i in range(1, count):
         keep[i] = values[i] != values[i - 1]
     return values[keep]
+
+
+_AXES = nt.Tuple((_F[::1], _F[::1], _F[::1], _F[::1]))
+
+
+@njit(_AXES(_F, _F, _F[::1], _F, _I, _I), **_OPTIONS)
+def window_axes(v, omega, limits, span, n_v, n_omega):
+    """The samples of a step: :func:`usvtool.sim.vessel.window` of the velocity ``(v, omega)``
+    over ``span`` (eqs. 18-19; ``limits``: the vessel's ``min_speed``, ``max_speed``,
+    ``max_decel``, ``max_accel``, ``max_yaw_rate``, ``max_yaw_accel``), its axes as
+    :func:`usvtool.sim.vessel.samples` makes them with ``current=(v, omega)``, and the pairs,
+    the speed varying slowest (``np.repeat`` and ``np.tile``): ``(speeds, rates, v, omega)``.
+    The window's clips are ``min(max(limit, lo), hi)`` in floats, as there."""
+    min_speed, max_speed, max_decel, max_accel, max_yaw_rate, max_yaw_accel = limits
+    v_down, v_up = v - max_decel * span, v + max_accel * span
+    w_down, w_up = omega - max_yaw_accel * span, omega + max_yaw_accel * span
+    v_lo, v_hi = min(max(min_speed, v_down), v_up), min(max(max_speed, v_down), v_up)
+    w_lo, w_hi = min(max(-max_yaw_rate, w_down), w_up), min(max(max_yaw_rate, w_down), w_up)
+    speeds = axis(v_lo, v_hi, n_v, np.full(1, v), ZERO_TOLERANCE * (v_hi - v_lo))
+    extra = np.empty(2)
+    extra[0], extra[1] = 0.0, omega
+    rates = axis(w_lo, w_hi, n_omega, extra, ZERO_TOLERANCE * (w_hi - w_lo))
+    n = speeds.size * rates.size
+    pair_v, pair_omega = np.empty(n), np.empty(n)
+    for i in range(speeds.size):
+        for k in range(rates.size):
+            pair_v[i * rates.size + k] = speeds[i]
+            pair_omega[i * rates.size + k] = rates[k]
+    return speeds, rates, pair_v, pair_omega
 
 
 @njit(_F(_F, _F, _F, _F, _F), **_OPTIONS)
@@ -397,3 +438,158 @@ def crosses_ahead(x, y, times, px, py, vx, vy, hx, hy, now) -> np.ndarray:
             rx, ry = x[t, s] - tx, y[t, s] - ty
             out[s] |= (np.sign(hx * ry - hy * rx) != side) & (hx * rx + hy * ry > 0)
     return out
+
+
+@njit(_F[::1](_ROWS, _F[::1], _F[::1]), **_OPTIONS)
+def weighted_shares(shares, sums, scales) -> np.ndarray:
+    """The score of :meth:`usvtool.sim.controllers.base.DynamicWindow.score`: over the critics
+    ``c`` in order, from zero, ``total += scales[c] * normalise(...)``, where ``shares[c]`` is
+    the critic's reward already zero off the candidates and ``sums[c]`` its (NumPy's pairwise)
+    sum: the share ``shares[c] / sums[c]``, zero when the sum is not positive
+    (:func:`usvtool.sim.controllers.base.normalise`, UDWA eqs. 2-4)."""
+    critics, n = shares.shape
+    total = np.zeros(n)
+    for c in range(critics):
+        scale, whole = scales[c], sums[c]
+        if whole > 0:
+            for s in range(n):
+                total[s] += scale * (shares[c, s] / whole)
+        else:
+            for s in range(n):
+                total[s] += scale * 0.0
+    return total
+
+
+@njit(_F[::1](_F[::1], _B[::1]), **_OPTIONS)
+def heading_reward(off, reached) -> np.ndarray:
+    """A heading critic's reward from the unwrapped angle ``off`` between a heading and a
+    bearing: ``np.where(reached, pi, pi - |wrap_pi(off)|)``, :func:`usvtool.angles.wrap_pi`'s
+    ``(a + pi) % 2 pi - pi`` (the floor modulo in both)."""
+    out = np.empty(off.size)
+    for s in range(off.size):
+        wrapped = (off[s] + np.pi) % (2 * np.pi) - np.pi
+        out[s] = np.pi if reached[s] else np.pi - abs(wrapped)
+    return out
+
+
+@njit(nt.Tuple((_B[::1], _B[::1]))(_F[::1], _B[::1], _B[::1]), **_OPTIONS)
+def candidates(contact, removed, intrudes) -> tuple[np.ndarray, np.ndarray]:
+    """The first candidates of :meth:`usvtool.sim.controllers.base.DynamicWindow.decide`:
+    ``(free, candidates)``, ``free`` the samples with no contact (``~np.isfinite(contact)``),
+    the candidates those less the ``removed`` ones and, when some candidate stays out of the
+    own ship's domain, less those that bring a target into it (``intrudes``)."""
+    n = contact.size
+    free, chosen = np.empty(n, np.bool_), np.empty(n, np.bool_)
+    outside = False
+    for s in range(n):
+        free[s] = not np.isfinite(contact[s])
+        chosen[s] = free[s] and not removed[s]
+        outside |= chosen[s] and not intrudes[s]
+    if outside:
+        for s in range(n):
+            chosen[s] = chosen[s] and not intrudes[s]
+    return free, chosen
+
+
+# -- vo (usvtool.sim.controllers.vo): its candidates and velocity obstacles -----------------
+
+
+_VO_GRID = nt.Tuple((_F[::1], _F[::1], _I[::1], _F[::1]))
+
+
+@njit(_VO_GRID(_F, _F, _F[::1], _F, _B, _F, _F, _I), **_OPTIONS)
+def vo_candidates(psi, v, offsets, off, with_off, lo, hi, n):
+    """:meth:`usvtool.sim.controllers.vo.VelocityObstacle.candidates`: ``(speed, heads, index,
+    course)``, the ``n`` speeds of ``np.linspace(lo, hi, n)`` (:func:`axis`'s values, without
+    extras) each with every course ``heads = psi + [offsets, 0, off]`` (``off`` only
+    ``with_off``), the present velocity ``(v, psi)`` last, ``course = heads[index]``."""
+    h = offsets.size + (2 if with_off else 1)
+    heads = np.empty(h)
+    for i in range(offsets.size):
+        heads[i] = psi + offsets[i]
+    heads[offsets.size] = psi + 0.0
+    if with_off:
+        heads[h - 1] = psi + off
+    speeds = np.empty(n)  # np.linspace(lo, hi, n), n >= 2, as it computes it
+    delta = hi - lo
+    step = delta / (n - 1)
+    for i in range(n):
+        speeds[i] = (i * step if step != 0 else i / (n - 1) * delta) + lo
+    speeds[n - 1] = hi
+    count = n * h + 1
+    speed, index, course = np.empty(count), np.empty(count, np.int64), np.empty(count)
+    for i in range(n):
+        for k in range(h):
+            speed[i * h + k], index[i * h + k], course[i * h + k] = speeds[i], k, heads[k]
+    speed[-1], index[-1], course[-1] = v, offsets.size, heads[offsets.size]
+    return speed, heads, index, course
+
+
+@njit(_F[::1](_F[::1], _F[::1], _F[::1], _F[::1], _ROWS, _F[::1], _F, _F), **_OPTIONS)
+def vo_contacts(vx, vy, px, py, vel, radius, spread, horizon) -> np.ndarray:
+    """The first contact of each candidate velocity ``(vx, vy)`` over the targets (at ``(px,
+    py)`` from the own ship, moving at ``vel``): :func:`usvtool.sim.controllers.vo.
+    _first_contact` of the relative velocities and its minimum over the targets (NaN
+    propagating, as ``np.min``), the same operations in the same order (``np.sqrt`` is
+    correctly rounded, as ``math.sqrt``)."""
+    n, k = vx.size, px.size
+    out = np.empty(n)
+    for s in range(n):
+        low = np.inf
+        for j in range(k):
+            wx, wy = vx[s] - vel[j, 0], vy[s] - vel[j, 1]
+            a = wx * wx + wy * wy - spread * spread
+            half_b = px[j] * wx + py[j] * wy + radius[j] * spread
+            c = px[j] * px[j] + py[j] * py[j] - radius[j] * radius[j]
+            disc = half_b * half_b - a * c
+            ok = (disc >= 0.0) & ((half_b > 0.0) | (a < 0.0))
+            t = c / ((half_b + math.sqrt(disc)) if ok else 1.0)
+            t = t if ok & (t <= horizon) else np.inf
+            t = 0.0 if c <= 0.0 else t
+            if j == 0 or (not math.isnan(low) and (math.isnan(t) or t < low)):
+                low = t
+        out[s] = low
+    return out
+
+
+@njit(_B[::1](_ROWS, _ROWS, _F, _F, _F, _F, _F, _F), **_OPTIONS)
+def vo_near(pos, vel, x, y, own_vx, own_vy, time, distance) -> np.ndarray:
+    """The CPA entry test of :meth:`usvtool.sim.controllers.vo.VelocityObstacle.colregs` for
+    each target at ``pos`` moving at ``vel`` (``(k, 2)``), the own ship at ``(x, y)`` moving at
+    ``(own_vx, own_vy)``: ``0 < t_CPA <= time`` and ``d_CPA <= distance``, ``t_CPA`` zero for
+    a relative speed below ``VEL_EPS`` (:func:`usvtool.encounter.cpa`'s), ``d_CPA`` by
+    ``hypot`` (the C library's in both)."""
+    k = pos.shape[0]
+    near = np.empty(k, np.bool_)
+    for j in range(k):
+        rx, ry = pos[j, 0] - x, pos[j, 1] - y
+        wx, wy = vel[j, 0] - own_vx, vel[j, 1] - own_vy
+        ww = wx * wx + wy * wy
+        tcpa = -(rx * wx + ry * wy) / ww if ww > VEL_EPS * VEL_EPS else 0.0
+        dcpa = math.hypot(rx + tcpa * wx, ry + tcpa * wy)
+        near[j] = (tcpa > 0) & (tcpa <= time) & (dcpa <= distance)
+    return near
+
+
+@njit(_F[::1](_F[::1], _F[::1], _I, _F, _F[::1], _F, _B), **_OPTIONS)
+def favour(score, omega, side, factor, clearance, cap, safe) -> np.ndarray:
+    """:meth:`usvtool.sim.controllers.side_rule.SideRule.favour` with a side: ``score`` times
+    ``factor`` (``1 + priority``) where the yaw rate turns to ``side`` (``np.sign(omega) ==
+    side``, the sign of a NaN matching no side) and, with ``safe``, the clearance reaches
+    ``cap``; ``score`` elsewhere."""
+    out = np.empty(score.size)
+    for s in range(score.size):
+        sign = (omega[s] > 0.0) - (omega[s] < 0.0)
+        bonus = sign == side and (not safe or clearance[s] >= cap)
+        out[s] = score[s] * factor if bonus else score[s]
+    return out
+
+
+@njit(nt.Tuple((_F[::1], _F[::1]))(_C[::1], _F, _F), **_OPTIONS)
+def offsets(points, px, py) -> tuple[np.ndarray, np.ndarray]:
+    """``(py - points.imag, px - points.real)``: the offsets from the points ``x + iy`` to
+    ``(px, py)``, north and east (the arguments of ``np.arctan2``), in one pass."""
+    north, east = np.empty(points.size), np.empty(points.size)
+    for s in range(points.size):
+        north[s], east[s] = py - points[s].imag, px - points[s].real
+    return north, east

@@ -163,6 +163,8 @@ class Voyage:
         self.motion = _Motion.of(self.ahead, sim.dt)
         self.lengths = np.array([t.length for t in scenario.targets], float)
         vessel = self.vessel = setup.vessel
+        self._reach = (vessel.length + self.lengths) / 2  # a contact's centre distance
+        self._goal = float(setup.goal[0]), float(setup.goal[1])
         self.world = World(vessel, setup.goal, setup.clearance, setup.route, setup.weather,
                            sim.dt, sim.goal_tolerance, seed, scenario.map)  # fmt: skip
         self.x, self.y = setup.start
@@ -196,9 +198,9 @@ class Voyage:
         """What a controller sees now (the tracker updated with the current step: call once a
         step, before :meth:`advance`)."""
         i, motion = self.step, self.motion
-        self.tracker.update(self.times[i], (self.x, self.y), self.heading, self.made_good,
-                            self.ahead[i], motion.heading[i], motion.speed[i])  # fmt: skip
-        urgent = self.tracker.most_urgent()
+        urgent = self.tracker.update_urgent(self.times[i], self.x, self.y, self.heading,
+                                            self.made_good, self.ahead[i], motion.heading[i],
+                                            motion.speed[i])  # fmt: skip
         encounter = None if urgent is None else Encounter(
             CLASS_NAMES[self.tracker.latched[urgent]], urgent
         )  # fmt: skip
@@ -208,8 +210,10 @@ class Voyage:
     def advance(self, v: float, omega: float, events: list[dict] = ()) -> None:
         """Move the own ship one step at ``v`` through the water and yaw rate ``omega``, at
         the speed she makes good in the weather; log the step's ``events``."""
-        t, setup, sim = round(self.time, 3), self.setup, self.sim
-        self.events += [{"t": t, **e} for e in events]
+        setup, sim = self.setup, self.sim
+        if events:
+            t = round(self.time, 3)
+            self.events += [{"t": t, **e} for e in events]
         self.v, self.omega, psi = v, omega, self.psi
         made_good = v if setup.weather is None else float(
             setup.weather.attainable_speed(v, psi, self.x, self.y, self.vessel.deadweight)
@@ -219,12 +223,11 @@ class Voyage:
         self.heading, self.made_good = angles.math_to_compass(self.psi), made_good
         self.states.append((self.x, self.y, self.heading, made_good, omega))
         self.step += 1
-        self.collision = _collision(setup, (self.x, self.y), self.ahead[self.step],
-                                    self.vessel.length, self.lengths)  # fmt: skip
+        self.collision = _collision(setup, self.x, self.y, self.ahead[self.step], self._reach)
         if self.collision is not None:
             self.events.append({"t": round(self.time, 3), "kind": "collision",
                                 "with": _name(self.scenario, self.collision)})  # fmt: skip
-        elif np.hypot(self.x - setup.goal[0], self.y - setup.goal[1]) <= sim.goal_tolerance:
+        elif np.hypot(self.x - self._goal[0], self.y - self._goal[1]) <= sim.goal_tolerance:
             self.arrived = True
 
 
@@ -377,20 +380,24 @@ def _naming(path, where: str):
         raise UsvError(f"{path}: {where}: {exc}") from None
 
 
-def _collision(setup: _Setup, own, ahead: np.ndarray, own_length: float, lengths) -> int | None:
-    """-1 for the grid, the target's index for a target, None when the own ship is clear."""
-    if len(lengths):
-        d = np.hypot(ahead[:, 0] - own[0], ahead[:, 1] - own[1])
-        touching = np.flatnonzero(d < (own_length + lengths) / 2)
-        if touching.size:
-            return int(touching[0])
+def _collision(setup: _Setup, x: float, y: float, ahead: np.ndarray,
+               reach: np.ndarray) -> int | None:  # fmt: skip
+    """-1 for the grid, the target's index for a target (the first whose centre is within
+    ``reach``, half the sum of the lengths, of the own ship's ``(x, y)``), None when the own
+    ship is clear."""
+    if len(reach):
+        from usvtool.sim.tracking_kernels import first_touching  # compiled: a run's every step
+
+        touching = first_touching(ahead, x, y, reach)
+        if touching >= 0:
+            return touching
     if setup.grid is not None:
         from usvtool.grid import OBSTACLE
 
         grid = setup.grid
-        if not grid.contains(*own):
+        if not grid.contains(x, y):
             return -1
-        row, col = grid.cell_of(*own)
+        row, col = grid.cell_of(x, y)
         if grid.cells[row, col] == OBSTACLE:
             return -1
     return None

@@ -70,6 +70,7 @@ class EncounterTracker:
         self.onset_t = np.full(n_targets, np.nan)
         self.tcpa = np.full(n_targets, np.nan)
         self._prev_range = np.full(n_targets, np.nan)
+        self._scratch = None  # update_urgent's classes and situation, overwritten each step
 
     def step(self, t: float, cls, dcpa, tcpa, rng) -> np.ndarray:
         """Advance one step with this step's classes, CPA and ranges; the latched codes (a copy)."""
@@ -91,6 +92,21 @@ class EncounterTracker:
                             _per_target(target_speed, k, float), *self._limits, self.horizon_s,
                             *self._state, cls, out)  # fmt: skip
         return Situation(cls, *out)
+
+    def update_urgent(self, t, own_x, own_y, own_heading, own_speed, target_xy,
+                      target_heading, target_speed) -> int | None:  # fmt: skip
+        """:meth:`update`, then :meth:`most_urgent`, in one compiled call
+        (:func:`usvtool.sim.tracking_kernels.track_urgent`), the situation not kept: a run's
+        step. The targets' arrays are the kernel's (C-ordered float64, ``(k, 2)`` and
+        ``(k,)``, as a run holds them)."""
+        k = self.latched.size
+        if self._scratch is None:
+            self._scratch = np.empty(k, np.int8), np.empty((5, k))
+        at = self._kernels.track_urgent(float(t), float(own_x), float(own_y), float(own_heading),
+                                        float(own_speed), target_xy, target_heading, target_speed,
+                                        *self._limits, self.horizon_s, *self._state,
+                                        *self._scratch)  # fmt: skip
+        return None if at < 0 else at
 
     def most_urgent(self) -> int | None:
         """Index of the latched target with the smallest positive ``tcpa`` (None if none)."""

@@ -159,3 +159,26 @@ def most_urgent(latched, tcpa) -> int:
             if tcpa[j] < best:
                 best, at = tcpa[j], j
     return at if urgent else -1
+
+
+@njit(_I(_F, _F, _F, _F, _F, *_TARGETS, _ARRAY, _ARRAY, _ARRAY, _F, *_STATE, _K[::1],
+         _F[:, ::1]), **_OPTIONS)  # fmt: skip
+def track_urgent(t, own_x, own_y, own_heading, own_speed, target_xy, target_heading,
+                 target_speed, risk, clear, release, horizon, latched, onset_t, last_tcpa,
+                 prev_range, cls, out) -> int:  # fmt: skip
+    """:func:`track`, then :func:`most_urgent` of the latch (a run's step: one call)."""
+    track(t, own_x, own_y, own_heading, own_speed, target_xy, target_heading, target_speed,
+          risk, clear, release, horizon, latched, onset_t, last_tcpa, prev_range, cls,
+          out)  # fmt: skip
+    return most_urgent(latched, last_tcpa)
+
+
+@njit(_I(_F[:, ::1], _F, _F, _ARRAY), **_OPTIONS)
+def first_touching(target_xy, x, y, reach) -> int:
+    """The first target whose centre lies closer than ``reach`` to the own ship's ``(x, y)``
+    (the run's collision test: ``np.hypot`` of the offsets below ``reach``, ``hypot`` the C
+    library's in both); -1 for none."""
+    for j in range(target_xy.shape[0]):
+        if math.hypot(target_xy[j, 0] - x, target_xy[j, 1] - y) < reach[j]:
+            return j
+    return -1

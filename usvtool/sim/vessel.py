@@ -312,7 +312,15 @@ def ramps(x0, y0, psi0, v0, omega0, speeds, rates, vessel: Vessel, dt: float, st
 
 
 def _grid_axes(speeds, rates) -> tuple[np.ndarray, np.ndarray]:
+    if _is_axis(speeds) and _is_axis(rates):  # a step's, from the window: as they are
+        return speeds, rates
     return np.atleast_1d(np.asarray(speeds, float)), np.atleast_1d(np.asarray(rates, float))
+
+
+def _is_axis(a) -> bool:
+    """``a`` is a contiguous float64 vector (what :func:`_grid_axes` would make of it)."""
+    return type(a) is np.ndarray and a.dtype == np.float64 and a.ndim == 1 and \
+        a.flags.c_contiguous  # fmt: skip
 
 
 # -- the dynamic window (eqs. 18-20) ----------------------------------------------------------

@@ -51,7 +51,6 @@ to port (:mod:`usvtool.sim.sides`).
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
 
@@ -152,7 +151,12 @@ class Rollouts:
     near: np.ndarray  # (N,) complex: the rollout's point closest to the goal
     near_time: np.ndarray  # (N,) the time it is reached (s)
     horizon: float  # the last rollout time (s)
-    heading: Callable[[np.ndarray | float], np.ndarray]  # the headings at times, unwrapped
+    own: Own  # the own ship's state they start from
+    generator: object  # the trajectory generator that made them (.windows)
+
+    def heading(self, t) -> np.ndarray:
+        """The headings at times ``t``, unwrapped (the generator's)."""
+        return self.generator.heading(self.own, self.omega, t)
 
     @cached_property
     def end(self) -> np.ndarray:
@@ -277,6 +281,8 @@ class DynamicWindow(Controller):
 
         super().reset(world)
         self.kernels = rollout_kernels
+        self._horizon = float(self.times[-1])
+        self._scales = np.array([critic.scale for critic in self.objective], float)
         self.generator = WINDOWS[self.params["window"]](world, self.times)
         for critic in self.objective:
             critic.reset(world)
@@ -314,20 +320,20 @@ class DynamicWindow(Controller):
         r = self.rollouts(own, targets)
         rule = self.side_rule
         side = rule.side(encounter)
-        free = ~np.isfinite(r.contact)
         removed = rule.removed(side, r.omega)
-        candidates = free & ~removed
-        if (candidates & ~r.intrudes).any():  # keep the targets out of the domain when one can
-            candidates &= ~r.intrudes
+        # the contact-free samples less the removed ones, and less those that bring a target
+        # into the domain when one can keep them out (compiled: rollout_kernels.candidates)
+        free, candidates = self.kernels.candidates(r.contact, removed, r.intrudes)
         if encounter is not None and encounter.cls == "crossing-give-way" and side:
             astern = ~self._crosses_ahead(own, r, targets, encounter.target)
             if (candidates & astern).any():  # Rule 15: and pass astern of her when one can
                 candidates &= astern
         events = []
-        if not candidates.any() and free.any():  # safety first: the removed side after all
-            candidates = free
+        some = np.count_nonzero(candidates) > 0  # ndarray.any's wrapper costs more
+        if not some and np.count_nonzero(free):  # safety first: the removed side after all
+            candidates, some = free, True
             events.append(rule.overridden(side, self.times[-1]))
-        if not candidates.any():
+        if not some:
             return self._fallback(own, r, removed)
         score = rule.favour(side, r, self.score(own, r, candidates))
         score = np.where(candidates, score, -np.inf)
@@ -359,9 +365,7 @@ class DynamicWindow(Controller):
     def rollouts(self, own: Own, targets: Targets) -> Rollouts:
         """Sample the window, roll every sample out and find its contacts."""
         world, p, generator, kernels = self.world, self.params, self.generator, self.kernels
-        speeds, rates = generator.axes(own, int(p["v_samples"]), int(p["omega_samples"]))
-        v, omega = np.repeat(speeds, rates.size), np.tile(rates, speeds.size)
-        fan = generator.fan(own, speeds, rates)
+        v, omega, fan = generator.sample(own, int(p["v_samples"]), int(p["omega_samples"]))
         x, y = fan.x, fan.y  # (T, N)
         contact, static_first, clearance, intrudes = kernels.contacts(
             x, y, fan.radius, fan.u, self.times, float(own.x), float(own.y), _rows(targets.pos),
@@ -370,16 +374,18 @@ class DynamicWindow(Controller):
         row, to_goal, near = kernels.closest(x, y, float(world.goal[0]), float(world.goal[1]))
         reached = to_goal <= world.goal_tolerance**2
         return Rollouts(v, omega, contact, static_first, clearance, intrudes, x, y, reached, near,
-                        self.times[row], self.times[-1],
-                        lambda t: generator.heading(own, omega, t))  # fmt: skip
+                        self.times[row], self._horizon, own, generator)  # fmt: skip
 
     def score(self, own: Own, r: Rollouts, candidates: np.ndarray) -> np.ndarray:
         """The sum of the critics' normalised rewards (eqs. 2-4) times their scales, over
-        ``candidates``."""
-        total = np.zeros(r.v.size)
-        for critic in self.objective:
-            total += critic.scale * normalise(critic.reward(own, r), candidates)
-        return total
+        ``candidates``: :func:`normalise` of every critic at once, the sums NumPy's (a row's
+        sum along the rows' axis is the row's own), the rest compiled
+        (:func:`usvtool.sim.rollout_kernels.weighted_shares`)."""
+        rewards = np.empty((len(self.objective), r.v.size))
+        for i, critic in enumerate(self.objective):
+            rewards[i] = critic.reward(own, r)
+        shares = np.where(candidates, rewards, 0.0)
+        return self.kernels.weighted_shares(shares, shares.sum(axis=1), self._scales)
 
     # -- when no sample is free ------------------------------------------------------------
 

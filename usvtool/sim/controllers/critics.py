@@ -22,7 +22,14 @@ from abc import ABC, abstractmethod
 
 import numpy as np
 
-from usvtool.angles import wrap_pi
+
+def heading_reward(off: np.ndarray, reached: np.ndarray) -> np.ndarray:
+    """A heading critic's reward from the angle ``off`` (unwrapped) between the heading and the
+    bearing: ``pi - |wrap_pi(off)|``, ``pi`` where the rollout reaches the goal; compiled
+    (:func:`usvtool.sim.rollout_kernels.heading_reward`)."""
+    from usvtool.sim.rollout_kernels import heading_reward as compiled
+
+    return compiled(np.ascontiguousarray(off, float), reached)
 
 
 class Critic(ABC):
@@ -72,10 +79,15 @@ class GoalHeading(Critic):
 
     name = "heading"
 
+    def reset(self, world) -> None:
+        super().reset(world)
+        self.goal = float(world.goal[0]), float(world.goal[1])
+
     def reward(self, own, r) -> np.ndarray:
-        gx, gy = self.world.goal
-        off = wrap_pi(np.arctan2(gy - r.near.imag, gx - r.near.real) - r.psi_near)  # the angle
-        return np.where(r.reached, np.pi, np.pi - np.abs(off))
+        from usvtool.sim.rollout_kernels import offsets
+
+        north, east = offsets(r.near, *self.goal)  # from the closest points to the goal
+        return heading_reward(np.arctan2(north, east) - r.psi_near, r.reached)  # the angle
 
 
 class Distance(Critic):
@@ -89,7 +101,7 @@ class Distance(Critic):
         self.cap = cap
 
     def reward(self, own, r) -> np.ndarray:
-        return np.clip(r.clearance, 0.0, self.cap)
+        return np.minimum(np.maximum(r.clearance, 0.0), self.cap)  # np.clip's, less its dispatch
 
 
 class RouteProgress:
@@ -107,9 +119,18 @@ class RouteProgress:
         self.next = min(1, len(self.route) - 1)
         reach = self.reach_param
         self.reach = reach if reach is not None else world.vessel.max_speed * self.horizon
+        self._last = None  # (own, sub-goal) of the last call
 
     def subgoal(self, own) -> np.ndarray:
-        """The current sub-goal, advancing past the vertices reached or passed."""
+        """The current sub-goal, advancing past the vertices reached or passed (the same for
+        the same state ``own``, once worked out: the step's critics share it)."""
+        if self._last is not None and self._last[0] is own:
+            return self._last[1]
+        sub = self._advance(own)
+        self._last = own, sub
+        return sub
+
+    def _advance(self, own) -> np.ndarray:
         here = np.array([own.x, own.y])
         while self.next < len(self.route) - 1:
             a, b = self.route[self.next - 1], self.route[self.next]
@@ -144,7 +165,7 @@ class SubgoalHeading(_SubgoalCritic):
     def reward(self, own, r) -> np.ndarray:
         sub = self.progress.subgoal(own)
         theta_c = np.arctan2(sub[1] - own.y, sub[0] - own.x)  # eq. 22
-        return np.where(r.reached, np.pi, np.pi - np.abs(wrap_pi(theta_c - r.psi_end)))
+        return heading_reward(theta_c - r.psi_end, r.reached)
 
 
 class SubgoalPath(_SubgoalCritic):

@@ -42,10 +42,12 @@ class SideRule:
         """``score`` with the preferred side's bonus."""
         if side == side_rules.EITHER or not self.priority > 0:
             return score
-        bonus = np.sign(r.omega) == side
-        if self.safe:  # only where no target or shore comes near
-            bonus &= r.clearance >= self.cap
-        return np.where(bonus, score * (1 + self.priority), score)
+        from usvtool.sim.rollout_kernels import favour
+
+        # the side's samples (with safe: only where no target or shore comes near) times
+        # 1 + priority, compiled
+        return favour(score, r.omega, int(side), float(1 + self.priority), r.clearance,
+                      float(self.cap), bool(self.safe))  # fmt: skip
 
     @staticmethod
     def overridden(side: int, horizon: float) -> dict:

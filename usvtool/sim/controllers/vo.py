@@ -69,7 +69,6 @@ from usvtool.encounter import (
     HEAD_ON,
     NONE,
     OVERTAKING,
-    VEL_EPS,
     classify_angles,
 )
 from usvtool.params import NON_NEGATIVE, POSITIVE, Param, Range
@@ -163,7 +162,10 @@ class VelocityObstacle(Controller):
     }  # fmt: skip
 
     def reset(self, world: World) -> None:
+        from usvtool.sim import rollout_kernels  # numba's start-up: here, not in the first step
+
         super().reset(world)
+        self.kernels = rollout_kernels
         p, ship = self.params, world.vessel
         self.progress = RouteProgress(None, float(p["reach"]))
         self.progress.reset(world)
@@ -179,7 +181,7 @@ class VelocityObstacle(Controller):
         full = self.turn >= math.pi
         # all round: n courses, -pi included and pi left out (the same course)
         offsets = np.linspace(-self.turn, self.turn, n + 1 if full else n)
-        self.offsets = offsets[:n]
+        self.offsets = np.ascontiguousarray(offsets[:n])
         self.radius = 0.5 * ship.length
         if world.clearance is not None:
             # a point every cell (or every ship radius, when less): every cell the track
@@ -232,18 +234,13 @@ class VelocityObstacle(Controller):
         t = float(p["reach"])
         lo = max(ship.min_speed, own.v - ship.max_decel * t)
         hi = min(ship.max_speed, own.v + ship.max_accel * t)
-        speeds = np.linspace(lo, hi, int(p["speeds"]))
         off = math.remainder(pref_course - own.psi, 2 * math.pi)
-        extra = [0.0, off] if abs(off) <= self.turn else [0.0]
-        heads = own.psi + np.concatenate((self.offsets, extra))
-        h = heads.size
-        speed = np.empty(speeds.size * h + 1)
-        speed[:-1] = np.repeat(speeds, h)
-        speed[-1] = own.v
-        index = np.empty(speed.size, np.intp)
-        index[:-1] = np.tile(np.arange(h), speeds.size)
-        index[-1] = self.offsets.size  # the present course
-        return speed, heads[index], heads, index
+        # np.linspace(lo, hi, speeds) x the courses psi + [offsets, 0, off (when within
+        # reach)], then the present velocity: compiled (rollout_kernels.vo_candidates)
+        speed, heads, index, course = self.kernels.vo_candidates(
+            float(own.psi), float(own.v), self.offsets, off, abs(off) <= self.turn, float(lo),
+            float(hi), int(p["speeds"]))  # fmt: skip
+        return speed, course, heads, index
 
     def grounds(self, own: Own, speed: np.ndarray, heads: np.ndarray, index: np.ndarray
                 ) -> np.ndarray:  # fmt: skip
@@ -270,14 +267,16 @@ class VelocityObstacle(Controller):
         p, ship = self.params, self.world.vessel
         px, py = targets.pos[:, 0] - own.x, targets.pos[:, 1] - own.y  # (K,)
         radius = 0.5 * (ship.length + targets.length) + float(p["margin"]) * ship.length
-        wx = vx[:, None] - targets.vel[:, 0]  # (N, K)
-        wy = vy[:, None] - targets.vel[:, 1]
-        contact = _first_contact(px, py, wx, wy, radius, float(p["uncertainty"]),
-                                 float(p["horizon"])).min(axis=1)  # fmt: skip
+        vel = np.ascontiguousarray(targets.vel, float).reshape(-1, 2)
+        # _first_contact of every candidate and target, its minimum over the targets, compiled
+        contact = self.kernels.vo_contacts(vx, vy, px, py, vel, np.ascontiguousarray(
+            radius, float), float(p["uncertainty"]), float(p["horizon"]))  # fmt: skip
         active = self.colregs(own, targets)
         if not active.any():
             return contact, np.zeros(n, bool)
-        px, py, wx, wy = px[active], py[active], wx[:, active], wy[:, active]
+        px, py = px[active], py[active]
+        wx = vx[:, None] - vel[active, 0]  # (N, K active)
+        wy = vy[:, None] - vel[active, 1]
         wrong = (px * wy - py * wx > 0.0) & (px * wx + py * wy >= 0.0)  # V3 (passes_to_port)
         return contact, wrong.any(axis=1)
 
@@ -289,15 +288,13 @@ class VelocityObstacle(Controller):
         p, ship = self.params, self.world.vessel
         k = targets.pos.shape[0]
         rel = targets.pos - (own.x, own.y)
-        wx = targets.vel[:, 0] - own.v * math.cos(own.psi)  # the targets' relative velocity
-        wy = targets.vel[:, 1] - own.v * math.sin(own.psi)
-        ww = wx * wx + wy * wy
-        moving = ww > VEL_EPS * VEL_EPS  # usvtool.encounter.cpa's, in the components
-        tcpa = np.where(moving, -(rel[:, 0] * wx + rel[:, 1] * wy) / np.where(moving, ww, 1.0),
-                        0.0)  # fmt: skip
-        dcpa = np.hypot(rel[:, 0] + tcpa * wx, rel[:, 1] + tcpa * wy)
-        near = (tcpa > 0) & (tcpa <= p["colregs_time"]) & (dcpa <= p["colregs_distance"]
-                                                             * ship.length)  # fmt: skip
+        # the CPA of the targets' relative velocity (usvtool.encounter.cpa's, in the
+        # components), compiled: rollout_kernels.vo_near
+        near = self.kernels.vo_near(
+            np.ascontiguousarray(targets.pos, float).reshape(-1, 2),
+            np.ascontiguousarray(targets.vel, float).reshape(-1, 2), float(own.x), float(own.y),
+            own.v * math.cos(own.psi), own.v * math.sin(own.psi), float(p["colregs_time"]),
+            float(p["colregs_distance"] * ship.length))  # fmt: skip
         cls = np.full(k, NONE, np.int8)
         if near.any():  # the relative bearings of usvtool.encounter (compass degrees)
             px, py = rel[near, 0], rel[near, 1]

@@ -30,6 +30,22 @@ class PeriodWindow:
     def __init__(self, world, times: np.ndarray):
         self.vessel, self.period, self.times = world.vessel, world.period, times
         self.span = world.period  # eq. 19's Delta t
+        vessel = self.vessel
+        #: the vessel's limits as :func:`usvtool.sim.rollout_kernels.window_axes` takes them
+        self.limits = np.array([vessel.min_speed, vessel.max_speed, vessel.max_decel,
+                                vessel.max_accel, vessel.max_yaw_rate, vessel.max_yaw_accel],
+                               float)  # fmt: skip
+
+    def sample(self, own, n_v: int, n_omega: int) -> tuple[np.ndarray, np.ndarray,
+                                                           vessel_model.Fan]:  # fmt: skip
+        """The step's samples, the pairs ``(v, omega)`` of :meth:`axes` (the speed varying
+        slowest), and their rollouts (:meth:`fan`): the window and its axes in one compiled
+        call (:func:`usvtool.sim.rollout_kernels.window_axes`)."""
+        from usvtool.sim.rollout_kernels import window_axes
+
+        speeds, rates, v, omega = window_axes(float(own.v), float(own.omega), self.limits,
+                                              float(self.span), n_v, n_omega)  # fmt: skip
+        return v, omega, self.fan(own, speeds, rates)
 
     def axes(self, own, n_v: int, n_omega: int) -> tuple[np.ndarray, np.ndarray]:
         """The window's grid (:func:`usvtool.sim.vessel.samples`) as its speeds and yaw rates."""

@@ -1,0 +1,307 @@
+"""The compiled glue of a DWA step (usvtool/sim/rollout_kernels.py: window_axes, weighted_shares,
+heading_reward) against the Python and NumPy expressions they stand for, bit for bit (the sign
+of zero included), on seeded random windows, rewards and angles."""
+
+import math
+
+import numpy as np
+import pytest
+
+from usvtool.angles import wrap_pi
+from usvtool.sim import rollout_kernels as kernels
+from usvtool.sim import vessel as vessel_model
+from usvtool.sim.controllers import Own, World, make_controller
+from usvtool.sim.controllers.base import normalise
+
+
+def same_bits(a, b) -> bool:
+    a, b = np.asarray(a), np.asarray(b)
+    return a.dtype == b.dtype and a.shape == b.shape and a.tobytes() == b.tobytes()
+
+
+def limits(vessel) -> np.ndarray:
+    return np.array([vessel.min_speed, vessel.max_speed, vessel.max_decel, vessel.max_accel,
+                     vessel.max_yaw_rate, vessel.max_yaw_accel], float)  # fmt: skip
+
+
+def random_vessel(rng) -> vessel_model.Vessel:
+    low = float(rng.choice([0.0, rng.uniform(0, 2)]))
+    return vessel_model.Vessel(5.0, 2.0, None, low, low + rng.uniform(0.5, 8), rng.uniform(0.1, 3),
+                               rng.uniform(0.1, 3), rng.uniform(0.05, 1.2),
+                               rng.uniform(0.01, 1.5))  # fmt: skip
+
+
+@pytest.mark.parametrize("seed", range(30))
+def test_window_axes_are_the_window_its_samples_and_their_pairs(seed):
+    rng = np.random.default_rng(seed)
+    vessels = (vessel_model.preset("udwa-usv"), vessel_model.preset("iwso-dwa-usv"))
+    for trial in range(40):
+        ship = vessels[trial % 2] if trial < 20 else random_vessel(rng)
+        v = float(rng.choice([0.0, ship.min_speed, ship.max_speed,
+                              rng.uniform(0, ship.max_speed * 1.2)]))  # fmt: skip
+        omega = float(rng.choice([0.0, ship.max_yaw_rate, -ship.max_yaw_rate, 1e-18,
+                                  rng.uniform(-1.2, 1.2) * ship.max_yaw_rate]))  # fmt: skip
+        span = float(rng.choice([0.1, 0.2, 0.05, 10.0, rng.uniform(0.01, 20)]))
+        n_v, n_omega = int(rng.integers(2, 26)), int(rng.integers(2, 26))
+        win = vessel_model.window(ship, v, omega, span)
+        speeds, rates = vessel_model.samples(win, n_v, n_omega, current=(v, omega))
+        got = kernels.window_axes(v, omega, limits(ship), span, n_v, n_omega)
+        want = (speeds, rates, np.repeat(speeds, rates.size), np.tile(rates, speeds.size))
+        for a, b in zip(got, want, strict=True):
+            assert same_bits(a, b), (seed, trial)
+
+
+def test_a_period_windows_samples_are_the_axes_and_fan_of_the_step():
+    """PeriodWindow.sample (one compiled call for the window) gives what axes and fan give."""
+    rng = np.random.default_rng(3)
+    ship = vessel_model.preset("udwa-usv")
+    for name in ("udwa", "udwa+"):
+        c = make_controller(name)
+        c.reset(World(ship, np.array([0.0, 800.0])))
+        for _ in range(20):
+            own = Own(*rng.uniform(-50, 50, 2), rng.uniform(-4, 4), rng.uniform(0, 7),
+                      rng.uniform(-0.3, 0.3))  # fmt: skip
+            v, omega, fan = c.generator.sample(own, 21, 21)
+            speeds, rates = c.generator.axes(own, 21, 21)
+            want = c.generator.fan(own, speeds, rates)
+            assert same_bits(v, np.repeat(speeds, rates.size))
+            assert same_bits(omega, np.tile(rates, speeds.size))
+            for a, b in zip(fan, want, strict=True):
+                assert same_bits(a, b)
+
+
+def numpy_score(rewards, scales, candidates):
+    """The core's score as the loop over the critics made it."""
+    total = np.zeros(rewards.shape[1])
+    for values, scale in zip(rewards, scales, strict=True):
+        total += scale * normalise(values, candidates)
+    return total
+
+
+@pytest.mark.parametrize("seed", range(30))
+def test_weighted_shares_are_the_sum_of_the_normalised_rewards(seed):
+    rng = np.random.default_rng(seed)
+    for trial in range(30):
+        critics, n = int(rng.integers(1, 6)), int(rng.choice([1, 7, 8, 9, 130, 274, 441, 462,
+                                                              int(rng.integers(1, 2000))]))
+        rewards = rng.uniform(0, 1, (critics, n)) * 10.0 ** rng.uniform(-4, 4, (critics, 1))
+        rewards[rng.random((critics, n)) < 0.2] = 0.0
+        if critics > 1:
+            rewards[0] = 0.0  # a critic whose sum is zero: no share
+            rewards[-1] -= rng.uniform(0, 2) * rewards[-1].mean()  # some negative rewards
+        candidates = rng.random(n) < rng.choice([0.0, 0.3, 0.9, 1.0])
+        scales = rng.choice([0.0, 0.06, 0.2, 0.3, 0.4, 0.5, 1.0, -0.5], critics)
+        shares = np.where(candidates, rewards, 0.0)
+        sums = shares.sum(axis=1)
+        for row, total in zip(shares, sums, strict=True):  # the premise: a row's sum is its own
+            assert same_bits(total, row.copy().sum())
+        got = kernels.weighted_shares(shares, sums, scales)
+        assert same_bits(got, numpy_score(rewards, scales, candidates)), (seed, trial)
+
+
+@pytest.mark.parametrize("seed", range(10))
+def test_heading_reward_is_the_wrapped_angle(seed):
+    rng = np.random.default_rng(seed)
+    n = 2000
+    off = rng.uniform(-4 * math.pi, 4 * math.pi, n)
+    off[:16] = [0.0, -0.0, math.pi, -math.pi, 2 * math.pi, -2 * math.pi, 3 * math.pi,
+                -3 * math.pi, 1e-300, -1e-300, math.nextafter(math.pi, 0),
+                math.nextafter(-math.pi, 0), 7.0, -7.0, 1e3, -1e3]  # fmt: skip
+    reached = rng.random(n) < 0.1
+    want = np.where(reached, np.pi, np.pi - np.abs(wrap_pi(off)))
+    assert same_bits(kernels.heading_reward(off, reached), want)
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_candidates_are_the_free_samples_less_the_removed_and_the_domains(seed):
+    rng = np.random.default_rng(seed)
+    for _ in range(50):
+        n = int(rng.integers(1, 500))
+        contact = np.where(rng.random(n) < rng.uniform(0, 1), np.inf, rng.uniform(0.2, 10, n))
+        removed = rng.random(n) < rng.choice([0.0, 0.5, 1.0])
+        intrudes = rng.random(n) < rng.choice([0.0, 0.3, 0.95, 1.0])
+        free = ~np.isfinite(contact)
+        want = free & ~removed
+        if (want & ~intrudes).any():
+            want &= ~intrudes
+        got_free, got = kernels.candidates(contact, removed, intrudes)
+        assert same_bits(got_free, free) and same_bits(got, want)
+
+
+@pytest.mark.parametrize("seed", range(10))
+def test_track_urgent_is_track_then_most_urgent(seed):
+    from usvtool.sim import tracking_kernels as tk
+
+    rng = np.random.default_rng(seed)
+    k = int(rng.integers(1, 7))
+    limits = [rng.uniform(5, 60, k), rng.uniform(5, 60, k), np.full(k, np.inf)]
+    states = [[np.zeros(k, np.int8), np.full(k, np.nan), np.full(k, np.nan), np.full(k, np.nan)]
+              for _ in range(2)]  # fmt: skip
+    xy = rng.uniform(-300, 300, (k, 2))
+    vel = rng.uniform(-5, 5, (k, 2))
+    heading = rng.uniform(0, 360, k)
+    for step in range(300):
+        t = 0.1 * step
+        at = xy + vel * t
+        speed = np.hypot(vel[:, 0], vel[:, 1])
+        own = (float(rng.uniform(-5, 5)), float(t * 3), float(rng.uniform(0, 360)),
+               float(rng.uniform(0, 6)))  # fmt: skip
+        scratch = [(np.empty(k, np.int8), np.empty((5, k))) for _ in range(2)]
+        tk.track(t, *own, at, heading, speed, *limits, 120.0, *states[0], *scratch[0])
+        want = tk.most_urgent(states[0][0], states[0][2])
+        got = tk.track_urgent(t, *own, at, heading, speed, *limits, 120.0, *states[1],
+                              *scratch[1])  # fmt: skip
+        assert got == want
+        for a, b in zip(states[0] + list(scratch[0]), states[1] + list(scratch[1]), strict=True):
+            assert same_bits(a, b)
+
+
+def numpy_vo_candidates(psi, v, offsets, off, turn, lo, hi, n):
+    """vo's candidates as NumPy made them (before the kernel)."""
+    speeds = np.linspace(lo, hi, n)
+    extra = [0.0, off] if abs(off) <= turn else [0.0]
+    heads = psi + np.concatenate((offsets, extra))
+    h = heads.size
+    speed = np.empty(speeds.size * h + 1)
+    speed[:-1] = np.repeat(speeds, h)
+    speed[-1] = v
+    index = np.empty(speed.size, np.intp)
+    index[:-1] = np.tile(np.arange(h), speeds.size)
+    index[-1] = offsets.size
+    return speed, heads, index, heads[index]
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_vo_candidates_are_numpys(seed):
+    rng = np.random.default_rng(seed)
+    for _ in range(40):
+        turn = float(rng.choice([math.pi, rng.uniform(0.05, math.pi)]))
+        h = int(rng.integers(3, 50))
+        offsets = np.linspace(-turn, turn, h + 1 if turn >= math.pi else h)[:h].copy()
+        psi, v = float(rng.uniform(-4, 4)), float(rng.uniform(0, 7))
+        off = math.remainder(float(rng.uniform(-7, 7)), 2 * math.pi)
+        lo = float(rng.choice([0.0, v, rng.uniform(0, 7)]))
+        hi = float(rng.choice([lo, lo + rng.uniform(0, 7), lo + 1e-320, lo * (1 + 1e-16)]))
+        n = int(rng.integers(2, 12))
+        got = kernels.vo_candidates(psi, v, offsets, off, abs(off) <= turn, lo, hi, n)
+        want = numpy_vo_candidates(psi, v, offsets, off, turn, lo, hi, n)
+        for a, b in zip(got, want, strict=True):
+            assert same_bits(a, b)
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_vo_contacts_are_first_contacts_minimum(seed):
+    from usvtool.sim.controllers.vo import first_contact
+
+    rng = np.random.default_rng(seed)
+    kinds = set()
+    for _ in range(30):
+        n, k = int(rng.integers(1, 300)), int(rng.integers(1, 6))
+        vx, vy = rng.uniform(-7, 7, n), rng.uniform(-7, 7, n)
+        pos = rng.uniform(-200, 200, (k, 2))
+        pos[rng.random(k) < 0.2] *= 0.01  # some already inside
+        vel = rng.uniform(-6, 6, (k, 2))
+        vel[rng.random(k) < 0.2] = 0.0
+        radius = rng.uniform(5, 40, k)
+        spread = float(rng.choice([0.0, 0.25, rng.uniform(0, 8)]))  # a < 0 for some
+        horizon = float(rng.choice([30.0, 5.0, 300.0]))
+        w = np.stack([vx[:, None] - vel[:, 0], vy[:, None] - vel[:, 1]], axis=-1)
+        want = first_contact(pos, w, radius, spread, horizon).min(axis=1)
+        got = kernels.vo_contacts(vx, vy, pos[:, 0].copy(), pos[:, 1].copy(), vel, radius, spread,
+                                  horizon)  # fmt: skip
+        assert same_bits(got, want)
+        kinds |= {"inside" if t == 0 else "contact" if np.isfinite(t) else "none" for t in want}
+    assert kinds == {"inside", "contact", "none"}
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_vo_near_is_numpys_cpa_test(seed):
+    from usvtool.encounter import VEL_EPS
+
+    rng = np.random.default_rng(seed)
+    seen = set()
+    for _ in range(60):
+        k = int(rng.integers(1, 8))
+        pos = rng.uniform(-150, 150, (k, 2))
+        vel = rng.uniform(-5, 5, (k, 2))
+        x, y, psi, v = *rng.uniform(-20, 20, 2), rng.uniform(-4, 4), rng.uniform(0, 6)
+        own_vx, own_vy = v * math.cos(psi), v * math.sin(psi)
+        vel[rng.random(k) < 0.2] = (own_vx, own_vy)  # no relative motion
+        time, distance = float(rng.choice([60.0, 20.0])), float(rng.choice([10.0, 60.0]))
+        rel = pos - (x, y)
+        wx, wy = vel[:, 0] - own_vx, vel[:, 1] - own_vy
+        ww = wx * wx + wy * wy
+        moving = ww > VEL_EPS * VEL_EPS
+        tcpa = np.where(moving, -(rel[:, 0] * wx + rel[:, 1] * wy) / np.where(moving, ww, 1.0),
+                        0.0)  # fmt: skip
+        dcpa = np.hypot(rel[:, 0] + tcpa * wx, rel[:, 1] + tcpa * wy)
+        want = (tcpa > 0) & (tcpa <= time) & (dcpa <= distance)
+        got = kernels.vo_near(pos, vel, x, y, own_vx, own_vy, time, distance)
+        assert same_bits(got, want)
+        seen |= set(want.tolist())
+    assert seen == {True, False}
+
+
+@pytest.mark.parametrize("seed", range(10))
+def test_favour_is_numpys_side_bonus(seed):
+    rng = np.random.default_rng(seed)
+    for _ in range(50):
+        n = int(rng.integers(1, 500))
+        score = rng.uniform(-1, 1, n)
+        omega = rng.choice([0.0, -0.0, 0.1, -0.1, np.nan, 1e-300, -1e-300], n)
+        omega[rng.random(n) < 0.5] = rng.uniform(-0.3, 0.3)
+        clearance = rng.choice([np.inf, 30.0, 29.999, 0.0, 45.0], n)
+        side, priority = int(rng.choice([-1, 1])), float(rng.choice([0.5, 1.0, 0.1]))
+        for safe in (False, True):
+            bonus = np.sign(omega) == side
+            if safe:
+                bonus &= clearance >= 30.0
+            want = np.where(bonus, score * (1 + priority), score)
+            got = kernels.favour(score, omega, side, 1 + priority, clearance, 30.0, safe)
+            assert same_bits(got, want)
+
+
+def test_first_touching_is_numpys_first_contact():
+    from usvtool.sim import tracking_kernels as tk
+
+    rng = np.random.default_rng(5)
+    found = set()
+    for _ in range(2000):
+        k = int(rng.integers(1, 6))
+        xy = rng.uniform(-40, 40, (k, 2))
+        x, y = rng.uniform(-10, 10, 2)
+        reach = rng.uniform(5, 30, k)
+        near = rng.random(k) < 0.1  # exactly at the reach: not touching
+        xy[near, 0], xy[near, 1] = x + reach[near], y
+        hit = np.flatnonzero(np.hypot(xy[:, 0] - x, xy[:, 1] - y) < reach)
+        want = int(hit[0]) if hit.size else -1
+        assert tk.first_touching(xy, float(x), float(y), reach) == want
+        found.add(want >= 0)
+    assert found == {True, False}
+
+
+def test_offsets_are_numpys_differences():
+    rng = np.random.default_rng(2)
+    for _ in range(100):
+        n = int(rng.integers(1, 500))
+        points = rng.uniform(-1e4, 1e4, n) + 1j * rng.uniform(-1e4, 1e4, n)
+        px, py = (float(v) for v in rng.uniform(-1e4, 1e4, 2))
+        north, east = kernels.offsets(points, px, py)
+        assert same_bits(north, py - points.imag) and same_bits(east, px - points.real)
+
+
+def test_a_route_progress_gives_the_same_subgoal_for_the_same_state():
+    from usvtool.sim.controllers.critics import RouteProgress
+
+    ship = vessel_model.preset("iwso-dwa-usv")
+    route = np.array([[0.0, 0.0], [0.0, 60.0], [40.0, 100.0], [40.0, 200.0]])
+    cached, fresh = RouteProgress(None, 10.0), RouteProgress(None, 10.0)
+    world = World(ship, np.array([40.0, 260.0]), route=route)
+    cached.reset(world)
+    fresh.reset(world)
+    for y in np.linspace(0, 260, 200):
+        own = Own(float(y) / 7, float(y), 1.0, 4.0, 0.0)
+        first = cached.subgoal(own)
+        assert same_bits(cached.subgoal(own), first)  # asked again by another critic
+        fresh._last = None  # no memory: worked out afresh
+        assert same_bits(fresh.subgoal(own), first)
