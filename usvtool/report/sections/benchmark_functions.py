@@ -182,8 +182,9 @@ def table(results: Results) -> Table:
     nc = [f for f in sorted(results.cases("functions"), key=_function_order)
           if f not in cases and any(t.kind == "functions" and r.case == f for t in TABLES.values()
                                     for r in t.rows)]  # fmt: skip
-    left = (f" Not repeated here: {label} above, which shows ours beside the paper's for "
+    left = (f" Left to {label} above (ours beside the paper's), not repeated here: "
             f"{', '.join(sorted(apart, key=lambda m: results.methods('functions').index(m)))}"
+            " on the functions it compares"
             + (f"; on {', '.join(nc)}, which it marks n/c, every optimizer is here." if nc
                else ".") if apart else "")  # fmt: skip
     title = "Benchmark functions: the optimizers the paper leaves out" if apart else (
