@@ -114,8 +114,8 @@ def table(results: Results, paper_table: PaperTable) -> Table:
     penalised = (" (in brackets: over every run, the failures' penalties included)"
                  if any(c.metric in PENALISED for c in columns) else "")  # fmt: skip
     rates = any(is_reference(r.method, c) for r in t.rows for c in columns)
-    reference = (f" The optimisation rates are against the reference controller {REFERENCE}: "
-                 f"its own rate is {REFERENCE_MARK} (reference), not 0 against itself."
+    reference = (f" The optimisation rates are against the reference controller {REFERENCE}, "
+                 f"whose own rate (against itself) shows as {REFERENCE_MARK}."
                  if rates else "")  # fmt: skip
     caption = (f"{t.caption} Ours (statistics{runs}, in the paper's units) beside the "
                f"paper's printed figures (grey): over the {kinds}{penalised}; failed: the "
