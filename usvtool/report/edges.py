@@ -78,7 +78,8 @@ def _clip(a, b, box) -> float:
 
 
 @cache
-def _grid(path: Path):
+def grid_at(path: Path):
+    """The grid file at ``path``, read once per report (the planning section shares it)."""
     return read_grid(path)
 
 
@@ -88,7 +89,7 @@ def route_share(job: JobResults) -> float | None:
     route, where = job.dir / "route.geojson", job.grid_dir()
     if not route.is_file() or where is None or not (where / "grid.tif").is_file():
         return None
-    grid = _grid(where / "grid.tif")
+    grid = grid_at(where / "grid.tif")
     return band_share(read_path_geojson(route)[0], grid.bounds, BAND * grid.cell_size)
 
 

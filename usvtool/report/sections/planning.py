@@ -9,12 +9,8 @@ algorithm is that of its first seed, the figures over seeds use all of them.
 
 from __future__ import annotations
 
-from functools import cache
-from pathlib import Path
-
 import numpy as np
 
-from usvtool.grid import read_grid
 from usvtool.report import edges, figures
 from usvtool.report.data import JobResults, Results, seed_text, stats
 from usvtool.report.document import APPENDIX, HTML, Cell, Figure, Section, Table, number
@@ -31,9 +27,7 @@ COLUMNS = (("length_m", "length (m)", 2), ("length_ratio", "length / optimum", 4
            ("planning_time_s", "time (s)", 3))  # fmt: skip
 
 
-@cache
-def _grid(path: Path):
-    return read_grid(path)
+_grid = edges.grid_at  # one read of a grid per report, shared with the edge rule
 
 
 def grid_of(job: JobResults):
