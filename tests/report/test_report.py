@@ -291,9 +291,10 @@ def test_a_table_without_its_job_folders_is_refused_naming_them_unless_allowed(b
     assert not out.exists()
     r = in_process("report", table, "-o", out, "--no-pdf", "--allow-missing")
     assert r.returncode == 0, r.stderr
-    assert r.stderr.splitlines() == [
-        f"Warning: {n} job folders missing (--allow-missing): the report is without their "
-        "files; its methods section lists them"]
+    warning, done = r.stderr.splitlines()  # the warning, then where the report is
+    assert warning == (f"Warning: {n} job folders missing (--allow-missing): the report is "
+                       "without their files; its methods section lists them")
+    assert done.startswith(f"report: {out / 'index.html'} (") and "no PDF (--no-pdf)" in done
     assert json.loads(r.stdout)["missing_jobs"] == n
     missing = _table_html((out / "index.html").read_text(encoding="utf-8"), "methods-missing")
     assert missing.count("<tr>") == n + 1  # the header and one row a folder
