@@ -216,3 +216,16 @@ def test_a_controller_failure_that_says_it_arrived_is_refused(tmp_path):
     rows += _run(_scene(0), "udwa", arrival_time_s=1, controller_failed=True)
     with pytest.raises(UsvError, match="its controller failed, yet its arrived row says True"):
         baselines.section(_results(tmp_path, rows))
+
+
+def test_the_part_says_whose_rules_judge_and_why_no_published_judge_is_beside_them(results):
+    from pathlib import Path
+
+    part = baselines.section(results)
+    assert baselines.JUDGES in part.paragraphs
+    root = Path(__file__).parents[2]
+    # the docs it points to say the same: neither published judge built, the monitor refused
+    assert "neither judge is implemented" in (root / "docs" / "judges.md").read_text()
+    row = next(line for line in (root / "docs" / "design-changes.md").read_text().splitlines()
+               if "commonocean-rules" in line)
+    assert "does not install beside them" in row and "ours alone" in row

@@ -293,7 +293,20 @@ def section(results: Results) -> Section | None:
         "against the metric's smallest effect of interest (equivalent). The p are "
         "uncorrected, each comparison alone: they describe, they judge no claim (to have one "
         "judged, declare it in the pipeline: docs/pipelines.md).")
+    top.paragraphs.append(JUDGES)
     top.blocks += [outcomes_table(found), against_table(found)]
     if (table := comparisons_table(found)) is not None:
         top.blocks.append(table)
     return top
+
+
+#: Whose rules judge the runs: ours alone, and why the field's published evaluations are not
+#: beside them (docs/judges.md, docs/design-changes.md).
+JUDGES = (
+    "Judged by whose rules: every COLREGs count here is our verdicts' (docs/colregs.md). The "
+    "field's published evaluations are not beside them: Woerner, Benjamin, Novitzky and "
+    "Leonard's protocol metrics (Autonomous Robots 43, 2019) and Hagen, Brekke, Vassbotn et "
+    "al.'s safety and COLREG scores (Ocean Engineering 288, 2023) are built only from their "
+    "papers' own texts, which could not be read here (docs/judges.md says what was searched and "
+    "what building them needs), and the temporal-logic monitor commonocean-rules does not "
+    "install beside usvtool's dependencies (docs/design-changes.md).")
