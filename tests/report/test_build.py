@@ -149,7 +149,8 @@ def test_make_report_ends_with_the_summary_line(make, tmp_path):
     from usvtool.cli.report import summary_line
 
     assert r.stdout.splitlines()[-1] == summary_line(summary)
-    assert summary_line(summary).startswith(f"report: {tmp_path}/build/report/index.html, no PDF")
+    assert summary_line(summary).startswith(f"report: {tmp_path}/build/report/index.html (")
+    assert " kB), no PDF (--no-pdf); claims: " in summary_line(summary)
 
 
 #: A user's own files in the report's folder, its figures/ and its data/.
