@@ -179,49 +179,75 @@ def _pipeline(tmp_path: Path, scenarios: dict[str, str]) -> Path:
 FUNCTION_JOBS = 4
 
 
-def _failing_pipeline(tmp_path):
-    """The tiny pipeline's runs with three more scenarios: "bad" (its command fails), "killed"
-    (the one a failpoint kills) and "good"; the keys of the "killed" runs."""
+#: The failpoints a worker is killed at (usvtool.batch.failpoint.POINTS).
+KILL_POINTS = ("before", "during", "written", "sending")
+DIED = "its worker process died (killed by SIGKILL)"
+
+
+@pytest.fixture(scope="module")
+def killed(tmp_path_factory):
+    """One ``batch -j 2`` of the tiny pipeline's runs and functions, with scenarios "good",
+    "bad" (its command fails) and "killed-POINT" for each failpoint, whose runs' workers are
+    killed at POINT (SIGKILL); then the same batch again without failpoints. What the first
+    batch left (before the second touched it) and what the second said."""
+    tmp_path = tmp_path_factory.mktemp("killed")
     good = SCENARIO.read_text()
-    path = _pipeline(tmp_path, {"good": good, "bad": good.replace("speed: 4}", "speed: 4, "
-                                "max_speed: 0}"),  # the command raises
-                                "killed": good.replace("duration: 6", "duration: 7")})
+    scenarios = {"good": good, "bad": good.replace("speed: 4}", "speed: 4, max_speed: 0}")}
+    for i, point in enumerate(KILL_POINTS):  # other durations: each scenario a run of its own
+        scenarios[f"killed-{point}"] = good.replace("duration: 6", f"duration: {7 + i}")
+    path = _pipeline(tmp_path, scenarios)
     names = stage_names()
-    return path, sorted(j.key for j in expand(load(path, names), names) if j.case == "killed")
-
-
-@pytest.mark.parametrize("point", ["before", "during", "written", "sending"])
-def test_a_worker_killed_at_any_point_of_a_job_fails_that_job_alone(tmp_path, point):
-    """USVTOOL_FAILPOINT kills the worker of each "killed" run at ``point`` (SIGKILL): the batch
-    settles every job and ends; a job whose result was complete and in place before its worker
-    died ("written", "sending": the reply cut short in the pipe) is done, the others fail alone
-    with the cause, and run again next time."""
-    path, long = _failing_pipeline(tmp_path)
+    armed = [f"{j.case.removeprefix('killed-')}:{j.key}" for j in expand(load(path, names), names)
+             if j.case.startswith("killed-")]  # fmt: skip
+    assert len(armed) == 2 * len(KILL_POINTS)
     out = tmp_path / "out"
-    env = {**os.environ, "USVTOOL_FAILPOINT": ",".join(f"{point}:{k}" for k in long)}
+    env = {**os.environ, "USVTOOL_FAILPOINT": ",".join(armed)}
     proc = subprocess.run([sys.executable, "-m", "usvtool.cli", "batch", str(path), "-j", "2",
                            "-o", str(out)], cwd=ROOT, capture_output=True, text=True, env=env,
-                          timeout=240)  # fmt: skip
-    summary = json.loads(proc.stdout)
+                          timeout=480)  # fmt: skip
+    left = {
+        "proc": proc,
+        "summary": json.loads(proc.stdout),
+        "run_cases": {r.case for r in read_results(out / "metrics.csv") if r.kind == "runs"},
+        "kinds": {r.kind for r in read_results(out / "metrics.csv")},
+        "recorded": sorted(p.read_text() for p in out.glob("runs/*/error.txt")),
+        "temporaries": list(out.glob("*/.tmp-*")),
+    }
+    # a failed job runs again (no failpoint now), a done one not
+    left["again"] = batch(path, "-o", out)
+    return left
+
+
+@pytest.mark.parametrize("point", KILL_POINTS)
+def test_a_worker_killed_at_any_point_of_a_job_fails_that_job_alone(killed, point):
+    """USVTOOL_FAILPOINT kills the worker of each "killed-POINT" run at POINT (SIGKILL): the
+    batch settles every job and ends; a job whose result was complete and in place before its
+    worker died ("written", "sending": the reply cut short in the pipe) is done, the others
+    fail alone with the cause, and run again next time. One batch kills at every point (the
+    fixture's); each test checks the whole batch's outcome and its own point's jobs."""
+    proc, summary = killed["proc"], killed["summary"]
     errors = {(f["case"], f["method"]): f["error"] for f in summary["failures"]}
     assert all("max_speed must be > 0" in errors.pop(("bad", c)) for c in ("dwa", "gdwa"))
-    jobs = FUNCTION_JOBS + 3 * 2  # and the runs: good, bad and killed with dwa and gdwa
-    assert summary["jobs"] == jobs
-    assert {r.kind for r in read_results(out / "metrics.csv")} == {"runs", "functions"}
+    mine = {c: errors.get((f"killed-{point}", c)) for c in ("dwa", "gdwa")}
     if point in ("written", "sending"):
-        assert errors == {} and (summary["done"], summary["failed"]) == (jobs - 2, 2)
-        assert {r.case for r in read_results(out / "metrics.csv") if r.kind == "runs"} == {
-            "good", "killed"}
+        assert mine == {"dwa": None, "gdwa": None}
+        assert f"killed-{point}" in killed["run_cases"]
     else:
-        assert errors == {("killed", c): "its worker process died (killed by SIGKILL)"
-                          for c in ("dwa", "gdwa")}  # fmt: skip
-        assert (summary["done"], summary["failed"]) == (jobs - 4, 4)
-        assert f"4 of {jobs} jobs failed" in proc.stderr
-        assert {r.case for r in read_results(out / "metrics.csv") if r.kind == "runs"} == {"good"}
-    recorded = sorted(p.read_text() for p in out.glob("runs/*/error.txt"))
+        assert mine == {"dwa": DIED, "gdwa": DIED}
+        assert f"killed-{point}" not in killed["run_cases"]
+    # the whole batch: the runs killed before their result was in place failed, nothing else
+    assert errors == {(f"killed-{p}", c): DIED for p in ("before", "during")
+                      for c in ("dwa", "gdwa")}  # fmt: skip
+    jobs = FUNCTION_JOBS + (2 + len(KILL_POINTS)) * 2  # and the runs: good, bad, killed-*
+    assert summary["jobs"] == jobs
+    assert (summary["done"], summary["failed"]) == (jobs - 6, 6)
+    assert f"6 of {jobs} jobs failed" in proc.stderr
+    assert killed["kinds"] == {"runs", "functions"}
+    assert killed["run_cases"] == {"good", "killed-written", "killed-sending"}
+    recorded = killed["recorded"]
     assert len(recorded) == summary["failed"] and all(t.count("\n") == 1 for t in recorded)
-    assert proc.returncode == 1 and not list(out.glob("*/.tmp-*"))
-    again = batch(path, "-o", out)  # a failed job runs again (no failpoint now), a done one not
+    assert proc.returncode == 1 and not killed["temporaries"]
+    again = killed["again"]
     assert again.returncode == 1 and json.loads(again.stdout)["skipped"] == summary["done"]
 
 
