@@ -35,9 +35,9 @@ def test_a_route_of_no_length_is_in_the_band_only_when_its_points_are():
     assert edges.band_share([[5.0, 5.0]], BOX, 1.0) == 0.0
 
 
-def _batch(tmp_path, routes: dict[str, list]):
+def _batch(tmp_path, routes: dict[str, list], turns: dict[str, int] | None = None):
     """A table of route jobs in case c, each with its route and the one grid (10 x
-    10 cells of 2 m: a band of 2 m)."""
+    10 cells of 2 m: a band of 2 m), and its turns (1 unless given)."""
     grid = tmp_path / "grids" / "g"
     grid.mkdir(parents=True)
     write_grid(grid / "grid.tif", Grid(np.zeros((10, 10), np.uint8), Affine(2, 0, 0, 0, -2, 20)))
@@ -50,7 +50,9 @@ def _batch(tmp_path, routes: dict[str, list]):
         (folder / "route.geojson").write_text(json.dumps({
             "type": "Feature", "properties": {"map_coordinates": points},
             "geometry": {"type": "LineString", "coordinates": points}}), encoding="utf-8")
-        rows.append(Row(key, "routes", "c", method, int(key[-1]), "turns", "1"))
+        rows.append(Row(key, "routes", "c", method, int(key[-1]), "turns",
+                        str((turns or {}).get(key, 1))))
+        rows.append(Row(key, "routes", "c", method, int(key[-1]), "collision_free", "True"))
     write_results(tmp_path / "metrics.csv", rows)
     return load([tmp_path / "metrics.csv"])
 
@@ -85,3 +87,33 @@ def test_the_planning_section_counts_each_methods_routes_along_the_edges(tmp_pat
     assert planning.edge_paragraph({"a": (1, 2)}).startswith(
         "Routes that hug the grid's edges (more than 50 % of their length within 1 cell of its "
         "border): a 1 of 2.")  # fmt: skip
+
+
+def test_a_claim_decided_by_routes_along_the_edges_says_so(tmp_path):
+    from usvtool.report import judging
+
+    frame = [[1.0, 1.0], [1.0, 19.0], [19.0, 19.0]]  # along two sides: hugs
+    inside = [[5.0, 5.0], [15.0, 15.0]]  # the middle: does not
+    # a: six routes along the frame turning once, two inside turning 5 times; b: six inside, 5
+    routes = {**{f"a{i}": frame for i in range(6)}, "a6": inside, "a7": inside,
+              **{f"b{i}": inside for i in range(6)}}
+    turns = {**{f"a{i}": 1 for i in range(6)}, "a6": 5, "a7": 5, **{f"b{i}": 5 for i in range(6)}}
+    results = _batch(tmp_path, routes, turns)
+    claim = Claim("fewer", "", (), "routes", "turns", "median", "lower", "a", ("b",), ("c",))
+    # with them: a's six 1s below all of b's 5s (the two 5s tie): U test p < 0.05, holds
+    (v,) = judging.flag_edges(results, judging.judge_family(results, [claim]))
+    assert v.verdict == judging.HOLDS
+    # without them a turns 5, 5 against b's six 5s: nothing left to tell them apart
+    assert v.edges.startswith("6 of 8 routes of a in c hug the grid's edges: without them the "
+                              'verdict would be "')
+    assert not v.edges.endswith('"holds"')
+    # b's six inside routes turning 9 times: a holds with its edge routes and would not without
+    same = _batch(tmp_path / "same", routes, {**turns, **{f"b{i}": 9 for i in range(6)}})
+    (v,) = judging.flag_edges(same, judging.judge_family(same, [claim]))
+    assert v.verdict == judging.HOLDS  # eight against six, every a below every b
+    # without the edge routes a's 5, 5 against b's six 9s: exact U p = 2 / C(8, 2) = 1 / 14,
+    # a shift of 4 turns, beyond the margin of 1: inconclusive
+    assert v.edges.endswith(': without them the verdict would be "inconclusive"')
+    plain = _batch(tmp_path / "plain", {k: inside for k in routes}, turns)
+    (v,) = judging.flag_edges(plain, judging.judge_family(plain, [claim]))
+    assert v.edges == ""

@@ -54,7 +54,7 @@ from dataclasses import dataclass, replace
 
 from scipy.stats import binomtest
 
-from usvtool.report import inference
+from usvtool.report import edges, inference
 from usvtool.report.data import JobResults, Results, in_group, summarise
 from usvtool.report.effective_n import EffectiveN, effective_n
 from usvtool.report.effects import Shift, hodges_lehmann, oriented
@@ -181,7 +181,8 @@ class Verdict:
     """A claim's verdict, why (``reason``: what fails of a precondition, with ``why`` the
     precondition's own reason; the runs missing; the n an inconclusive claim would need), and
     its comparisons (relative) or tallies (absolute). ``variant``: our variant of the
-    method."""
+    method. ``edges``: the routes that hug the grid's edges and whether they decide the verdict
+    (:func:`flag_edges`)."""
 
     claim: Claim
     verdict: str
@@ -190,6 +191,7 @@ class Verdict:
     tallies: tuple[Tally, ...] = ()
     variant: bool = False
     why: str = ""
+    edges: str = ""
 
 
 # --- runs ------------------------------------------------------------------------------------
@@ -580,6 +582,31 @@ def variants(results: Results, claim: Claim) -> list[str]:
     return sorted(m for m in run if m.partition("+")[0] == claim.method and m != claim.method)
 
 
+def flag_edges(results: Results, verdicts: Sequence[Verdict]) -> list[Verdict]:
+    """The verdicts, each relative claim on routes with :attr:`Verdict.edges` saying how many
+    of its routes hug the grid's edges (:func:`usvtool.report.edges.edge_share`) and whether
+    they decide its verdict: the flagged claims judged again without those routes, as a Holm
+    family of their own (docs/statistics.md)."""
+    found = {v.claim.id: [c for c in edges.edge_share(results, v.claim) if c.hugging]
+             for v in verdicts if v.claim.rivals and v.verdict not in (UNTESTABLE, UNTESTED)}
+    flagged = [v for v in verdicts if found.get(v.claim.id)]
+    if not flagged:
+        return list(verdicts)
+    left = {k for counts in found.values() for c in counts for k in c.keys}
+    without = replace(results, jobs=[j for j in results.jobs if j.key not in left])
+    again = {v.claim.id: v for v in judge_family(without, [v.claim for v in flagged])}
+    out = []
+    for v in verdicts:
+        if v.claim.id in again:
+            other = again[v.claim.id].verdict
+            said = "; ".join(c.text() for c in found[v.claim.id])
+            said += (f': without them the verdict would be "{other}"' if other != v.verdict
+                     else ": without them the verdict is the same")  # fmt: skip
+            v = replace(v, edges=said)
+        out.append(v)
+    return out
+
+
 _PAPERS: list[tuple[Results, list[Verdict]]] = []
 
 
@@ -592,7 +619,7 @@ def paper_verdicts(results: Results) -> list[Verdict]:
     if not _PAPERS or _PAPERS[0][0] is not results:
         extra = {c.id: [replace(c, id=f"{c.id} ({m})", method=m) for m in variants(results, c)]
                  for c in CLAIMS}  # fmt: skip
-        own = iter(judge_family(results, CLAIMS))
+        own = iter(flag_edges(results, judge_family(results, CLAIMS)))
         theirs = iter(judge_family(results, [v for c in CLAIMS for v in extra[c.id]]))
         _PAPERS[:] = [
             (
@@ -618,5 +645,5 @@ def user_verdicts(results: Results) -> list[Verdict]:
     family of their own, so that a user's claim never changes a verdict on the papers' (nor
     theirs on the user's). Computed once per :class:`Results`."""
     if not _USERS or _USERS[0][0] is not results:
-        _USERS[:] = [(results, judge_family(results, results.claims))]
+        _USERS[:] = [(results, flag_edges(results, judge_family(results, results.claims)))]
     return _USERS[0][1]

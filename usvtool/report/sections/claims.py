@@ -300,6 +300,8 @@ def judged(v: Verdict) -> tuple[str, str, str]:
         ours, effect, test = v.reason or "-", "-", "-"
     if v.reason and (v.tests or v.tallies):
         ours += f" ({v.reason})"
+    if v.edges:
+        ours += f". {v.edges[0].upper()}{v.edges[1:]}."
     return ours, effect, test
 
 
