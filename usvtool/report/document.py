@@ -3,10 +3,12 @@
 Building the document (:mod:`.sections`) is kept apart from writing it (:mod:`.page`), so
 that the HTML and the PDF come from one document and the tests can look at it directly.
 
-Each section, subsection, table and figure has a **placement**: :data:`MAIN` (the default: the
-report's main body), :data:`APPENDIX` (after the main body, under "Appendix", in the HTML and
-the PDF) or :data:`HTML` (the HTML only, folded in a ``<details>``; left out of the PDF).
+Each section, subsection, table, figure and player has a **placement**: :data:`MAIN` (the
+default: the report's main body), :data:`APPENDIX` (after the main body, under "Appendix", in
+the HTML and the PDF) or :data:`HTML` (the HTML only, folded in a ``<details>``; left out of
+the PDF).
 :func:`layout` splits the sections into the main body and the appendix for the templates.
+A :class:`Player` (a run's animation) is always placed :data:`HTML`: the PDF keeps its figures.
 """
 
 from __future__ import annotations
@@ -22,10 +24,13 @@ PLACEMENTS = (MAIN, APPENDIX, HTML)
 
 @dataclass(frozen=True)
 class Cell:
-    """A table cell: its text and a CSS class (``num``, ``paper``, ``holds``, ``fails``...)."""
+    """A table cell: its text and a CSS class (``num``, ``paper``, ``holds``, ``fails``...);
+    ``link``: the id of an element of the page the cell links to (a :class:`Player`'s, on the
+    screen only: the PDF has no players), none when empty."""
 
     text: str
     css: str = ""
+    link: str = ""
 
 
 @dataclass(frozen=True)
@@ -57,12 +62,39 @@ class Figure:
         return file_name(self.id)
 
 
+#: How a player's fragment starts (:func:`usvtool.report.animation.player.fragment`).
+PLAYER_START = '<div class="usv-player" '
+
+
+@dataclass(frozen=True)
+class Player:
+    """A run's animation (:mod:`usvtool.report.animation`): ``fragment`` is the player's
+    ``div`` as :func:`usvtool.report.animation.player.player` writes it (the run's data as JSON
+    escaped there: no text of an input becomes markup), put in the page as it is, folded in a
+    ``<details>`` of id ``id`` (a link's target: :attr:`Cell.link`) under its ``title``, with
+    its ``caption`` (both escaped by the template). Placed :data:`HTML` only; the page holds
+    the player's styles and script once when it holds a player (:func:`has_players`)."""
+
+    id: str
+    title: str
+    caption: str
+    fragment: str
+    placement: str = HTML
+
+    def __post_init__(self):
+        if self.placement != HTML:
+            raise ValueError(f"player {self.id}: placed {self.placement!r}; a player is placed "
+                             f"{HTML!r} only (the PDF keeps its figures)")  # fmt: skip
+        if not (self.fragment.startswith(PLAYER_START) and self.fragment.endswith("</div>")):
+            raise ValueError(f"player {self.id}: its fragment is not a player's div")
+
+
 @dataclass
 class Section:
     id: str
     title: str
     paragraphs: list[str] = field(default_factory=list)
-    blocks: list[Table | Figure] = field(default_factory=list)
+    blocks: list[Table | Figure | Player] = field(default_factory=list)
     subsections: list[Section] = field(default_factory=list)
     placement: str = MAIN
 
@@ -73,6 +105,27 @@ class Section:
     def tables(self) -> list[Table]:
         own = [b for b in self.blocks if isinstance(b, Table)]
         return own + [t for s in self.subsections for t in s.tables()]
+
+    def players(self) -> list[Player]:
+        own = [b for b in self.blocks if isinstance(b, Player)]
+        return own + [p for s in self.subsections for p in s.players()]
+
+
+def anchor(*parts: str) -> str:
+    """An element id (a link's target) made of names from the results, joined by ``_``: each
+    part its :func:`usvtool.results.file_name` with ``%`` as ``~`` and ``_`` as ``~5F``, so
+    that the id holds letters, digits and ``._+-~`` only and two lists of names never give one
+    id.
+
+    >>> anchor("play", "imazu/05/s000", "udwa+"), anchor("a_b", "c")
+    ('play_imazu~2F05~2Fs000_udwa+', 'a~5Fb_c')
+    """
+    return "_".join(file_name(p).replace("%", "~").replace("_", "~5F") for p in parts)
+
+
+def has_players(sections: list[Section]) -> bool:
+    """Whether any of the sections holds a :class:`Player` (the page then needs its script)."""
+    return any(s.players() for s in sections)
 
 
 def _check(placement: str, what: str) -> None:

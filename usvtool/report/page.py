@@ -1,7 +1,8 @@
 """Write the report's document as one self-contained HTML page and as a PDF.
 
 The page embeds everything it shows: figures as ``data:image/png`` URIs, each figure's data as
-a ``data:text/csv`` download link, and the stylesheet inline, so it references no file or
+a ``data:text/csv`` download link, the stylesheet inline, and the runs' players (their data, and
+their styles and script once, on the screen only), so it references no file or
 address outside itself (the same CSVs are also written beside it). The PDF is the page written
 for print (``medium="print"``: what is placed ``html`` left out, the figures at their own
 printed size) laid out by WeasyPrint with the stylesheet's print rules; WeasyPrint needs the
@@ -14,7 +15,9 @@ from __future__ import annotations
 import base64
 import struct
 
-from usvtool.report.document import Section, layout
+from markupsafe import Markup
+
+from usvtool.report.document import Section, has_players, layout
 from usvtool.report.templating import render
 
 #: What to install when WeasyPrint cannot run.
@@ -57,11 +60,20 @@ def png_width_mm(png: bytes) -> float | None:
 
 
 def html(title: str, subtitle: str, sections: list[Section], medium: str = "screen") -> str:
-    """The report page for ``medium``: ``screen`` (index.html) or ``print`` (the PDF's)."""
+    """The report page for ``medium``: ``screen`` (index.html) or ``print`` (the PDF's). A
+    screen page holding a player (:class:`~usvtool.report.document.Player`) holds the players'
+    styles and script once (:func:`usvtool.report.animation.embed.assets`); a page without, and
+    the print page (no player), neither."""
     main, appendix = layout(sections)
+    style = script = ""
+    if medium == "screen" and has_players(sections):
+        from usvtool.report.animation.embed import assets
+
+        style, script = assets()
     return render("report.html.j2", title=title, subtitle=subtitle, main=main,
                   appendix=appendix, medium=medium, png_uri=png_uri, csv_uri=csv_uri,
-                  png_width_mm=png_width_mm)  # fmt: skip
+                  png_width_mm=png_width_mm, player_style=Markup(style),
+                  player_script=Markup(script))  # fmt: skip
 
 
 def pdf(page: str) -> tuple[bytes, int, int]:

@@ -16,7 +16,8 @@ type="application/json">`` with ``<``, ``>``, ``&``, U+2028 and U+2029 escaped a
 the script puts names into the page only as ``textContent``; the title is HTML-escaped.
 
 Several players can share a page (the report): the script (:data:`SCRIPT`, with :data:`STYLE`)
-starts every ``div.usv-player`` not yet started, each reading its own data.
+starts every ``div.usv-player`` not yet started, each reading its own data; one inside a closed
+``<details>`` when it opens (a page of many folded players starts none of them at load).
 """
 
 from __future__ import annotations
@@ -414,10 +415,19 @@ SCRIPT = r"""
     root.usvSeek = seek;
     draw();
   }
+  function folded(e) {  // inside a closed details element: started when it opens
+    for (var p = e.parentElement; p; p = p.parentElement) {
+      if (p.tagName === "DETAILS" && !p.open) { return true; }
+    }
+    return false;
+  }
   function startAll() {
     var all = document.querySelectorAll("div.usv-player:not([data-ready])");
-    for (var i = 0; i < all.length; i++) { start(all[i]); }
+    for (var i = 0; i < all.length; i++) { if (!folded(all[i])) { start(all[i]); } }
   }
+  document.addEventListener("toggle", function (e) {
+    if (e.target.open) { startAll(); }
+  }, true);
   if (document.readyState === "loading") {
     document.addEventListener("DOMContentLoaded", startAll);
   } else { startAll(); }

@@ -27,14 +27,16 @@ from usvtool.report.sections import (
     summary,
     traffic,
     wind,
+    worst_runs,
     your_claims,
 )
 
 #: The section modules in reading order: the summary (page 1), the user's claims (a pipeline's
 #: ``claims:``), the papers' claims, global path planning, the benchmark functions, collision
 #: avoidance in encounters, the Imazu problem, every controller against the field's
-#: baselines (vo, sbmpc), runs in wind, recorded traffic, the methods that
-#: are not the papers' (ours and plugins'), the charts' preprocessing and the methods (last).
+#: baselines (vo, sbmpc), the worst run of each scene family per controller, runs in wind,
+#: recorded traffic, the methods that are not the papers' (ours and plugins'), the charts'
+#: preprocessing and the methods (last).
 SECTIONS = (
     summary,
     your_claims,
@@ -44,6 +46,7 @@ SECTIONS = (
     encounters,
     imazu,
     baselines,
+    worst_runs,
     wind,
     traffic,
     other_methods,

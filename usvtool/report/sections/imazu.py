@@ -17,6 +17,10 @@ totals and the table of every run are then the main entry's (:func:`main_entry`:
 at the family's defaults), and a table of the scales (:func:`sensitivity_table`) sets each
 entry's scale, in own ship lengths and against the verdicts' onset TCPA, beside every
 controller's outcomes there.
+
+In the HTML report only, every run of the main entry is a player (:func:`players`, folded
+until opened), and a table under the grid (:func:`players_table`) links each cell to its run's
+player; the section's text says so in the PDF too (:data:`ANIMATED`).
 """
 
 from __future__ import annotations
@@ -30,7 +34,7 @@ from usvtool.errors import UsvError
 from usvtool.pipeline import split_family_case
 from usvtool.report import inference
 from usvtool.report.data import JobResults, Results
-from usvtool.report.document import APPENDIX, Cell, Figure, Section, Table
+from usvtool.report.document import APPENDIX, HTML, Cell, Figure, Section, Table, anchor
 from usvtool.report.figures.imazu import Cell as GridCell
 from usvtool.report.figures.imazu import imazu_grid, outcome
 from usvtool.report.runs import (
@@ -43,6 +47,7 @@ from usvtool.report.runs import (
     job_events,
     job_facts,
     median_iqr,
+    run_files,
     ship_lengths,
 )
 from usvtool.report.runs import start as first_states
@@ -309,6 +314,73 @@ def sensitivity_table(found: dict[str, Runs], controllers: list[str],
          "closest: median"], rows)  # fmt: skip
 
 
+#: The line of the section (in the PDF too) that says where its animations are.
+ANIMATED = ("Every run of the grid can be watched as it happened in the HTML report (index.html): "
+            "the table under the grid opens each run's player.")
+
+
+def player_id(case: str, controller: str) -> str:
+    """The id of the player of the run of ``case`` by ``controller``."""
+    return anchor("imazu-run", case, controller)
+
+
+def players(runs: Runs, controllers: list[str], labels: list[str]) -> Section:
+    """Every run of the entry as a player (HTML only, each folded until opened: none starts
+    before), case by case, from its trace and events (each read once per report:
+    :func:`usvtool.report.runs.run_files`); a run without its files has none."""
+    from usvtool.report.animation.embed import run_player
+
+    part = Section("imazu-players", "The Imazu runs, played", placement=HTML)
+    part.paragraphs.append(
+        "Each run of the grid as it happened (a player: Play, the time slider, the speed; "
+        "the keys Space, arrows, comma and full stop, Home and End once it has the focus): "
+        "every ship's hull to scale along her heading, the own ship's domain, the wakes, the "
+        "route and goal, each target's COLREGs class, the verdict events on the timeline, the "
+        "clock and the distance to the nearest ship (docs/animate.md). Open one here or from "
+        "the table under the grid.")
+    for case, label in zip(runs, labels, strict=True):
+        for c in controllers:
+            job = runs[case].get(c)
+            files = None if job is None else run_files(job)
+            if files is None:
+                continue
+            cell = grid_cell(job)
+            part.blocks.append(run_player(
+                *files, player_id(case, c), f"Case {label} with {c}: {_run_text(job).text}",
+                f"{case}, {c}, seed {job.seed}: the outcome, the closest centre distance to a "
+                "target and the encounters compliant / excused only / non-compliant / not "
+                "judged." + (" A failure." if cell.outcome in ("collided", "not-arrived")
+                             else "")))  # fmt: skip
+    return part
+
+
+def players_table(runs: Runs, controllers: list[str], labels: list[str],
+                  played: set[str]) -> Table:  # fmt: skip
+    """The grid's cells as links to their players (``played``: the ids of those there; HTML
+    only)."""
+    rows = []
+    for case, label in zip(runs, labels, strict=True):
+        row = [Cell(label)]
+        for c in controllers:
+            job = runs[case].get(c)
+            if job is None:
+                row.append(Cell("no run"))
+                continue
+            cell = grid_cell(job)
+            text = {"collided": "collided", "not-arrived": "did not arrive"}.get(
+                cell.outcome, "-" if cell.closest_m is None else f"{cell.closest_m:.0f} m")
+            css = {"collided": "fails", "not-arrived": "fails"}.get(cell.outcome, "")
+            known = player_id(case, c) in played
+            row.append(Cell(("▶ " if known else "") + text, css,
+                            player_id(case, c) if known else ""))  # fmt: skip
+        rows.append(row)
+    return Table("imazu-players-table", "The Imazu grid's runs, played",
+                 "The grid's cells as links: each opens its run's player (in the part below, "
+                 "The Imazu runs, played). Each cell: the outcome of a failure, else the "
+                 "closest centre distance to a target.",
+                 ["case", *controllers], rows, placement=HTML)  # fmt: skip
+
+
 def section(results: Results) -> Section | None:
     every = imazu_runs(results)
     if not every:
@@ -363,6 +435,12 @@ def section(results: Results) -> Section | None:
         "distance to a target and its compliant encounters of all (no rule failed, none "
         "excused). A run that did not arrive is a failure, its encounters never compliant; an "
         "arrived run's colour is its worst encounter.", plot.png, plot.data))
+    played = players(runs, controllers, labels)
+    if played.blocks:
+        top.paragraphs.append(ANIMATED)
+        top.blocks.append(players_table(runs, controllers, labels,
+                                        {b.id for b in played.blocks}))  # fmt: skip
+        top.subsections.append(played)
     rows = [[Cell(_label(case)), Cell(classes[case])]
             + [_run_text(runs[case][c]) if c in runs[case] else Cell("no run")
                for c in controllers] for case in cases]  # fmt: skip

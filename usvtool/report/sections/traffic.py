@@ -12,7 +12,10 @@ recorded CPA), and the own vessel's recorded manoeuvre over the encounter's wind
 (:func:`usvtool.traffic.manoeuvre`). Per run: its outcome (a run that did not arrive or
 collided is a failure), the closest distance to any ship (the results table's) and to the
 encounter's other vessel (its summary's ``per_target``), and its encounters' COLREGs counts.
-No trace is read (a run of real traffic writes some 12 MB of it).
+The tables read no trace (a run of real traffic writes some 12 MB of it); in the HTML report
+only, each run is a player (:func:`players`: its trace and events read once, folded until
+opened), linked from its row of the runs' table, and the section's text says so in the PDF too
+(:data:`ANIMATED`).
 """
 
 from __future__ import annotations
@@ -25,7 +28,7 @@ from pathlib import Path
 from usvtool.digest import sha256
 from usvtool.errors import UsvError
 from usvtool.report.data import JobResults, Results
-from usvtool.report.document import Cell, Section, Table, number
+from usvtool.report.document import HTML, Cell, Section, Table, anchor, number
 from usvtool.report.runs import (
     COUNTS,
     MARKS,
@@ -33,6 +36,7 @@ from usvtool.report.runs import (
     VERDICTS,
     family_runs,
     outcome,
+    run_files,
 )
 from usvtool.tracks import NS, Tracks, read_tracks
 from usvtool.traffic import (
@@ -207,9 +211,49 @@ def encounters_table(scenes: dict[str, Recorded], contacts: dict[str, int | None
                   "her speed (kn)"], rows)  # fmt: skip
 
 
+#: The line of the section (in the PDF too) that says where its animations are.
+ANIMATED = ("Each run can be watched as it happened, every recorded vessel with it, in the HTML "
+            "report (index.html): its controller's name in the runs' table opens its player.")
+
+
+def player_id(case: str, controller: str) -> str:
+    """The id of the player of the run of ``case`` by ``controller``."""
+    return anchor("traffic-run", case, controller)
+
+
+def players(scenes: dict[str, Recorded], runs: dict[str, dict[str, JobResults]],
+            controllers: list[str]) -> Section:  # fmt: skip
+    """Each run of each recorded encounter as a player (HTML only, folded until opened), from
+    its trace and events (read once per report: :func:`usvtool.report.runs.run_files`); a run
+    without them has none."""
+    from usvtool.report.animation.embed import run_player
+
+    part = Section("traffic-players", "The recorded encounters, played", placement=HTML)
+    part.paragraphs.append(
+        "Each controller's run of each recorded encounter as it happened (docs/animate.md): the "
+        "USV in the own vessel's place, every other vessel replayed from her AIS track, each "
+        "hull to scale along her heading, the wakes, the route (the own vessel's recorded "
+        "track) and goal, each target's COLREGs class, the verdict events on the timeline, the "
+        "clock and the distance to the nearest ship.")
+    for case, rec in scenes.items():
+        for c in controllers:
+            job = runs[case].get(c)
+            files = None if job is None else run_files(job)
+            if files is None:
+                continue
+            part.blocks.append(run_player(
+                *files, player_id(case, c),
+                f"{case} with {c}: {_outcome(job).text}, the USV in the place of "
+                f"{rec.vessel(rec.own)}",
+                f"{case}, {c}, seed {job.seed}; the other vessel of the encounter: "
+                f"{rec.vessel(rec.other_letter)}, recorded CPA {rec.at.row['cpa_m']:.1f} m."))
+    return part
+
+
 def runs_table(scenes: dict[str, Recorded], runs: dict[str, dict[str, JobResults]],
-               controllers: list[str]) -> Table:
-    """Per scene, the recorded vessel's row and each controller's run (module docstring)."""
+               controllers: list[str], played: frozenset[str] = frozenset()) -> Table:
+    """Per scene, the recorded vessel's row and each controller's run (module docstring); a
+    run with a player (its id in ``played``) links to it from its controller's name."""
     rows = []
     for case, rec in scenes.items():
         rows.append([Cell(case), Cell("recorded"), Cell("-"), Cell("-", "num"),
@@ -219,7 +263,8 @@ def runs_table(scenes: dict[str, Recorded], runs: dict[str, dict[str, JobResults
             if job is None:
                 continue
             targets = per_target(job, rec.at.other)
-            rows.append([Cell(case), Cell(c), _outcome(job),
+            link = player_id(case, c)
+            rows.append([Cell(case), Cell(c, link=link if link in played else ""), _outcome(job),
                          number(job.number("closest_distance_m"), 1),
                          number(None if targets is None else targets[1], 1), *_counts(job)])
     return Table("traffic-runs", "Recorded encounters: every controller beside the real vessel",
@@ -263,7 +308,13 @@ def section(results: Results) -> Section | None:
         top.paragraphs.append(f"{len(runs) - len(scenes)} scene(s) without their runs' summary "
                               "files are left out of the tables.")  # fmt: skip
     if scenes:
+        played = players(scenes, runs, controllers)
+        ids = frozenset(b.id for b in played.blocks)
+        if ids:
+            top.paragraphs.append(ANIMATED)
         top.blocks += [encounters_table(scenes, contacts),
-                       runs_table(scenes, runs, controllers)]  # fmt: skip
+                       runs_table(scenes, runs, controllers, ids)]  # fmt: skip
+        if ids:
+            top.subsections.append(played)
     return top
 
