@@ -183,31 +183,98 @@ def test_without_weasyprint_the_same_html_and_pngs_are_written_and_a_line_says_w
         assert (tmp_path / "r" / "figures" / p.name).read_bytes() == p.read_bytes(), p.name
 
 
-@pytest.mark.skipif(shutil.which("chromium") is None,
-                    reason="Chromium is not installed (the Makefile installs Debian's chromium "
-                           "as root; elsewhere: apt-get install chromium)")  # fmt: skip
-def test_headless_chromium_shows_every_figure(report, tmp_path):
-    out, summary = report
-    page = (out / "index.html").read_text(encoding="utf-8")
-    probe = ("<script>window.addEventListener('load', () => {document.body.dataset.sizes = "
-             "[...document.images].map(i => i.complete ? i.naturalWidth + 'x' + "
-             "i.naturalHeight : '0x0').join(' ')})</script></body>")  # fmt: skip
-    (tmp_path / "probe.html").write_text(page.replace("</body>", probe), encoding="utf-8")
+#: Put first in a page's <head>: records every uncaught error and console error or warning.
+CATCH = ("<script>window.usvErrors = []; window.addEventListener('error', e => "
+         "window.usvErrors.push(String(e.message))); for (const k of ['error', 'warn']) {"
+         " const f = console[k]; console[k] = (...a) => {window.usvErrors.push(a.join(' '));"
+         " f.apply(console, a)}; }</script>")  # fmt: skip
+#: After load, what the page fetched (every resource but its own data: URIs) and its errors.
+LOADED = ("d.errors = window.usvErrors.join(' | '); d.requests = performance"
+          ".getEntriesByType('resource').map(r => r.name).join(' ');")  # fmt: skip
+#: The player's test: folded at load (not started), opened from a link to it (started), Play
+#: (its ship moves), Pause, the slider to mid-run (its ship moves). Headless Chromium dumping
+#: the DOM draws no frame (requestAnimationFrame never fires under its virtual time), so a
+#: frame is a 16 ms timer here.
+PLAY = """<script>window.requestAnimationFrame = f => setTimeout(() => f(performance.now()), 16);
+window.addEventListener('load', () => {
+  const d = document.body.dataset, root = document.querySelector('div.usv-player');
+  const hull = () => root.querySelector('svg.usv-map polygon').getAttribute('transform');
+  d.atLoad = root.hasAttribute('data-ready') ? 'started' : 'folded';
+  document.querySelector('td > a').click();
+  setTimeout(() => {
+    d.opened = root.getAttribute('data-ready') === '1' ? 'started' : 'not started';
+    const before = hull();
+    root.querySelector('button').click();
+    setTimeout(() => {
+      d.played = root.getAttribute('data-playing') === '1' && hull() !== before ? 'moved' : 'still';
+      root.querySelector('button').click();
+      const slider = root.querySelector('input[type=range]'), at = hull();
+      slider.value = String(Math.round(Number(slider.max) / 2));
+      slider.dispatchEvent(new Event('input'));
+      d.slid = hull() !== at ? 'moved' : 'still';
+      """ + LOADED + """
+    }, 500);
+  }, 100);
+});</script></body>"""
+
+
+def chromium_dom(page: str, path: Path, tmp_path: Path) -> str:
+    """The DOM of ``page`` (written to ``path``) once headless Chromium has loaded it and run
+    its timers (5 s of virtual time), no address resolving; the console's lines refused."""
+    path.write_text(page.replace("<head>", "<head>" + CATCH, 1), encoding="utf-8")
     cmd = ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
            "--disable-background-networking", "--disable-component-update", "--disable-sync",
            "--host-resolver-rules=MAP * ~NOTFOUND", f"--user-data-dir={tmp_path / 'profile'}",
-           "--dump-dom", (tmp_path / "probe.html").as_uri()]  # fmt: skip
-    dom = subprocess.run(cmd, capture_output=True, text=True, timeout=120).stdout
-    sizes = re.search(r'data-sizes="([^"]*)"', dom)
-    assert sizes, dom[:300]
-    shown = sizes.group(1).split()
-    assert len(shown) == summary["figures"]
-    for size, png in zip(shown, Page(page).images, strict=True):
+           "--virtual-time-budget=5000", "--enable-logging=stderr", "--v=0",
+           "--dump-dom", path.as_uri()]  # fmt: skip
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+    assert not [line for line in r.stderr.splitlines() if ":CONSOLE" in line], r.stderr[-2000:]
+    return r.stdout
+
+
+def body_data(dom: str) -> dict[str, str]:
+    body = re.search(r"<body[^>]*>", dom)
+    assert body, dom[:300]
+    return dict(re.findall(r'data-([a-z-]+)="([^"]*)"', body.group(0)))
+
+
+@pytest.mark.skipif(shutil.which("chromium") is None,
+                    reason="Chromium is not installed (the Makefile installs Debian's chromium "
+                           "as root; elsewhere: apt-get install chromium)")  # fmt: skip
+def test_headless_chromium_shows_every_figure_and_plays_a_player(batch, report, tmp_path):
+    out, summary = report
+    page = (out / "index.html").read_text(encoding="utf-8")
+    probe = ("<script>window.addEventListener('load', () => {const d = document.body.dataset; "
+             "d.sizes = [...document.images].map(i => i.complete ? i.naturalWidth + 'x' + "
+             "i.naturalHeight : '0x0').join(' '); " + LOADED + "})</script></body>")  # fmt: skip
+    shown = body_data(chromium_dom(page.replace("</body>", probe), tmp_path / "probe.html",
+                                   tmp_path))  # fmt: skip
+    assert (shown["errors"], shown["requests"]) == ("", "")
+    sizes = shown["sizes"].split()
+    assert len(sizes) == summary["figures"]
+    for size, png in zip(sizes, Page(page).images, strict=True):
         import cv2
 
         h, w = cv2.imdecode(np.frombuffer(base64.b64decode(png.split(",", 1)[1]), np.uint8),
                             cv2.IMREAD_UNCHANGED).shape[:2]  # fmt: skip
         assert size == f"{w}x{h}"
+    # a run of the batch as the report plays one: folded, linked from a table's cell
+    from usvtool.report.animation.embed import run_player
+    from usvtool.report.document import Cell, Section, Table
+    from usvtool.report.page import html
+    from usvtool.trace import read_events, read_trace
+
+    run = next(d for d in sorted((batch.parent / "runs").iterdir())
+               if (d / "trace.csv").is_file())  # fmt: skip
+    events = run / "trace.events.json"
+    player = run_player(read_trace(run / "trace.csv"), read_events(events), events, "run-1",
+                        "A run", "Its caption")  # fmt: skip
+    links = Table("links", "Links", "c", ["run"], [[Cell("play it", link="run-1")]])
+    page = html("Players", "s", [Section("runs", "Runs", ["text"], [links, player])])
+    played = body_data(chromium_dom(page.replace("</body>", PLAY), tmp_path / "player.html",
+                                    tmp_path))  # fmt: skip
+    assert played == {"at-load": "folded", "opened": "started", "played": "moved",
+                      "slid": "moved", "errors": "", "requests": ""}
 
 
 @pytest.mark.parametrize(
