@@ -246,7 +246,8 @@ def players(scenes: dict[str, Recorded], runs: dict[str, dict[str, JobResults]],
                 f"{case} with {c}: {_outcome(job).text}, the USV in the place of "
                 f"{rec.vessel(rec.own)}",
                 f"{case}, {c}, seed {job.seed}; the other vessel of the encounter: "
-                f"{rec.vessel(rec.other_letter)}, recorded CPA {rec.at.row['cpa_m']:.1f} m."))
+                f"{rec.vessel(rec.other_letter)}, recorded CPA "
+                f"{number(rec.at.row['cpa_m'], 1).text} m."))  # fmt: skip
     return part
 
 
