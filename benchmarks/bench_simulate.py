@@ -26,9 +26,14 @@ start-up, and the wall time of the bundled scenarios.
    guard's one-line refusal of the longest scene under a small ``--max-memory``.
 5. Every scenario in charts/scenarios/ with its own controller (``--scenarios``): simulated and
    wall time, steps, mean step time.
+6. Whole runs per period (``--periods``): the run loop of ``usvtool simulate`` (observe, decide,
+   advance; not the set-up nor the verdicts) on Imazu case 13 (3 339 periods with udwa) and
+   emergency crossing scene 0, seed 1, in this process: ms per period of the loop and of the
+   decisions alone, best of ``--runs`` runs; with ``--base-tree DIR`` beside another checkout's
+   (``git worktree add DIR REV``), run by run alternately in processes of its own.
 
 Usage: python benchmarks/bench_simulate.py [--runs 7] [--base REV] [--no-steps] [--targets]
-       [--startup] [--ships] [--scenarios]
+       [--startup] [--ships] [--scenarios] [--periods [--base-tree DIR]]
 """
 
 from __future__ import annotations
@@ -394,6 +399,64 @@ def scenarios() -> None:
               f"{s['step_time_ms']:8.3f} {str(s['arrived']):>7}")  # fmt: skip
 
 
+#: The runs of ``--periods``: (family, kind, scene) and the controllers.
+PERIOD_SCENES = (("imazu", "13", 0), ("emergency", "crossing", 0))
+PERIOD_CONTROLLERS = ("dwa", "gdwa", "ccdwa", "udwa", "udwa+", "vo", "sbmpc")
+
+
+def period_run(path: Path, name: str) -> tuple[float, float, int]:
+    """One run of scenario ``path`` with controller ``name``, seed 1, as ``usvtool simulate``
+    loops (observe, decide, advance): (s per period, s deciding per period, periods)."""
+    from usvtool.sim import run as sim_run
+
+    scenario = read_scenario(path)
+    controller = make_controller(name)
+    n_steps = int(round(scenario.sim.duration / scenario.sim.dt))
+    voyage = sim_run.Voyage(scenario, sim_run._Setup(scenario), n_steps, 1)
+    controller.reset(voyage.world)
+    decide = 0.0
+    t0 = time.perf_counter()
+    while not voyage.over:
+        own, targets, encounter = voyage.observe()
+        t1 = time.perf_counter()
+        d = controller.decide(own, targets, encounter)
+        decide += time.perf_counter() - t1
+        voyage.advance(d.v, d.omega, d.events)
+    loop = time.perf_counter() - t0
+    return loop / voyage.step, decide / voyage.step, voyage.step
+
+
+def periods(runs: int, base_tree: str | None) -> None:
+    """Whole runs per period (the module docstring, item 6): now, in this process, and, with
+    ``base_tree``, another checkout's ``usvtool`` (``git worktree add /tmp/ref REV``) in a
+    process of its own (``--period-run``), the two alternating run by run."""
+    from usvtool.sim.families import make_scene, write_scene
+
+    print(f"\nwhole runs, ms per period (the loop; deciding), best of {runs} runs, seed 1"
+          + (f"; beside {base_tree}" if base_tree else ""))  # fmt: skip
+    with tempfile.TemporaryDirectory() as tmp:
+        for family, kind, number in PERIOD_SCENES:
+            path = Path(tmp) / f"{family}-{kind}.yaml"
+            write_scene(make_scene(family, kind, number), path)
+            for name in PERIOD_CONTROLLERS:
+                now = before = (math.inf, math.inf)
+                steps = period_run(path, name)[2]  # and a first run, warming up
+                for _ in range(runs):
+                    now = min(now, period_run(path, name)[:2])
+                    if base_tree:
+                        env = {**os.environ, "PYTHONPATH": base_tree}
+                        out = subprocess.run([sys.executable, __file__, "--period-run", str(path),
+                                              name], env=env, check=True, capture_output=True,
+                                             text=True).stdout.split()  # fmt: skip
+                        before = min(before, (float(out[0]), float(out[1])))
+                row = f"{family} {kind} {number:<3} {name:6} {steps:5d} periods: " \
+                      f"{now[0] * 1e3:6.3f} ({now[1] * 1e3:6.3f})"  # fmt: skip
+                if base_tree:
+                    row += f" | before {before[0] * 1e3:6.3f} ({before[1] * 1e3:6.3f}) | " \
+                           f"x {before[0] / now[0]:4.2f} ({before[1] / now[1]:4.2f})"  # fmt: skip
+                print(row, flush=True)
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=7)
@@ -403,7 +466,16 @@ def main(argv=None) -> None:
     ap.add_argument("--startup", action="store_true", help="numba's start-up, the command line")
     ap.add_argument("--ships", action="store_true", help="memory and time of many replayed tracks")
     ap.add_argument("--scenarios", action="store_true", help="also run the bundled scenarios")
+    ap.add_argument("--periods", action="store_true", help="whole runs' time per period")
+    ap.add_argument("--base-tree", help="--periods: also another checkout's (a directory)")
+    ap.add_argument("--period-run", nargs=2, metavar=("SCENARIO", "CONTROLLER"),
+                    help="one run's s per period and deciding (--base-tree's processes)")
     args = ap.parse_args(argv)
+    if args.period_run:  # the second of two runs (the first warms up), as --periods times
+        for _ in range(2):
+            loop, decide, _ = period_run(Path(args.period_run[0]), args.period_run[1])
+        print(loop, decide)
+        return
     with tempfile.TemporaryDirectory() as tmp:
         prev = previous_controllers(args.base, Path(tmp)) if not args.no_steps or args.targets \
             else None  # fmt: skip
@@ -419,6 +491,8 @@ def main(argv=None) -> None:
         many_ships()
     if args.scenarios:
         scenarios()
+    if args.periods:
+        periods(args.runs, args.base_tree)
 
 
 if __name__ == "__main__":
