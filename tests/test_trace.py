@@ -285,3 +285,30 @@ def test_the_outputs_of_a_run_are_staged_together(tmp_path):
         write_trace(trace_tmp, trace)
         write_events(events_tmp, {"dcpa": float("nan")})
     assert list(tmp_path.iterdir()) == []  # all or nothing: no trace without its events
+
+
+def test_the_whole_column_reader_gives_the_line_readers_trace_bit_for_bit(tmp_path,
+                                                                         monkeypatch):  # fmt: skip
+    from usvtool import trace as module
+
+    rng = np.random.default_rng(5)
+    states = rng.uniform(-500, 500, (60, 3, 5))
+    states[..., 2] = rng.uniform(0, 359.999, (60, 3))  # headings in [0, 360)
+    path = tmp_path / "t.csv"
+    write_trace(path, Trace.from_states(np.arange(60) * 0.1, ["own", "a", "b"], states))
+    text = path.read_text(encoding="utf-8")
+    fast = module._well_formed(text)
+    assert fast is not None  # the writer's format takes the whole-column path
+    monkeypatch.setattr(module, "_well_formed", lambda text: None)
+    slow = read_trace(path)
+    assert fast.ships == slow.ships == ("own", "a", "b")
+    for name in ("t", "x", "y", "heading", "speed", "yaw_rate"):
+        assert np.array_equal(getattr(fast, name), getattr(slow, name)), name
+    monkeypatch.undo()
+    # a later step listing its ships in another order is still a trace: the line reader's
+    lines = text.splitlines()
+    lines[5], lines[6] = lines[6], lines[5]  # step 2: own, b, a
+    (tmp_path / "o.csv").write_text("\n".join(lines) + "\n", encoding="utf-8")
+    assert module._well_formed((tmp_path / "o.csv").read_text(encoding="utf-8")) is None
+    reordered = read_trace(tmp_path / "o.csv")
+    assert np.array_equal(reordered.x, slow.x)

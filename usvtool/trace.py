@@ -178,6 +178,9 @@ def read_trace(path: str | os.PathLike) -> Trace:
             text = f.read()
     except UnicodeDecodeError as exc:
         raise UsvError(f"{path}: not UTF-8 text ({exc.reason} at byte {exc.start})") from None
+    well_formed = _well_formed(text)
+    if well_formed is not None:
+        return well_formed
     rows = csv.reader(io.StringIO(text, newline=""))
     header = next(rows, None)
     if header != list(HEADER):
@@ -227,6 +230,44 @@ def read_trace(path: str | os.PathLike) -> Trace:
     first = _close_step(path, steps[-1], first)
     states = np.array([[step[3][name] for name in first] for step in steps], float)
     return Trace.from_states([step[2] for step in steps], first, states)
+
+
+def _well_formed(text: str) -> Trace | None:
+    """The trace of a text that follows the format as the writer writes it (every step the
+    first step's ships in its order), read at once: the numbers by NumPy's C parser (correctly
+    rounded, as ``float``), the checks on whole columns. None for anything else, which the
+    line-by-line reader then reads or refuses naming the line: this path only makes the common
+    case fast (a 450 s run of 4 ships, 18 000 rows: about ten times faster), never decides
+    what is refused."""
+    head, _, body = text.partition("\n")
+    if head != ",".join(HEADER) or not body or "\r" in body or '"' in body:
+        return None
+    lines = body[:-1].split("\n") if body.endswith("\n") else body.split("\n")
+    names = [line.split(",", 2)[1] if line.count(",") == len(HEADER) - 1 else "" for line in lines]
+    if "" in names:
+        return None
+    try:
+        numbers = np.loadtxt(io.StringIO(body), delimiter=",", usecols=(0, 2, 3, 4, 5, 6),
+                             dtype=float, ndmin=2, comments=None)  # fmt: skip
+    except ValueError:
+        return None
+    if numbers.shape != (len(lines), 6) or not np.isfinite(numbers).all():
+        return None
+    t = numbers[:, 0]
+    k = int(np.argmax(t != t[0])) if (t != t[0]).any() else t.size  # the first step's ships
+    first = tuple(names[:k])
+    if (t.size % k or first[0] != OWN or len(set(first)) != k
+            or any(c in n for n in first for c in _BAD_NAME)):  # fmt: skip
+        return None
+    steps = t.size // k
+    if names != list(first) * steps:
+        return None
+    t = t.reshape(steps, k)
+    heading = numbers[:, 3]
+    if (t != t[:, :1]).any() or (np.diff(t[:, 0]) <= 0).any() or (heading < 0).any() or (
+            heading >= 360).any():  # fmt: skip
+        return None
+    return Trace.from_states(t[:, 0], first, numbers[:, 1:].reshape(steps, k, len(STATE)))
 
 
 def _close_step(path, step, first: tuple[str, ...] | None) -> tuple[str, ...]:
