@@ -10,7 +10,7 @@ import pytest
 from usvtool.angles import wrap_pi
 from usvtool.sim import rollout_kernels as kernels
 from usvtool.sim import vessel as vessel_model
-from usvtool.sim.controllers import Own, World, make_controller
+from usvtool.sim.controllers import Own, Targets, World, make_controller
 from usvtool.sim.controllers.base import normalise
 
 
@@ -305,3 +305,20 @@ def test_a_route_progress_gives_the_same_subgoal_for_the_same_state():
         assert same_bits(cached.subgoal(own), first)  # asked again by another critic
         fresh._last = None  # no memory: worked out afresh
         assert same_bits(fresh.subgoal(own), first)
+
+
+def test_the_path_critic_at_the_goal_takes_the_rollouts_distances_to_it():
+    """gdwa's path critic, its sub-goal the goal (no route), reuses the rollouts' closest
+    approach to the goal: the same reward as a pass of its own."""
+    rng = np.random.default_rng(4)
+    ship = vessel_model.preset("iwso-dwa-usv")
+    goal = np.array([30.0, 200.0])
+    c = make_controller("gdwa")
+    c.reset(World(ship, goal))
+    path = next(critic for critic in c.objective if critic.name == "path")
+    for _ in range(20):
+        own = Own(*rng.uniform(-40, 40, 2), rng.uniform(-4, 4), rng.uniform(1, 5),
+                  rng.uniform(-0.5, 0.5))  # fmt: skip
+        r = c.rollouts(own, Targets.none())
+        afresh = np.sqrt(kernels.closest(r.x, r.y, float(goal[0]), float(goal[1]))[1])
+        assert same_bits(path.reward(own, r), afresh.max() - afresh)

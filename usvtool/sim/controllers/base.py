@@ -148,6 +148,7 @@ class Rollouts:
     x: np.ndarray  # (T, N) the predicted positions, east
     y: np.ndarray  # (T, N) and north
     reached: np.ndarray  # (N,) bool: the rollout passes within the goal tolerance of the goal
+    to_goal: np.ndarray  # (N,) the squared distance from the rollout's closest point to the goal
     near: np.ndarray  # (N,) complex: the rollout's point closest to the goal
     near_time: np.ndarray  # (N,) the time it is reached (s)
     horizon: float  # the last rollout time (s)
@@ -373,8 +374,9 @@ class DynamicWindow(Controller):
         )  # fmt: skip
         row, to_goal, near = kernels.closest(x, y, float(world.goal[0]), float(world.goal[1]))
         reached = to_goal <= world.goal_tolerance**2
-        return Rollouts(v, omega, contact, static_first, clearance, intrudes, x, y, reached, near,
-                        self.times[row], self._horizon, own, generator)  # fmt: skip
+        return Rollouts(v, omega, contact, static_first, clearance, intrudes, x, y, reached,
+                        to_goal, near, self.times[row], self._horizon, own,
+                        generator)  # fmt: skip
 
     def score(self, own: Own, r: Rollouts, candidates: np.ndarray) -> np.ndarray:
         """The sum of the critics' normalised rewards (eqs. 2-4) times their scales, over

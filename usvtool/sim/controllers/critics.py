@@ -179,5 +179,9 @@ class SubgoalPath(_SubgoalCritic):
         from usvtool.sim.rollout_kernels import closest
 
         sub = self.progress.subgoal(own)
-        path = np.sqrt(closest(r.x, r.y, float(sub[0]), float(sub[1]))[1])  # eq. 24
+        if sub[0] == self.world.goal[0] and sub[1] == self.world.goal[1]:
+            to_sub = r.to_goal  # the route done (or none): the goal's, worked out already
+        else:
+            to_sub = closest(r.x, r.y, float(sub[0]), float(sub[1]))[1]
+        path = np.sqrt(to_sub)  # eq. 24
         return path.max() - path
