@@ -12,6 +12,7 @@ import shutil
 import subprocess
 import sys
 import textwrap
+import time
 from pathlib import Path
 
 import numpy as np
@@ -318,15 +319,24 @@ def test_a_run_interrupted_in_a_step_leaves_no_process(tmp_path):
     thinks: the run's close ends it all the same."""
     scenario = read_scenario(SCENARIOS / "env1-head-on.yaml")
     pidfile = tmp_path / "pid"
+    # a deadline no run reaches: only the interrupt ends this one, whatever the load
     controller = make_controller("exec", command=[*script(tmp_path, "faulty.py", FAULTY),
-                                                  "late", "0", str(pidfile)])  # fmt: skip
+                                                  "late", "0", str(pidfile)],
+                                 deadline=120.0)  # fmt: skip
     import signal
     import threading
 
     from usvtool.sim.run import _run, _Setup
 
     main = threading.get_ident()
-    threading.Timer(0.5, lambda: signal.pthread_kill(main, signal.SIGINT)).start()
+
+    def interrupt():  # once the program runs (it writes its pid first), while it thinks
+        while not (pidfile.exists() and pidfile.read_text()):
+            time.sleep(0.05)
+        time.sleep(0.2)
+        signal.pthread_kill(main, signal.SIGINT)
+
+    threading.Thread(target=interrupt, daemon=True).start()
     with pytest.raises(KeyboardInterrupt):
         _run(scenario, SimOptions(), controller, 100, _Setup(scenario))
     assert gone(int(pidfile.read_text()))
