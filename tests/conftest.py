@@ -226,3 +226,12 @@ def dask_cluster(site, tmp_path):
                 except ProcessLookupError:
                     pass
                 p.wait()
+
+
+def pytest_collection_modifyitems(items):
+    """The modules holding tests marked slow first, each module's tests kept in order: with
+    pytest-xdist's ``--dist loadscope`` (make test) a module runs whole on one worker, in the
+    order the modules come, so the long ones start first and the short ones fill the end
+    rather than one worker finishing a long module alone (a sort, the same in every worker)."""
+    slow = {item.path for item in items if item.get_closest_marker("slow") is not None}
+    items.sort(key=lambda item: item.path not in slow)

@@ -194,6 +194,7 @@ def test_plugins_lists_every_method_with_its_origin_and_parameters(site):
     assert len(listed["problems"]) == 3 and methods["dwa"]["distribution"] == "usvtool"
 
 
+@pytest.mark.slow  # whole pipelines: batches, and a Dask cluster
 def test_a_plugins_batch_jobs_run_in_workers_and_again_once_it_is_upgraded(tmp_path_factory):
     site = tmp_path_factory.mktemp("upgraded")
     (site / "usvplug").mkdir()
@@ -309,6 +310,7 @@ def test_plugins_plan_with_their_variants_and_draw_and_run_scenes(site, tmp_path
     assert r.returncode == 0 and json.loads(r.stdout)["controller"] == "slow-dwa", r.stderr
 
 
+@pytest.mark.slow  # whole pipelines: batches, and a Dask cluster
 def test_a_pipeline_of_plugins_gives_one_table_locally_and_on_a_dask_cluster(site, dask_cluster,
                                                                              tmp_path):  # fmt: skip
     """The plugin's controller, optimizer (and its +s, +g), exact planner and family in one

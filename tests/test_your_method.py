@@ -145,6 +145,7 @@ claims:
 JOBS = 1 + 6 + 4
 
 
+@pytest.mark.slow  # whole pipelines: batches, and a Dask cluster
 def test_the_example_gives_one_table_in_local_workers_and_on_a_dask_cluster(site, dask_cluster,
                                                                             tmp_path):  # fmt: skip
     """The pip-installed example's planner (with its +g) and controller in a pipeline with a
