@@ -169,17 +169,25 @@ class SegmentChecker:
         k = len(a)
         if length is None:
             length = np.hypot(b[:, 0] - a[:, 0], b[:, 1] - a[:, 1])
+        basis, clear, samples, margin, d, *tables = self.kernel_args(pad or 0.0)
         # samples (1 - t) a + t b: x of the k segments then y, as one small matrix product
         ends = np.concatenate([a, b], axis=1).reshape(k, 2, 2).transpose(2, 0, 1)
-        xy = ends.reshape(2 * k, 2) @ self._basis
-        d = pad or 0.0
-        # a point farther than pad √2 from every blocked square is outside the grown ones
-        margin = _MARGIN + 2 * _SQRT2 * d
+        xy = ends.reshape(2 * k, 2) @ basis
         hit, inside = collision_kernels.check(
-            xy[:k], xy[k:], np.ascontiguousarray(length, float), self._clear, self.samples,
-            margin, d, pad is not None, self._prefix, self.width + 2, *self._tables(d),
+            xy[:k], xy[k:], np.ascontiguousarray(length, float), clear, samples, margin, d,
+            pad is not None, *tables,
         )  # fmt: skip
         return hit, inside if pad is not None else None
+
+    def kernel_args(self, pad: float) -> tuple:
+        """The compiled check's arguments for the squares grown by ``pad`` (0 or :attr:`pad`),
+        in :func:`usvtool.collision_kernels.check`'s order around the segments: ``basis``
+        (``(2, samples)``: ``1 - t`` and ``t`` of the samples), ``clear``, ``samples``,
+        ``margin``, ``d``, then the tables ``prefix``, ``stride``, ``below``, ``bands``."""
+        # a point farther than pad √2 from every blocked square is outside the grown ones
+        margin = _MARGIN + 2 * _SQRT2 * pad
+        return (self._basis, self._clear, self.samples, margin, pad, self._prefix,
+                self.width + 2, *self._tables(pad))  # fmt: skip
 
     def _segments(self, a, b) -> tuple[np.ndarray, np.ndarray]:
         a = np.asarray(a, float).reshape(-1, 2)

@@ -16,9 +16,10 @@ rows ``< r``; ``below`` and ``bands`` (1.0 or 0.0) the grown squares' tables
 
 numba's cache keys a compiled function on its own file only: the cached kernels of
 :mod:`usvtool.plan.gridsearch` (and of benchmarks/bench_fewest_links.py) that call
-:func:`touches` keep the old version after an edit of this file alone. After changing it,
-remove ``usvtool/plan/__pycache__/gridsearch.*.nb*`` (or touch gridsearch.py); a fresh checkout
-or install compiles everything anew.
+:func:`touches`, and those of :mod:`usvtool.plan.cost_kernels` that call :func:`segment`, keep
+the old version after an edit of this file alone. After changing it, remove
+``usvtool/plan/__pycache__/gridsearch.*.nb*`` and ``cost_kernels.*.nb*`` (or touch those
+files); a fresh checkout or install compiles everything anew.
 """
 
 from __future__ import annotations
@@ -162,12 +163,45 @@ def traverse(a, b, d, want_inside, prefix, stride, below, bands) -> tuple[np.nda
     return hit, inside
 
 
+@njit(nt.Tuple((_B, _F))(_F[::1], _F[::1], _F, _F[::1], _I, _F, _F, _B, _F[::1], *_TABLES),
+      cache=True, nogil=True)  # fmt: skip
+def segment(
+    x, y, length, clear, samples, margin, d, want_inside, r, prefix, stride, below, bands
+) -> tuple[bool, float]:
+    """``(hit, inside)`` of one segment of :func:`check` from its ``samples`` sample points
+    ``x``, ``y`` and its ``length`` (``r``: scratch, at least ``samples`` long)."""
+    row = stride - 1
+    n_in = 0
+    for j in range(samples):
+        cell = int(y[j]) * row + int(x[j])  # truncation: coordinates >= 0
+        if not 0 <= cell < clear.size:  # no bounds checks in compiled code otherwise
+            raise ValueError("segments must lie inside the grid extent")
+        r[j] = clear[cell]
+        n_in += r[j] < 0
+    if n_in:
+        return True, n_in * length / samples if want_inside else 0.0
+    spacing = length / (samples - 1) + margin
+    hit = False
+    total = 0.0
+    for j in range(samples - 1):
+        if r[j] + r[j + 1] <= spacing:
+            touch, within = strips(x[j], y[j], x[j + 1], y[j + 1], d,
+                                   want_inside, prefix, stride, below, bands)  # fmt: skip
+            if touch:
+                hit = True
+                if not want_inside:
+                    break
+                total += within
+    return hit, total
+
+
 @njit(_RESULTS(_F[:, ::1], _F[:, ::1], _F[::1], _F[::1], _I, _F, _F, _B, *_TABLES),
       cache=True, nogil=True)  # fmt: skip
 def check(
     x, y, length, clear, samples, margin, d, want_inside, prefix, stride, below, bands
 ) -> tuple[np.ndarray, np.ndarray]:
-    """The filter, then :func:`strips` of the intervals it leaves (``SegmentChecker._check``).
+    """The filter, then :func:`strips` of the intervals it leaves (``SegmentChecker._check``),
+    segment by segment (:func:`segment`).
 
     ``x``, ``y``: ``(k, samples)`` sample points of k segments of lengths ``length``; ``clear``:
     the filter's table (rows of width + 1, -1 on blocked cells); ``margin`` the extra clearance
@@ -175,33 +209,10 @@ def check(
     the share of samples in blocked cells times the length for a segment with such a sample,
     else the sum over its intervals."""
     k = x.shape[0]
-    row = stride - 1
     hit = np.zeros(k, np.bool_)
     inside = np.zeros(k)
     r = np.empty(samples)
     for i in range(k):
-        n_in = 0
-        for j in range(samples):
-            cell = int(y[i, j]) * row + int(x[i, j])  # truncation: coordinates >= 0
-            if not 0 <= cell < clear.size:  # no bounds checks in compiled code otherwise
-                raise ValueError("segments must lie inside the grid extent")
-            r[j] = clear[cell]
-            n_in += r[j] < 0
-        if n_in:
-            hit[i] = True
-            if want_inside:
-                inside[i] = n_in * length[i] / samples
-            continue
-        spacing = length[i] / (samples - 1) + margin
-        total = 0.0
-        for j in range(samples - 1):
-            if r[j] + r[j + 1] <= spacing:
-                touch, within = strips(x[i, j], y[i, j], x[i, j + 1], y[i, j + 1], d,
-                                       want_inside, prefix, stride, below, bands)  # fmt: skip
-                if touch:
-                    hit[i] = True
-                    if not want_inside:
-                        break
-                    total += within
-        inside[i] = total
+        hit[i], inside[i] = segment(x[i], y[i], length[i], clear, samples, margin, d,
+                                    want_inside, r, prefix, stride, below, bands)  # fmt: skip
     return hit, inside

@@ -99,6 +99,8 @@ class PathProblem:
         if self.encoding == "waypoints" and self.waypoints < 1:
             raise ValueError("waypoints must be >= 1")
         self.checker = SegmentChecker(self.grid.blocked, pad=PAD)
+        from usvtool.plan import cost_kernels  # noqa: F401  (compiled or loaded now, untimed)
+
         self._ends = np.array(
             [self.grid.to_cell_coords(*self.start), self.grid.to_cell_coords(*self.goal)], float
         )
@@ -129,7 +131,20 @@ class PathProblem:
         return self.lower.size
 
     def decode(self, X) -> np.ndarray:
-        """Routes of the population ``X`` ``(n, dim)`` as cell coordinates ``(n, m, 2)``."""
+        """Routes of the population ``X`` ``(n, dim)`` as cell coordinates ``(n, m, 2)``: one
+        compiled call (:mod:`usvtool.plan.cost_kernels`; :meth:`_decode_python` the same in
+        NumPy)."""
+        X = np.atleast_2d(np.ascontiguousarray(X, dtype=float))
+        if X.ndim != 2 or X.shape[1] != self.dim:
+            raise ValueError(f"a population of shape (n, {self.dim}), not {X.shape}")
+        from usvtool.plan import cost_kernels  # numba: imported with the checker's kernels
+
+        if self.encoding == "columns":
+            return cost_kernels.decode_columns(X, self._line, self.grid.height, self._ends)
+        return cost_kernels.decode_waypoints(X, self._base, self._origin, self._scale, self._ends)
+
+    def _decode_python(self, X) -> np.ndarray:
+        """:meth:`decode` in NumPy (the reference of tests/plan/test_cost_kernels.py)."""
         X = np.atleast_2d(np.asarray(X, float))
         n, k = X.shape
         g = self.grid
@@ -160,7 +175,31 @@ class PathProblem:
     def cost(self, routes, exact: bool = False) -> np.ndarray:
         """Cost (module docstring) of routes in cell coordinates ``(n, m, 2)`` inside the grid;
         with ``exact``, against the blocked squares themselves rather than the grown ones (the
-        figure reported for a route: the search's tolerance is not a property of the route)."""
+        figure reported for a route: the search's tolerance is not a property of the route).
+
+        Two compiled calls around NumPy's ``arctan2`` (:mod:`usvtool.plan.cost_kernels`), the
+        same floats as :meth:`_cost_python`."""
+        return self._kernel_cost(routes, True, 0.0 if exact else self.checker.pad)
+
+    def _kernel_cost(self, routes, check: bool, pad: float) -> np.ndarray:
+        """:meth:`cost` against the squares grown by ``pad``; without ``check`` (routes known
+        to be collision-free) only its length and turning terms (:meth:`free_cost`)."""
+        routes = np.ascontiguousarray(routes, dtype=float)
+        if routes.ndim != 3 or routes.shape[2] != 2:
+            raise ValueError(f"routes of shape (n, m, 2), not {routes.shape}")
+        from usvtool.plan import cost_kernels
+
+        length, inside, hits, turn = cost_kernels.route_terms(
+            routes, check, *self.checker.kernel_args(pad)
+        )
+        angle = np.arctan2(turn.imag, turn.real)  # NumPy's, whose bits the cost keeps
+        return cost_kernels.combine(
+            length, inside, hits, angle, float(self.grid.cell_size), float(self.turn_weight),
+            INSIDE_WEIGHT, float(self.penalty),
+        )  # fmt: skip
+
+    def _cost_python(self, routes, exact: bool = False) -> np.ndarray:
+        """:meth:`cost` in NumPy (the reference of tests/plan/test_cost_kernels.py)."""
         routes = np.asarray(routes, float)
         n, m = routes.shape[:2]
         ell = self.grid.cell_size

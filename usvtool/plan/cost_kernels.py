@@ -1,0 +1,227 @@
+"""Compiled kernels of the path problem's cost (:class:`usvtool.plan.problem.PathProblem`), with
+numba.
+
+The optimizers evaluate a population of 50-100 routes of a few segments each per iteration, and
+as NumPy array operations (segments, lengths, turn angles, the collision check's samples and
+glue, the sums) an evaluation spent 0.15-0.35 ms on some 40 calls' overheads. Here a population
+is decoded in one call (:func:`decode_waypoints`, :func:`decode_columns`) and its cost computed
+in two (:func:`route_terms`, :func:`combine`) around one NumPy call, ``arctan2`` of the turns:
+NumPy's SIMD ``arctan2`` (SVML on AVX-512 machines) need not give the C library's bits, so it
+stays NumPy's, called on the same values.
+
+Bit for bit. The kernels repeat the NumPy expressions they stand for operation by operation, so
+that every cost is the same float as before (the optimizers are chaotic: a last-bit change
+changes every route). Three of those expressions are not what they look like, measured on this
+project's NumPy (2.4, AVX-512):
+
+- ``np.abs`` of a complex segment is not the C library's ``hypot`` but NumPy's SIMD
+  ``larger · sqrt(fma(r, r, 1))``, ``r = smaller / larger`` (0 when both are 0): :func:`cabs`.
+- the complex product ``(a + bi)(c - di)`` of the turn angles is ``fma(a, c, b·d) + i fma(a,
+  -d, b·c)`` (NumPy's SIMD ``muladdsub``): :func:`turn_product`.
+- the collision check's samples ``ends @ basis`` (a BLAS product of inner size 2) are
+  ``fma(b, t, a·(1 - t))``.
+
+numba contracts no multiply-add by itself (no ``fastmath``), so the fused ones are written out
+(:func:`fma`, LLVM's ``llvm.fma``). The sums over a route are NumPy's ``sum(axis=-1)`` of a
+contiguous row: its pairwise summation (:func:`pairwise_sum`). tests/plan/test_cost_kernels.py
+compares everything with the NumPy path (``PathProblem._cost_python``), bit for bit.
+
+The collision check per segment is :func:`usvtool.collision_kernels.segment` (the filter and
+the strips of :meth:`usvtool.collision.SegmentChecker.guide`). numba's cache keys a kernel on its
+own file only: after changing :mod:`usvtool.collision_kernels`, remove
+``usvtool/plan/__pycache__/cost_kernels.*.nb*`` (or touch this file).
+
+Speed (benchmarks/bench_cost.py, this shared 2-core machine, the least of 3 repeats; the
+populations a plan evaluates, recorded from the run): one evaluation, NumPy path → compiled,
+IWSO on env2 (100 routes of 4 segments) 104 → 48 µs, ISSA 136 → 90 µs, IWSO with 11 waypoints
+231 → 115 µs, ISSA ``columns`` on grid20 (100 routes of 21 segments) 629 → 432 µs. What is left
+is mostly the collision check's own work (its 4-24 samples per segment looked up in the
+clearance table, the strips near land), which was compiled before. Whole plans
+(``plan_route``, without the process start of about 0.9 s): wso 0.151 → 0.087 s, iwso 0.378 →
+0.244 s, ssa 0.291 → 0.187 s, issa 0.155 → 0.123 s, pso 0.093 → 0.069 s, mrfo 0.263 → 0.182 s,
+ssa ``columns`` 0.575 → 0.373 s, issa ``columns`` 0.769 → 0.448 s.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+from numba import types as nt
+from numba.extending import intrinsic
+
+from usvtool.collision_kernels import _TABLES, segment
+from usvtool.measures import RIGHT_ANGLE_COST
+
+_B, _F, _I, _C = nt.boolean, nt.float64, nt.int64, nt.complex128
+_OPTIONS = {"cache": True, "nogil": True}
+_ROUTES = _F[:, :, ::1]  # (n, m, 2) cell coordinates, C order
+HALF_PI = np.pi / 2  # turn_cost's divisor, as NumPy computes it
+
+
+@intrinsic
+def fma(typingctx, a, b, c):
+    """``a · b + c`` with one rounding (LLVM's ``llvm.fma``: the instruction, or the C
+    library's correctly rounded ``fma``)."""
+    sig = _F(_F, _F, _F)
+
+    def codegen(context, builder, signature, args):
+        return builder.fma(*args)
+
+    return sig, codegen
+
+
+@njit(_F(_F, _F), inline="always", **_OPTIONS)
+def cabs(re, im) -> float:
+    """``np.abs`` of the complex ``re + i im`` as NumPy's SIMD loop computes it."""
+    re, im = abs(re), abs(im)
+    larger, smaller = max(re, im), min(re, im)
+    ratio = smaller / larger if larger != 0.0 else 0.0
+    return math.sqrt(fma(ratio, ratio, 1.0)) * larger
+
+
+@njit(nt.UniTuple(_F, 2)(_F, _F, _F, _F), inline="always", **_OPTIONS)
+def turn_product(a, b, c, d) -> tuple[float, float]:
+    """``(a + bi) · conj(c + di)`` as NumPy's SIMD complex product computes it."""
+    return fma(a, c, b * d), fma(a, -d, b * c)
+
+
+@njit(_F(_F[::1], _I, _I), **_OPTIONS)
+def pairwise_sum(a, start, n) -> float:
+    """NumPy's pairwise sum of ``a[start : start + n]`` (``pairwise_sum`` in its
+    loops_utils.h.src): under 8 values in order; up to 128 in 8 running sums combined as
+    ``((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))``, then the rest in order; more in two
+    halves (the first a multiple of 8 long)."""
+    if n < 8:
+        res = -0.0
+        for i in range(start, start + n):
+            res += a[i]
+        return res
+    if n <= 128:
+        r0, r1, r2, r3 = a[start], a[start + 1], a[start + 2], a[start + 3]
+        r4, r5, r6, r7 = a[start + 4], a[start + 5], a[start + 6], a[start + 7]
+        whole = n - n % 8
+        for i in range(start + 8, start + whole, 8):
+            r0 += a[i]
+            r1 += a[i + 1]
+            r2 += a[i + 2]
+            r3 += a[i + 3]
+            r4 += a[i + 4]
+            r5 += a[i + 5]
+            r6 += a[i + 6]
+            r7 += a[i + 7]
+        res = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
+        for i in range(start + whole, start + n):
+            res += a[i]
+        return res
+    n2 = n // 2
+    n2 -= n2 % 8
+    return pairwise_sum(a, start, n2) + pairwise_sum(a, start + n2, n - n2)
+
+
+@njit(_F(_F[::1], _I, _I), inline="always", **_OPTIONS)
+def row_sum(a, start, n) -> float:
+    """``sum(axis=-1)`` of one row: the reduction's identity 0 plus the pairwise sum."""
+    return 0.0 + pairwise_sum(a, start, n)
+
+
+@njit(_ROUTES(_F[:, ::1], _F[:, ::1], _F[::1], _F[::1], _F[:, ::1]), **_OPTIONS)
+def decode_waypoints(X, base, origin, scale, ends) -> np.ndarray:
+    """``PathProblem.decode`` (``waypoints``): start, ``((x + base) - origin) / scale`` per
+    waypoint, goal."""
+    n, k = X.shape[0], base.shape[0]
+    routes = np.empty((n, k + 2, 2))
+    for i in range(n):
+        routes[i, 0, 0], routes[i, 0, 1] = ends[0, 0], ends[0, 1]
+        for j in range(k):
+            for c in range(2):
+                routes[i, j + 1, c] = (X[i, 2 * j + c] + base[j, c] - origin[c]) / scale[c]
+        routes[i, k + 1, 0], routes[i, k + 1, 1] = ends[1, 0], ends[1, 1]
+    return routes
+
+
+@njit(_ROUTES(_F[:, ::1], _F[::1], _I, _F[:, ::1]), **_OPTIONS)
+def decode_columns(X, line, height, ends) -> np.ndarray:
+    """``PathProblem.decode`` (``columns``): start, ``(j + 0.5, clip(floor(line_j - x_j), 0,
+    height - 1) + 0.5)`` per column ``j``, goal."""
+    n, k = X.shape
+    top = float(height - 1)
+    routes = np.empty((n, k + 2, 2))
+    for i in range(n):
+        routes[i, 0, 0], routes[i, 0, 1] = ends[0, 0], ends[0, 1]
+        for j in range(k):
+            v = math.floor(line[j] - X[i, j])
+            if not math.isnan(v):  # np.clip keeps NaN
+                v = min(max(v, 0.0), top)
+            routes[i, j + 1, 0] = j + 0.5
+            routes[i, j + 1, 1] = v + 0.5
+        routes[i, k + 1, 0], routes[i, k + 1, 1] = ends[1, 0], ends[1, 1]
+    return routes
+
+
+@njit(nt.Tuple((_F[::1], _F[::1], _I[::1], _C[:, ::1]))(
+    _ROUTES, _B, _F[:, ::1], _F[::1], _I, _F, _F, *_TABLES), **_OPTIONS)  # fmt: skip
+def route_terms(
+    routes, check, basis, clear, samples, margin, d, prefix, stride, below, bands
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Per route of ``routes`` ``(n, m, 2)``: its length (the sum of ``np.abs`` of its
+    segments), the length inside the squares grown by ``d`` and the number of segments touching
+    them (:meth:`usvtool.collision.SegmentChecker.guide`, skipped unless ``check``: zeros), and
+    the complex products whose angles are its turn angles (``(n, m - 2)``; ``1`` where
+    :func:`usvtool.measures.turn_angles` gives 0: a degenerate segment, or none before it)."""
+    n, m = routes.shape[0], routes.shape[1]
+    s = m - 1
+    length = np.empty(n)
+    inside = np.zeros(n)
+    hits = np.zeros(n, np.int64)
+    turn = np.empty((n, max(m - 2, 0)), np.complex128)
+    seg_len = np.empty(s)
+    seg_in = np.zeros(s)
+    xs, ys, r = np.empty(samples), np.empty(samples), np.empty(samples)
+    t0, t1 = basis[0], basis[1]
+    for i in range(n):
+        last = -1  # the last non-degenerate segment so far
+        lx = ly = 0.0
+        for j in range(s):
+            ax, ay = routes[i, j, 0], routes[i, j, 1]
+            bx, by = routes[i, j + 1, 0], routes[i, j + 1, 1]
+            dx, dy = bx - ax, by - ay
+            seg_len[j] = cabs(dx, dy)
+            if check:
+                for q in range(samples):  # (1 - t) a + t b as the BLAS product gives it
+                    xs[q] = fma(bx, t1[q], ax * t0[q])
+                    ys[q] = fma(by, t1[q], ay * t0[q])
+                hit, seg_in[j] = segment(xs, ys, seg_len[j], clear, samples, margin, d, True,
+                                         r, prefix, stride, below, bands)  # fmt: skip
+                hits[i] += hit
+            real = dx != 0.0 or dy != 0.0
+            if j > 0:
+                if real and last >= 0:
+                    re, im = turn_product(dx, dy, lx, ly)
+                    turn[i, j - 1] = complex(re, im)
+                else:
+                    turn[i, j - 1] = 1.0
+            if real:
+                last, lx, ly = j, dx, dy
+        length[i] = row_sum(seg_len, 0, s)
+        if check:
+            inside[i] = row_sum(seg_in, 0, s)
+    return length, inside, hits, turn
+
+
+@njit(_F[::1](_F[::1], _F[::1], _I[::1], _F[:, ::1], _F, _F, _F, _F), **_OPTIONS)
+def combine(length, inside, hits, angle, cell, turn_weight, inside_weight, penalty) -> np.ndarray:
+    """The cost of each route from :func:`route_terms` and ``angle = arctan2`` of its turns:
+    ``cell · (L + w · T + inside_weight · L_in) + penalty · n_col`` with ``T`` the ISSA turning
+    energy (:func:`usvtool.measures.turn_cost`), in ``PathProblem.cost``'s order."""
+    n, k = angle.shape
+    cost = np.empty(n)
+    row = np.empty(k)
+    for i in range(n):
+        for j in range(k):
+            row[j] = abs(angle[i, j])
+        turning = RIGHT_ANGLE_COST * row_sum(row, 0, k) / HALF_PI
+        free = length[i] + turn_weight * turning
+        cost[i] = cell * (free + inside_weight * inside[i]) + penalty * hits[i]
+    return cost
