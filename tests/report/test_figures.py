@@ -130,17 +130,18 @@ def rows(plot: F.Plot) -> list[list[str]]:
 
 
 def capture_figures(draw) -> list:
-    """The Matplotlib figures that ``draw()`` saves, drawn (their artists as in the PNG)."""
-    from matplotlib.figure import Figure
+    """The Matplotlib figures that ``draw()`` writes as PNGs (:func:`canvas.png` reads each
+    one's pixels once), drawn (their artists as in the PNG)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-    saved, original = [], Figure.savefig
+    saved, original = [], FigureCanvasAgg.buffer_rgba
 
     def keep(self, *args, **kwargs):
-        saved.append(self)
+        saved.append(self.figure)
         return original(self, *args, **kwargs)
 
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(Figure, "savefig", keep)
+        patch.setattr(FigureCanvasAgg, "buffer_rgba", keep)
         draw()
     return saved
 

