@@ -14,7 +14,7 @@ from affine import Affine
 
 from usvtool.grid import Grid
 from usvtool.plan import cost_kernels
-from usvtool.plan.guided import GuidedProblem
+from usvtool.plan.guided import GuidedProblem, clear_of_corners, stations
 from usvtool.plan.planner import PlanOptions, plan_route
 from usvtool.plan.problem import PathProblem
 
@@ -135,6 +135,37 @@ def test_the_guided_cost_is_the_numpy_cost_bit_for_bit():
     want = g.cell_size * p.free_cost(seg.view(np.complex128)[..., 0])
     assert same_bits(gp.cost(routes), want)
     assert same_bits(gp.cost(routes), p._cost_python(routes, exact=True))
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_the_guided_decoder_is_the_numpy_decoder_bit_for_bit(seed):
+    """Random station routes (stations in land, outside the grid's interior, on grid points)
+    and a planner's own (the any-angle route's, off its corners), judged exactly and with the
+    margin; waypoints moved within and beyond their bounds."""
+    rng = np.random.default_rng(20 + seed)
+    g = random_grid(rng, 40, 40, 0.08, cell=2.0)
+    p = PathProblem(g, (1.0, 1.0), (79.0, 79.0), waypoints=3)
+    cases = []
+    for k in (1, 3, 8):
+        inner = rng.uniform(0, 40, (k, 2))
+        on_points = rng.random(k) < 0.3
+        inner[on_points] = np.round(inner[on_points])  # on grid points
+        station = np.vstack([[0.5, 39.5], inner, [39.5, 0.5]])
+        cases += [GuidedProblem(p, station), GuidedProblem(p, station, margin=True)]
+    exact = plan_route(g, (1.0, 1.0), (79.0, 79.0), PlanOptions("anyangle")).route.points
+    cells = np.column_stack(g.to_cell_coords(*np.asarray(exact).T))
+    station = stations(p.checker, cells)
+    clear = clear_of_corners(p.checker, station)
+    cases.append(GuidedProblem(p, station))
+    if clear is not None:
+        cases.append(GuidedProblem(p, clear, margin=True))
+    for gp in cases:
+        for spread in (0.1, 1.0, 3.0):
+            X = rng.uniform(gp.lower, gp.upper, (40, gp.dim)) * spread
+            X[:3] = 0.0
+            routes = gp.decode(X)
+            assert same_bits(routes, gp._decode_python(X)), (seed, gp.waypoints, gp.margin)
+            assert same_bits(gp(X), gp._cost_python(gp._decode_python(X)))
 
 
 def route_file(result) -> str:

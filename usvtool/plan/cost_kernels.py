@@ -126,6 +126,39 @@ def row_sum(a, start, n) -> float:
     return 0.0 + pairwise_sum(a, start, n)
 
 
+@njit(nt.Tuple((_B, _F))(_F, _F, _F, _F, _F, _B, _F[:, ::1], _F[::1], _F[::1], _F[::1],
+                        _F[::1], _I, _F, _F, *_TABLES), inline="always", **_OPTIONS)  # fmt: skip
+def checked(
+    ax,
+    ay,
+    bx,
+    by,
+    length,
+    want_inside,
+    basis,
+    xs,
+    ys,
+    r,
+    clear,
+    samples,
+    margin,
+    d,
+    prefix,
+    stride,
+    below,
+    bands,
+) -> tuple[bool, float]:
+    """:meth:`usvtool.collision.SegmentChecker.guide` of the segment ``a → b`` of length
+    ``length`` (``want_inside``; else ``collides``, the inside length 0): its samples ``(1 - t) a
+    + t b`` as ``_check``'s BLAS product gives them (into ``xs``, ``ys``), then
+    :func:`usvtool.collision_kernels.segment`."""
+    for q in range(samples):
+        xs[q] = fma(bx, basis[1, q], ax * basis[0, q])
+        ys[q] = fma(by, basis[1, q], ay * basis[0, q])
+    return segment(xs, ys, length, clear, samples, margin, d, want_inside, r, prefix, stride,
+                   below, bands)  # fmt: skip
+
+
 @njit(_ROUTES(_F[:, ::1], _F[:, ::1], _F[::1], _F[::1], _F[:, ::1]), **_OPTIONS)
 def decode_waypoints(X, base, origin, scale, ends) -> np.ndarray:
     """``PathProblem.decode`` (``waypoints``): start, ``((x + base) - origin) / scale`` per
@@ -179,7 +212,6 @@ def route_terms(
     seg_len = np.empty(s)
     seg_in = np.zeros(s)
     xs, ys, r = np.empty(samples), np.empty(samples), np.empty(samples)
-    t0, t1 = basis[0], basis[1]
     for i in range(n):
         last = -1  # the last non-degenerate segment so far
         lx = ly = 0.0
@@ -189,11 +221,9 @@ def route_terms(
             dx, dy = bx - ax, by - ay
             seg_len[j] = cabs(dx, dy)
             if check:
-                for q in range(samples):  # (1 - t) a + t b as the BLAS product gives it
-                    xs[q] = fma(bx, t1[q], ax * t0[q])
-                    ys[q] = fma(by, t1[q], ay * t0[q])
-                hit, seg_in[j] = segment(xs, ys, seg_len[j], clear, samples, margin, d, True,
-                                         r, prefix, stride, below, bands)  # fmt: skip
+                hit, seg_in[j] = checked(ax, ay, bx, by, seg_len[j], True, basis, xs, ys, r,
+                                         clear, samples, margin, d, prefix, stride, below,
+                                         bands)  # fmt: skip
                 hits[i] += hit
             real = dx != 0.0 or dy != 0.0
             if j > 0:
@@ -225,3 +255,77 @@ def combine(length, inside, hits, angle, cell, turn_weight, inside_weight, penal
         free = length[i] + turn_weight * turning
         cost[i] = cell * (free + inside_weight * inside[i]) + penalty * hits[i]
     return cost
+
+
+@njit(_B(_F, _F, _F, _F, _B[:, ::1], _F[:, ::1], _F[::1], _F[::1], _F[::1], _F[::1], _I, _F,
+         _F, *_TABLES), inline="always", **_OPTIONS)  # fmt: skip
+def free(
+    ax,
+    ay,
+    bx,
+    by,
+    blocked,
+    basis,
+    xs,
+    ys,
+    r,
+    clear,
+    samples,
+    margin,
+    d,
+    prefix,
+    stride,
+    below,
+    bands,
+) -> bool:
+    """``GuidedProblem._free`` of one segment: in the grid, neither end in a blocked cell (the
+    one holding it), and touching no blocked square grown by ``d`` (its length ``np.hypot``'s:
+    the C library's ``hypot``)."""
+    h, w = blocked.shape
+    if not (0.0 <= ax <= w and 0.0 <= ay <= h and 0.0 <= bx <= w and 0.0 <= by <= h):
+        return False
+    if blocked[min(int(ay), h - 1), min(int(ax), w - 1)]:
+        return False
+    if blocked[min(int(by), h - 1), min(int(bx), w - 1)]:
+        return False
+    length = math.hypot(bx - ax, by - ay)
+    hit, _ = checked(ax, ay, bx, by, length, False, basis, xs, ys, r, clear, samples, margin, d,
+                     prefix, stride, below, bands)  # fmt: skip
+    return not hit
+
+
+@njit(_ROUTES(_F[:, ::1], _F[:, ::1], _F[:, :, ::1], _F, _B[:, ::1], _F[:, ::1], _F[::1], _I,
+              _F, _F, *_TABLES), **_OPTIONS)  # fmt: skip
+def decode_guided(
+    X, station, frame, cell, blocked, basis, clear, samples, margin, d, prefix, stride, below, bands
+) -> np.ndarray:
+    """``GuidedProblem.decode``: the moved waypoints ``w_j = s_j + (x_j0 f_j0 + x_j1 f_j1) /
+    cell`` (``frame`` ``(K, 2, 2)``), each kept where it sees the next station and the previous
+    waypoint (the kept one, else its station) sees it (:func:`free`), else its station.
+
+    The checks are made as the choices need them, waypoint by waypoint: the NumPy decoder makes
+    more, all at once, and chooses from them the same way; a segment's answer does not depend
+    on the others'."""
+    n = X.shape[0]
+    k = station.shape[0] - 2
+    routes = np.empty((n, k + 2, 2))
+    xs, ys, r = np.empty(samples), np.empty(samples), np.empty(samples)
+    for i in range(n):
+        routes[i, 0, 0], routes[i, 0, 1] = station[0, 0], station[0, 1]
+        routes[i, k + 1, 0], routes[i, k + 1, 1] = station[k + 1, 0], station[k + 1, 1]
+        for j in range(k):
+            x0, x1 = X[i, 2 * j], X[i, 2 * j + 1]
+            wx = station[j + 1, 0] + (x0 * frame[j, 0, 0] + x1 * frame[j, 1, 0]) / cell
+            wy = station[j + 1, 1] + (x0 * frame[j, 0, 1] + x1 * frame[j, 1, 1]) / cell
+            keep = free(wx, wy, station[j + 2, 0], station[j + 2, 1], blocked, basis, xs, ys, r,
+                        clear, samples, margin, d, prefix, stride, below, bands)  # fmt: skip
+            if keep:  # from the previous waypoint: w_j-1 where kept, else s_j-1
+                px, py = routes[i, j, 0], routes[i, j, 1]
+                keep = free(px, py, wx, wy, blocked, basis, xs, ys, r, clear, samples, margin,
+                            d, prefix, stride, below, bands)  # fmt: skip
+            if keep:
+                routes[i, j + 1, 0], routes[i, j + 1, 1] = wx, wy
+            else:
+                routes[i, j + 1, 0] = station[j + 1, 0]
+                routes[i, j + 1, 1] = station[j + 1, 1]
+    return routes

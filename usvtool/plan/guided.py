@@ -316,7 +316,8 @@ class GuidedProblem:
         s = np.asarray(self.station, float)
         self.station = s
         self.checker = self.base.checker
-        self._blocked = self.base.grid.blocked
+        self._blocked = np.ascontiguousarray(self.base.grid.blocked)
+        self._station = np.ascontiguousarray(s)
         legs = np.diff(s, axis=0)
         length = np.hypot(*legs.T)
         unit = legs / length[:, None]
@@ -342,6 +343,22 @@ class GuidedProblem:
     def decode(self, X) -> np.ndarray:
         """Repaired routes of the population ``X`` ``(n, dim)`` (metres) as cell coordinates
         ``(n, K + 2, 2)``: collision-free (module docstring, Feasibility by the decoder).
+
+        One compiled call (:func:`usvtool.plan.cost_kernels.decode_guided`), making the checks
+        waypoint by waypoint as the choices need them; :meth:`_decode_python` the same routes
+        in NumPy."""
+        X = np.atleast_2d(np.ascontiguousarray(X, dtype=float))
+        if X.ndim != 2 or X.shape[1] != self.dim:
+            raise ValueError(f"a population of shape (n, {self.dim}), not {X.shape}")
+        from usvtool.plan import cost_kernels
+
+        return cost_kernels.decode_guided(
+            X, self._station, self._frame, float(self.base.grid.cell_size), self._blocked,
+            *self.checker.kernel_args(self.checker.pad if self.margin else 0.0),
+        )  # fmt: skip
+
+    def _decode_python(self, X) -> np.ndarray:
+        """:meth:`decode` in NumPy (the reference of tests/plan/test_cost_kernels.py).
 
         Two exact checks over the whole population: first whether each moved waypoint ``w_j``
         sees the next station ``s_{j+1}`` (without that it is never kept), then, only where it
@@ -406,7 +423,12 @@ class GuidedProblem:
         """The papers' cost of repaired (collision-free) routes: :meth:`PathProblem.cost`'s
         ``ℓ (L + w T)``, its collision terms being zero for them (the same floats as
         ``PathProblem.cost(routes, exact=True)``, without the collision check; ``exact`` is
-        the planner's interface: repaired routes are always scored so)."""
+        the planner's interface: repaired routes are always scored so). Compiled
+        (:mod:`usvtool.plan.cost_kernels`); :meth:`_cost_python` the same floats in NumPy."""
+        return self.base._kernel_cost(routes, False, 0.0)
+
+    def _cost_python(self, routes, exact: bool = True) -> np.ndarray:
+        """:meth:`cost` in NumPy (the reference of tests/plan/test_cost_kernels.py)."""
         seg = measures.segments(np.asarray(routes, float))
         return self.base.grid.cell_size * self.base.free_cost(seg)
 
