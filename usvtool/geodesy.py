@@ -13,6 +13,7 @@ Thin glue over pyproj; nothing here re-implements projection maths.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -33,10 +34,24 @@ def utm_crs(lon: float, lat: float):
 
 
 def transformer(src, dst):
-    """A pyproj transformer taking (x, y) = (lon, lat) / (east, north) order on both sides."""
+    """A pyproj transformer taking (x, y) = (lon, lat) / (east, north) order on both sides,
+    made once per pair of CRSs given as text or codes in a process (:func:`_transformer`:
+    building one costs some 5 ms, and a scene converts its points one by one)."""
+    src, dst = pyproj_crs(src), pyproj_crs(dst)
+    if type(src) in (str, int) and type(dst) in (str, int):  # a CRS named by its text or code
+        return _transformer(src, dst)
+    from pyproj import Transformer  # another object (a pyproj CRS): made afresh
+
+    return Transformer.from_crs(src, dst, always_xy=True)
+
+
+@functools.lru_cache(maxsize=64)
+def _transformer(src, dst):
+    """:func:`transformer` of CRSs in pyproj's forms. A Transformer is reusable, and safe to
+    share between threads since pyproj 3.1 (each thread gets its own PROJ object)."""
     from pyproj import Transformer
 
-    return Transformer.from_crs(pyproj_crs(src), pyproj_crs(dst), always_xy=True)
+    return Transformer.from_crs(src, dst, always_xy=True)
 
 
 def lonlat_to_map(crs, lon, lat):

@@ -322,3 +322,165 @@ def test_the_path_critic_at_the_goal_takes_the_rollouts_distances_to_it():
         r = c.rollouts(own, Targets.none())
         afresh = np.sqrt(kernels.closest(r.x, r.y, float(goal[0]), float(goal[1]))[1])
         assert same_bits(path.reward(own, r), afresh.max() - afresh)
+
+
+def island_field(rng):
+    """A grid of random islands and a solid block, cells of 1-4 m, around the fans."""
+    from affine import Affine
+
+    from usvtool.clearance import Clearance
+    from usvtool.grid import Grid
+
+    cells = (rng.random((60, 70)) < 0.03).astype(np.uint8)
+    cells[20:30, 40:55] = 1
+    size = float(rng.choice([1.0, 2.5, 4.0]))
+    return Clearance(Grid(cells, Affine(size, 0, -35 * size, 0, -size, 30 * size)))
+
+
+def step_targets(rng) -> tuple:
+    """0-4 targets, some within reach of the rollouts, as the sweep takes them."""
+    k = int(rng.integers(0, 5))
+    pos = rng.uniform(-60, 60, (k, 2)) + (0, 40)
+    pos[rng.random(k) < 0.3] *= 20  # some far off
+    return pos, rng.uniform(-5, 5, (k, 2)), rng.uniform(2, 20, k)
+
+
+def separate_sweep(c, own, targets):
+    """A step's rollouts as the separate kernels made them (the generator's sample, contacts,
+    closest): ``(v, omega, x, y, contact, static_first, clearance, intrudes, row, to_goal,
+    near)``."""
+    v, omega, fan = c.generator.sample(own, c._n_v, c._n_omega)
+    found = kernels.contacts(fan.x, fan.y, fan.radius, fan.u, c.times, float(own.x),
+                             float(own.y), *targets, *c._checks)  # fmt: skip
+    return (v, omega, fan.x, fan.y, *found, *kernels.closest(fan.x, fan.y, *c._goal))
+
+
+@pytest.mark.parametrize("name", ["udwa", "udwa+", "gdwa"])
+@pytest.mark.parametrize("seed", range(4))
+def test_a_sweep_is_the_sample_its_contacts_and_the_closest_points(name, seed):
+    """The generators' sweep (one compiled call for the period window: period_sweep, its
+    closest points taken as the fan is made, arc_points_closest; sweep for the ramps) gives
+    what window_axes, arc_fan or the ramps, contacts and closest give apart."""
+    rng = np.random.default_rng([seed, len(name)])
+    ship = vessel_model.preset("udwa-usv" if name != "gdwa" else "iwso-dwa-usv")
+    for field in (None, island_field(rng)):
+        c = make_controller(name, **({"step": 0.1, "horizon": 3.0} if seed % 2 else {}))
+        c.reset(World(ship, np.array([float(rng.uniform(-30, 30)), 120.0]), field))
+        for _ in range(10):
+            own = Own(*rng.uniform(-20, 20, 2), rng.uniform(-4, 4), rng.uniform(0, 7),
+                      rng.uniform(-0.3, 0.3))  # fmt: skip
+            targets = step_targets(rng)
+            got = c.generator.sweep(own, c._n_v, c._n_omega, targets, c._checks, c._goal)
+            want = separate_sweep(c, own, targets)
+            for a, b in zip(got, want, strict=True):
+                assert same_bits(a, b), (name, seed)
+
+
+def test_arc_points_closest_is_arc_points_then_closest():
+    rng = np.random.default_rng(11)
+    for _ in range(60):
+        speeds = np.sort(rng.uniform(0, 7, int(rng.integers(1, 23))))
+        rates = np.sort(rng.uniform(-0.4, 0.4, int(rng.integers(1, 24))))
+        rates[rng.random(rates.size) < 0.1] = 0.0
+        steps, dt = int(rng.integers(1, 60)), float(rng.choice([0.1, 0.2, 0.5]))
+        x0, y0, psi0 = (float(a) for a in rng.uniform(-100, 100, 3))
+        u = np.empty((steps, rates.size), complex)
+        chord, summed = kernels.arc_chords(psi0, speeds, rates, dt, u)
+        x, y = np.empty((2, steps, speeds.size * rates.size))
+        radius = kernels.arc_points(x0, y0, chord, summed, x, y)
+        goal = (float(rng.uniform(-200, 200)), float(rng.uniform(-200, 200)))
+        if rng.random() < 0.2:  # the goal on a point: equal distances, the first row kept
+            goal = (float(x[steps // 2, 0]), float(y[steps // 2, 0]))
+        want = (radius, *kernels.closest(x, y, *goal))
+        x2, y2 = np.empty((2, steps, speeds.size * rates.size))
+        got = kernels.arc_points_closest(x0, y0, chord, summed, x2, y2, *goal)
+        assert same_bits(x2, x) and same_bits(y2, y)
+        for a, b in zip(got, want, strict=True):
+            assert same_bits(a, b)
+        u2, x3, y3 = np.empty_like(u), np.empty_like(x), np.empty_like(y)
+        assert same_bits(kernels.arc_fan(x0, y0, psi0, speeds, rates, dt, u2, x3, y3), radius)
+        assert same_bits(u2, u) and same_bits(x3, x) and same_bits(y3, y)
+
+
+def weather_field(rng, wave_height: bool, wave_from: bool, outside: str):
+    """A random field of 1-7 x 1-9 cells (tests/sim/test_weather_kernels.py's)."""
+    from affine import Affine
+
+    from usvtool.sim.weather import FieldWeather
+
+    rows, cols = int(rng.integers(1, 8)), int(rng.integers(1, 10))
+    layers = [rng.uniform(-8, 8, (rows, cols)), rng.uniform(-8, 8, (rows, cols))]
+    if wave_height:
+        layers.append(rng.uniform(0, 3, (rows, cols)))
+    if wave_from:
+        angle = rng.uniform(-math.pi, math.pi, (rows, cols))
+        layers += [np.cos(angle), np.sin(angle)]
+    cell = float(rng.uniform(5, 20))
+    transform = Affine(cell, 0.0, -30.0, 0.0, -cell, rows * cell - 30.0)
+    return FieldWeather(np.array(layers), transform, wave_height, wave_from, outside)
+
+
+@pytest.mark.parametrize("outside", ["nearest", "calm"])
+@pytest.mark.parametrize("wave_height, wave_from", [(False, False), (True, False), (True, True)])
+def test_a_fields_speed_of_floats_and_of_vectors_is_the_general_paths(outside, wave_height,
+                                                                      wave_from):  # fmt: skip
+    """FieldWeather.attainable_speed of four floats (field_attainable_speed_one) and of four
+    contiguous vectors (the kernel without broadcasting) gives the bits of its general path
+    (broadcast, ravelled copies) and of the kernel of one point."""
+    from usvtool.sim import weather_kernels
+
+    rng = np.random.default_rng([3, wave_height, wave_from, outside == "calm"])
+    for _ in range(10):
+        w = weather_field(rng, wave_height, wave_from, outside)
+        n = 200
+        v, heading = rng.uniform(-1, 8, n), rng.uniform(-7, 7, n)
+        x, y = rng.uniform(-80, 250, n), rng.uniform(-80, 250, n)
+        v[:5] = 0.0
+        dwt = float(rng.choice([0.0, 20.0]))
+        general = w.attainable_speed(v[:, None], heading[:, None], x[:, None], y[:, None],
+                                     dwt)[:, 0]  # fmt: skip
+        assert same_bits(w.attainable_speed(v, heading, x, y, dwt), general)
+        for i in range(0, n, 7):
+            a = (float(v[i]), float(heading[i]), float(x[i]), float(y[i]))
+            one = w.attainable_speed(*a, dwt)
+            assert type(one) is np.float64 and one.shape == ()
+            assert same_bits(one, general[i])
+            assert same_bits(w.attainable_speed(*(np.float64(b) for b in a), dwt), general[i])
+            assert weather_kernels.field_attainable_speed_one(
+                *w._compiled, a[2], a[3], a[0], a[1], *w._flags, dwt, 1852.0 / 3600.0
+            ) == general[i] or math.isnan(general[i])  # fmt: skip
+
+
+def test_the_velocity_critic_in_a_field_takes_the_final_positions():
+    """The weather's speed critic reads the final positions as the rollouts' last rows: the
+    bits of the final positions' parts (Rollouts.end) it read before."""
+    rng = np.random.default_rng(8)
+    ship = vessel_model.preset("udwa-usv")
+    for name in ("udwa", "udwa+"):
+        w = weather_field(rng, True, True, "nearest")
+        c = make_controller(name)
+        c.reset(World(ship, np.array([0.0, 400.0]), weather=w))
+        velocity = next(critic for critic in c.objective if critic.name == "velocity")
+        for _ in range(10):
+            own = Own(*rng.uniform(-20, 60, 2), rng.uniform(-4, 4), rng.uniform(0, 7),
+                      rng.uniform(-0.3, 0.3))  # fmt: skip
+            r = c.rollouts(own, Targets.none())
+            want = w.attainable_speed(r.v, r.psi_end, r.end.real, r.end.imag, ship.deadweight)
+            assert same_bits(velocity.reward(own, r), want)
+
+
+def test_the_transformers_are_made_once_per_pair_and_give_a_fresh_ones_bits():
+    from pyproj import Transformer
+
+    from usvtool import geodesy
+
+    rng = np.random.default_rng(1)
+    lon, lat = rng.uniform(2.5, 3.5, 50), rng.uniform(-1, 1, 50)
+    for crs in ("EPSG:32631", 32631):
+        fresh = Transformer.from_crs(geodesy.WGS84, crs, always_xy=True)
+        assert geodesy.transformer(geodesy.WGS84, crs) is geodesy.transformer(geodesy.WGS84, crs)
+        for a, b in zip(geodesy.lonlat_to_map(crs, lon, lat), fresh.transform(lon, lat),
+                        strict=True):  # fmt: skip
+            assert same_bits(a, b)
+        assert geodesy.lonlat_to_map(crs, 3.0, 0.5) == tuple(
+            float(a) for a in fresh.transform(3.0, 0.5))

@@ -166,19 +166,10 @@ def arc_points(x0, y0, chord, summed, x, y) -> np.ndarray:
     return radius
 
 
-@njit(_F[::1](_F, _F, _F, _F[::1], _F[::1], _F, _TURNS, _ROWS, _ROWS), **_OPTIONS)
-def arc_fan(x0, y0, psi0, speeds, rates, dt, u, x, y) -> np.ndarray:
-    """The whole of :func:`usvtool.sim.vessel.arcs`: each yaw rate's unit chord directions
-    ``u[t, k]`` (written: ``exp(i (psi0 + turn / 2))``, then each period's times ``exp(i
-    turn)``, ``turn = rates[k] dt``), their running sums, the chords ``speeds[i] dt
-    sinc(turn / 2 pi)`` (``np.sinc``: ``sin(y) / y`` of ``y = pi t``, its epsilon for 0) and,
-    by :func:`arc_points`, the positions ``x``, ``y`` (written) and their distance bound.
-
-    The running product is the textbook complex product in real arithmetic, ``(a c - b s, a s
-    + b c)``, with no fused multiply-add: the same bits on every CPU (NumPy's complex multiply
-    fuses on some, as AVX-512's, so its running product differs there in the last bit); the
-    exponentials are ``cos`` and ``sin``, as NumPy's ``exp`` of an imaginary number gives them.
-    """
+@njit(nt.Tuple((_ROWS, _TURNS))(_F, _F[::1], _F[::1], _F, _TURNS), **_OPTIONS)
+def arc_chords(psi0, speeds, rates, dt, u) -> tuple[np.ndarray, np.ndarray]:
+    """The first part of :func:`arc_fan` (its definition): the directions ``u`` (written), the
+    chords ``(V, R)`` and the summed unit chords ``(T, R)``, what :func:`arc_points` takes."""
     steps, rates_n = u.shape
     speeds_n = speeds.size
     chord = np.empty((speeds_n, rates_n))
@@ -202,7 +193,70 @@ def arc_fan(x0, y0, psi0, speeds, rates, dt, u, x, y) -> np.ndarray:
         sinc = math.sin(arg) / arg
         for i in range(speeds_n):
             chord[i, k] = speeds[i] * dt * sinc
+    return chord, summed
+
+
+@njit(_F[::1](_F, _F, _F, _F[::1], _F[::1], _F, _TURNS, _ROWS, _ROWS), **_OPTIONS)
+def arc_fan(x0, y0, psi0, speeds, rates, dt, u, x, y) -> np.ndarray:
+    """The whole of :func:`usvtool.sim.vessel.arcs`: each yaw rate's unit chord directions
+    ``u[t, k]`` (written: ``exp(i (psi0 + turn / 2))``, then each period's times ``exp(i
+    turn)``, ``turn = rates[k] dt``), their running sums, the chords ``speeds[i] dt
+    sinc(turn / 2 pi)`` (``np.sinc``: ``sin(y) / y`` of ``y = pi t``, its epsilon for 0)
+    (:func:`arc_chords`) and, by :func:`arc_points`, the positions ``x``, ``y`` (written) and
+    their distance bound.
+
+    The running product is the textbook complex product in real arithmetic, ``(a c - b s, a s
+    + b c)``, with no fused multiply-add: the same bits on every CPU (NumPy's complex multiply
+    fuses on some, as AVX-512's, so its running product differs there in the last bit); the
+    exponentials are ``cos`` and ``sin``, as NumPy's ``exp`` of an imaginary number gives them.
+    """
+    chord, summed = arc_chords(psi0, speeds, rates, dt, u)
     return arc_points(x0, y0, chord, summed, x, y)
+
+
+_NEAREST = (_I[::1], _F[::1], _C[::1])  # closest's: the row, the squared distance, the point
+
+
+@njit(nt.Tuple((_F[::1], *_NEAREST))(_F, _F, _ROWS, _TURNS, _ROWS, _ROWS, _F, _F), **_OPTIONS)
+def arc_points_closest(x0, y0, chord, summed, x, y, px, py):
+    """:func:`arc_points` and :func:`closest` to ``(px, py)`` of the points it writes, in one
+    pass over them (each point's distance taken as it is made, the rows in the same order):
+    ``(radius, row, to_point, point)``."""
+    steps, rates = summed.shape
+    speeds = chord.shape[0]
+    n = speeds * rates
+    sum_x, sum_y = np.empty(rates), np.empty(rates)
+    row = np.zeros(n, np.int64)
+    best = np.full(n, np.inf)
+    for t in range(steps):
+        for k in range(rates):
+            sum_x[k], sum_y[k] = summed[t, k].real, summed[t, k].imag
+        for i in range(speeds):
+            base = i * rates
+            for k in range(rates):
+                px_ = chord[i, k] * sum_x[k] + x0
+                py_ = chord[i, k] * sum_y[k] + y0
+                x[t, base + k] = px_
+                y[t, base + k] = py_
+                dx, dy = px_ - px, py_ - py
+                d2 = dx * dx + dy * dy
+                closer = d2 < best[base + k]
+                best[base + k] = d2 if closer else best[base + k]
+                row[base + k] = t if closer else row[base + k]
+    longest = np.zeros(rates)
+    for i in range(speeds):
+        for k in range(rates):
+            longest[k] = max(longest[k], chord[i, k])
+    radius = np.zeros(steps)
+    for t in range(steps):
+        far = 0.0
+        for k in range(rates):
+            far = max(far, longest[k] ** 2 * (summed[t, k].real ** 2 + summed[t, k].imag ** 2))
+        radius[t] = math.sqrt(far)
+    point = np.empty(n, np.complex128)
+    for s in range(n):
+        point[s] = complex(x[row[s], s], y[row[s], s])
+    return radius, row, best, point
 
 
 @njit(_F[::1](_F, _F, _ROWS, _TURNS, _ROWS, _ROWS), **_OPTIONS)
@@ -421,6 +475,51 @@ def closest(x, y, px, py) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     for s in range(n):
         point[s] = complex(x[row[s], s], y[row[s], s])
     return row, best, point
+
+
+#: The checks' constants of a run, after the targets (:func:`contacts`: the padded field, its
+#: width, left, top, scale and cell; the own length, the domain's rows, axes and reach; the cap).
+_CHECKS = (_F[::1], _I, _F, _F, _F, _F, _F, _I, _F, _F, _F, _F)
+#: What :func:`sweep` finds per sample: :func:`contacts`' four, then :func:`closest`'s three.
+_FOUND = (_F[::1], _B[::1], _F[::1], _B[::1], _I[::1], _F[::1], _C[::1])
+
+
+@njit(nt.Tuple(_FOUND)(_ROWS, _ROWS, _F[::1], _TURNS, _F[::1], _F, _F, _ROWS, _ROWS, _F[::1],
+                       *_CHECKS, _F, _F), **_OPTIONS)  # fmt: skip
+def sweep(x, y, radius, u, times, x0, y0, pos, vel, length, padded, width, left, top, scale,
+          cell, own_length, every, along, across, trigger, cap, gx, gy):  # fmt: skip
+    """The checks of a step's rollouts in one call: :func:`contacts` (its arguments), then
+    :func:`closest` to the goal ``(gx, gy)``: ``(contact, static_first, clearance, intrudes,
+    row, to_goal, near)``."""
+    contact, static_first, clearance, intrudes = contacts(
+        x, y, radius, u, times, x0, y0, pos, vel, length, padded, width, left, top, scale, cell,
+        own_length, every, along, across, trigger, cap)  # fmt: skip
+    row, to_goal, near = closest(x, y, gx, gy)
+    return contact, static_first, clearance, intrudes, row, to_goal, near
+
+
+@njit(nt.Tuple((_F[::1], _F[::1], _ROWS, _ROWS, *_FOUND))(
+    _F, _F, _F, _F, _F, _F[::1], _F, _I, _I, _F[::1],  # the own ship, the window, the times
+    _ROWS, _ROWS, _F[::1], *_CHECKS, _F, _F), **_OPTIONS)  # fmt: skip
+def period_sweep(x0, y0, psi0, v0, omega0, limits, span, n_v, n_omega, times, pos, vel, length,
+                 padded, width, left, top, scale, cell, own_length, every, along, across,
+                 trigger, cap, gx, gy):  # fmt: skip
+    """A period window's whole step of rollouts in one call
+    (:meth:`usvtool.sim.controllers.windows.PeriodWindow.sweep`): :func:`window_axes` of the
+    own ship's velocity ``(v0, omega0)``, their fan from ``(x0, y0, psi0)`` at the ``times``
+    (:func:`arc_fan`, its step the first time, with the points closest to the goal as they are
+    made: :func:`arc_points_closest`) and :func:`contacts` of it, what :func:`sweep` gives:
+    ``(v, omega, x, y, contact, static_first, clearance, intrudes, row, to_goal, near)``."""
+    speeds, rates, v, omega = window_axes(v0, omega0, limits, span, n_v, n_omega)
+    steps = times.size
+    u = np.empty((steps, rates.size), np.complex128)
+    x, y = np.empty((steps, v.size)), np.empty((steps, v.size))
+    chord, summed = arc_chords(psi0, speeds, rates, times[0], u)
+    radius, row, to_goal, near = arc_points_closest(x0, y0, chord, summed, x, y, gx, gy)
+    contact, static_first, clearance, intrudes = contacts(
+        x, y, radius, u, times, x0, y0, pos, vel, length, padded, width, left, top, scale, cell,
+        own_length, every, along, across, trigger, cap)  # fmt: skip
+    return v, omega, x, y, contact, static_first, clearance, intrudes, row, to_goal, near
 
 
 @njit(_B[::1](_ROWS, _ROWS, _F[::1], _F, _F, _F, _F, _F, _F, _F), **_OPTIONS)

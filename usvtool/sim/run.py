@@ -33,6 +33,7 @@ their lengths, ``map``, ``route``, ``tracks``, ``wind_field``).
 from __future__ import annotations
 
 import contextlib
+import functools
 import logging
 import time
 from dataclasses import dataclass, field
@@ -386,9 +387,7 @@ def _collision(setup: _Setup, x: float, y: float, ahead: np.ndarray,
     ``reach``, half the sum of the lengths, of the own ship's ``(x, y)``), None when the own
     ship is clear."""
     if len(reach):
-        from usvtool.sim.tracking_kernels import first_touching  # compiled: a run's every step
-
-        touching = first_touching(ahead, x, y, reach)
+        touching = _tracking_kernels().first_touching(ahead, x, y, reach)  # compiled
         if touching >= 0:
             return touching
     if setup.grid is not None:
@@ -401,6 +400,15 @@ def _collision(setup: _Setup, x: float, y: float, ahead: np.ndarray,
         if grid.cells[row, col] == OBSTACLE:
             return -1
     return None
+
+
+@functools.cache
+def _tracking_kernels():
+    """:mod:`usvtool.sim.tracking_kernels`, imported at the first call (numba's import: a
+    run's) and then at the cost of a cached call, not an import's, every step."""
+    from usvtool.sim import tracking_kernels
+
+    return tracking_kernels
 
 
 def _name(scenario: Scenario, index: int) -> str:

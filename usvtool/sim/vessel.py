@@ -21,6 +21,7 @@ positions in a compiled loop (:mod:`usvtool.sim.rollout_kernels`).
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 from dataclasses import dataclass, fields
@@ -248,12 +249,10 @@ def arcs(x0, y0, psi0, speeds, rates, dt: float, steps: int) -> Fan:
     >>> fan.x.round(6).tolist(), fan.y.round(6).tolist()
     ([[0.5, 0.31831], [1.0, 0.0]], [[0.0, 0.31831], [0.0, 0.63662]])
     """
-    from usvtool.sim.rollout_kernels import arc_fan
-
     speeds, rates = _grid_axes(speeds, rates)
     u = np.empty((steps, rates.size), complex)
     x, y = np.empty((2, steps, speeds.size * rates.size))
-    radius = arc_fan(float(x0), float(y0), float(psi0), np.ascontiguousarray(speeds),
+    radius = _kernels().arc_fan(float(x0), float(y0), float(psi0), np.ascontiguousarray(speeds),
                      np.ascontiguousarray(rates), float(dt), u, x, y)  # fmt: skip
     return Fan(x, y, u, radius)
 
@@ -265,8 +264,7 @@ def toward(now, target, down, up, t):
     >>> toward(2.0, np.array([7.0, 0.0, 2.5]), 1.0, 2.0, 1.0).tolist()
     [4.0, 1.0, 2.5]
     """
-    from usvtool.sim import rollout_kernels as compiled  # one compiled pass for the terms
-
+    compiled = _kernels()  # one compiled pass for the terms
     if isinstance(now, float) and isinstance(target, float) and isinstance(t, float):
         return compiled.toward_one(now, target, down, up, t)  # a ufunc's call costs 3 us
     return compiled.toward(now, target, down, up, t)
@@ -279,9 +277,7 @@ def travelled(now, target, down, up, t):
     >>> travelled(3.0, np.array([7.0, 7.0]), 2.0, 2.0, np.array([1.0, 3.0])).tolist()  # 2 s ramp
     [4.0, 17.0]
     """
-    from usvtool.sim.rollout_kernels import travelled as compiled
-
-    return compiled(now, target, down, up, t)
+    return _kernels().travelled(now, target, down, up, t)
 
 
 def ramps(x0, y0, psi0, v0, omega0, speeds, rates, vessel: Vessel, dt: float, steps: int) -> Fan:
@@ -299,15 +295,13 @@ def ramps(x0, y0, psi0, v0, omega0, speeds, rates, vessel: Vessel, dt: float, st
     >>> ramps(0, 0, 0, 3.0, 0.0, [7.0], [0.0], ship, 0.5, 5).x.round(6).T.tolist()
     [[1.75, 4.0, 6.75, 10.0, 13.5]]
     """
-    from usvtool.sim.rollout_kernels import ramp_points
-
     speeds, rates = _grid_axes(speeds, rates)
     t_mid = dt * (np.arange(steps) + 0.5)[:, None]
     chord = dt * toward(v0, speeds, vessel.max_decel, vessel.max_accel, t_mid)  # (steps, V)
     turned = travelled(omega0, rates, vessel.max_yaw_accel, vessel.max_yaw_accel, t_mid)
     u = np.exp(1j * (psi0 + turned))  # (steps, R)
     x, y = np.empty((2, steps, speeds.size * rates.size))
-    radius = ramp_points(float(x0), float(y0), chord, u, x, y)
+    radius = _kernels().ramp_points(float(x0), float(y0), chord, u, x, y)
     return Fan(x, y, u, radius)
 
 
@@ -427,11 +421,19 @@ def _axis(lo: float, hi: float, n: int, extra) -> np.ndarray:
     >>> float(np.linspace(-0.3, 0.2, 6)[3]), float(_axis(-0.3, 0.2, 6, [0.0])[3])
     (5.551115123125783e-17, 0.0)
     """
-    from usvtool.sim.rollout_kernels import axis  # np.linspace's values, compiled
-
     inside = np.array([e for e in extra if e is not None], float)
-    return axis(float(lo), float(hi), int(n), inside, ZERO_TOLERANCE * (hi - lo))
+    return _kernels().axis(float(lo), float(hi), int(n), inside, ZERO_TOLERANCE * (hi - lo))
 
 
 def _out(a: np.ndarray):
     return float(a) if a.ndim == 0 else a
+
+
+@functools.cache
+def _kernels():
+    """:mod:`usvtool.sim.rollout_kernels`, imported at the first call (numba's import: a run's,
+    not the command line's) and then at the cost of a cached call, not an import's
+    microseconds, every step."""
+    from usvtool.sim import rollout_kernels
+
+    return rollout_kernels

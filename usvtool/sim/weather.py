@@ -17,6 +17,7 @@ same, :func:`read_weather` a field raster (docs/vessel.md says how bands are rec
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 import os
@@ -226,18 +227,45 @@ class FieldWeather(Weather):
     def attainable_speed(self, v, heading, x, y, displacement=None) -> np.ndarray:
         """:func:`attainable_speed` with the conditions at ``(x, y)``, in one compiled pass over
         the points (:mod:`usvtool.sim.weather_kernels`: the same bits as :meth:`at` and eq. 5
-        in NumPy)."""
-        from usvtool.sim import weather_kernels
-
+        in NumPy). Four floats (the own ship's step) give a NumPy float, through the kernel of one
+        point; four contiguous float vectors of one size (a step's rollouts) go to the kernel
+        as they are."""
+        weather_kernels = _weather_kernels()
+        dwt = 0.0 if displacement is None else float(displacement)
+        if type(v) is type(heading) is type(x) is type(y) is float:
+            return np.float64(weather_kernels.field_attainable_speed_one(
+                *self._compiled, x, y, v, heading, *self._flags, dwt, KNOT))  # fmt: skip
+        if _vectors(v, heading, x, y):
+            return weather_kernels.field_attainable_speed(*self._compiled, x, y, v, heading,
+                                                          *self._flags, dwt, KNOT)  # fmt: skip
         v, heading, x, y = np.broadcast_arrays(*(np.asarray(a, float) for a in (v, heading, x, y)))
         flat = [np.ravel(a) for a in (x, y, v, heading)]  # contiguous, copied only if need be
-        speeds = weather_kernels.field_attainable_speed(
-            *self._compiled, *flat,
-            self.outside == "calm", self.has_wave_height, self.has_wave_from,
-            _BEAUFORT_EDGES, _WAVE_HEIGHTS, 0.0 if displacement is None else float(displacement),
-            KNOT,
-        )  # fmt: skip
+        speeds = weather_kernels.field_attainable_speed(*self._compiled, *flat, *self._flags,
+                                                        dwt, KNOT)  # fmt: skip
         return speeds.reshape(v.shape)
+
+    @cached_property
+    def _flags(self) -> tuple:
+        """The kernel's arguments after the points, up to the displacement: calm outside, the
+        layers it has, the wave height table."""
+        return (self.outside == "calm", self.has_wave_height, self.has_wave_from,
+                _BEAUFORT_EDGES, _WAVE_HEIGHTS)  # fmt: skip
+
+
+@functools.cache
+def _weather_kernels():
+    """:mod:`usvtool.sim.weather_kernels`, imported at the first call (numba's import) and then
+    at the cost of a cached call, not an import's, every step."""
+    from usvtool.sim import weather_kernels
+
+    return weather_kernels
+
+
+def _vectors(*arrays) -> bool:
+    """Every one of ``arrays`` is a contiguous float64 vector, all of one size."""
+    size = arrays[0].size if type(arrays[0]) is np.ndarray else -1
+    return all(type(a) is np.ndarray and a.dtype == np.float64 and a.ndim == 1
+               and a.size == size and a.flags.c_contiguous for a in arrays)  # fmt: skip
 
 
 def _bilinear(layers: np.ndarray, inverse, x: np.ndarray, y: np.ndarray, calm: bool):

@@ -32,8 +32,57 @@ def _off_bow(delta) -> float:
     return abs((delta + np.pi) % (2 * np.pi) - np.pi)
 
 
-@njit(_F[::1](_F[:, :, ::1], _F[::1], _F[::1], _F[::1], _F[::1], _F[::1], nt.boolean,
-              nt.boolean, nt.boolean, _F[::1], _F[::1], _F, _F), **_OPTIONS)  # fmt: skip
+_FIELD = (_F[:, :, ::1], _F[::1])  # the layers and the inverse transform's coefficients
+_POINT = (_F, _F, _F, _F)  # x, y, v, heading
+_REST = (nt.boolean, nt.boolean, nt.boolean, _F[::1], _F[::1], _F, _F)  # flags, tables, dwt, knot
+
+
+@njit(_F(*_FIELD, *_POINT, *_REST, _F[::1]), inline="always", **_OPTIONS)
+def _speed_at(layers, inverse, x, y, v, heading, calm, has_wave_height, has_wave_from, edges,
+              heights, dwt, knot, values) -> float:  # fmt: skip
+    """:func:`field_attainable_speed` of one point (``values``: scratch of one value per
+    layer)."""
+    _, rows, cols = layers.shape
+    a, b, c, d, e, f = inverse[0], inverse[1], inverse[2], inverse[3], inverse[4], inverse[5]
+    c_last, r_last = max(cols - 2, 0), max(rows - 2, 0)
+    col = a * x + b * y + c
+    row = d * x + e * y + f
+    fc = min(max(col - 0.5, 0.0), float(cols - 1))
+    fr = min(max(row - 0.5, 0.0), float(rows - 1))
+    c0 = min(int(math.floor(fc)), c_last)
+    r0 = min(int(math.floor(fr)), r_last)
+    tc, tr = fc - c0, fr - r0
+    c1, r1 = min(c0 + 1, cols - 1), min(r0 + 1, rows - 1)
+    inside = (col >= 0) & (col <= cols) & (row >= 0) & (row <= rows)
+    for k in range(layers.shape[0]):
+        top = layers[k, r0, c0] * (1 - tc) + layers[k, r0, c1] * tc
+        bottom = layers[k, r1, c0] * (1 - tc) + layers[k, r1, c1] * tc
+        values[k] = top * (1 - tr) + bottom * tr
+        if calm and not inside:
+            values[k] = 0.0
+    u, w = values[0], values[1]
+    speed = np.hypot(u, w)
+    wind_from = np.arctan2(-w, -u)
+    k = 2
+    if has_wave_height:
+        h, k = values[k], k + 1
+    else:
+        force = 0
+        while force < edges.size and edges[force] <= speed:  # searchsorted, side="right"
+            force += 1
+        h = heights[force]
+    wave_from = np.arctan2(values[k + 1], values[k]) if has_wave_from else wind_from
+    eps = _off_bow(wind_from - heading)
+    q = _off_bow(wave_from - heading) if has_wave_from else eps
+    knots = v / knot
+    loss = (1.08 * h - 0.126 * q * h + 2.77e-3 * speed * np.cos(eps)) * (
+        1 - 2.33e-7 * dwt * knots
+    )
+    made = knots - loss
+    return ((made if made >= 0.0 else 0.0) if knots > 0 else 0.0) * knot  # np.maximum
+
+
+@njit(_F[::1](*_FIELD, _F[::1], _F[::1], _F[::1], _F[::1], *_REST), **_OPTIONS)
 def field_attainable_speed(layers, inverse, x, y, v, heading, calm, has_wave_height,
                            has_wave_from, edges, heights, dwt, knot) -> np.ndarray:  # fmt: skip
     """:meth:`usvtool.sim.weather.FieldWeather.attainable_speed` at points ``(x, y)``: the
@@ -41,45 +90,19 @@ def field_attainable_speed(layers, inverse, x, y, v, heading, calm, has_wave_hei
     affine's six coefficients, ``calm``: 0 outside the raster), the wave height by Beaufort
     force (``edges``, ``heights``: :data:`usvtool.sim.weather.WAVE_HEIGHTS`) unless the layers
     have it, then eq. 5 for speeds ``v`` on headings ``heading`` (``dwt`` t, ``knot`` m/s)."""
-    _, rows, cols = layers.shape
-    a, b, c, d, e, f = inverse[0], inverse[1], inverse[2], inverse[3], inverse[4], inverse[5]
-    c_last, r_last = max(cols - 2, 0), max(rows - 2, 0)
     out = np.empty(x.size)
     values = np.empty(layers.shape[0])
     for n in range(x.size):
-        col = a * x[n] + b * y[n] + c
-        row = d * x[n] + e * y[n] + f
-        fc = min(max(col - 0.5, 0.0), float(cols - 1))
-        fr = min(max(row - 0.5, 0.0), float(rows - 1))
-        c0 = min(int(math.floor(fc)), c_last)
-        r0 = min(int(math.floor(fr)), r_last)
-        tc, tr = fc - c0, fr - r0
-        c1, r1 = min(c0 + 1, cols - 1), min(r0 + 1, rows - 1)
-        inside = (col >= 0) & (col <= cols) & (row >= 0) & (row <= rows)
-        for k in range(layers.shape[0]):
-            top = layers[k, r0, c0] * (1 - tc) + layers[k, r0, c1] * tc
-            bottom = layers[k, r1, c0] * (1 - tc) + layers[k, r1, c1] * tc
-            values[k] = top * (1 - tr) + bottom * tr
-            if calm and not inside:
-                values[k] = 0.0
-        u, w = values[0], values[1]
-        speed = np.hypot(u, w)
-        wind_from = np.arctan2(-w, -u)
-        k = 2
-        if has_wave_height:
-            h, k = values[k], k + 1
-        else:
-            force = 0
-            while force < edges.size and edges[force] <= speed:  # searchsorted, side="right"
-                force += 1
-            h = heights[force]
-        wave_from = np.arctan2(values[k + 1], values[k]) if has_wave_from else wind_from
-        eps = _off_bow(wind_from - heading[n])
-        q = _off_bow(wave_from - heading[n]) if has_wave_from else eps
-        knots = v[n] / knot
-        loss = (1.08 * h - 0.126 * q * h + 2.77e-3 * speed * np.cos(eps)) * (
-            1 - 2.33e-7 * dwt * knots
-        )
-        made = knots - loss
-        out[n] = ((made if made >= 0.0 else 0.0) if knots > 0 else 0.0) * knot  # np.maximum
+        out[n] = _speed_at(layers, inverse, x[n], y[n], v[n], heading[n], calm, has_wave_height,
+                           has_wave_from, edges, heights, dwt, knot, values)  # fmt: skip
     return out
+
+
+@njit(_F(*_FIELD, *_POINT, *_REST), **_OPTIONS)
+def field_attainable_speed_one(layers, inverse, x, y, v, heading, calm, has_wave_height,
+                               has_wave_from, edges, heights, dwt, knot) -> float:  # fmt: skip
+    """:func:`field_attainable_speed` of one point, in floats (the own ship's step of a run:
+    no arrays to make and box)."""
+    values = np.empty(layers.shape[0])
+    return _speed_at(layers, inverse, x, y, v, heading, calm, has_wave_height, has_wave_from,
+                     edges, heights, dwt, knot, values)  # fmt: skip

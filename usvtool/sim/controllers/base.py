@@ -301,6 +301,9 @@ class DynamicWindow(Controller):
         #: the checks' constants of the run (rollout_kernels.contacts)
         self._checks = (*field, length, every, float(along), float(across),
                         along * along * (1 + 1e-9), float(p["dist_max"]))  # fmt: skip
+        self._n_v, self._n_omega = int(p["v_samples"]), int(p["omega_samples"])
+        self._goal = float(world.goal[0]), float(world.goal[1])
+        self._reach2 = world.goal_tolerance**2  # a rollout within it reaches the goal
 
     def memory_parts(self) -> list[tuple[int, str, str]]:
         """Its rollouts: (v_samples + 1) x (omega_samples + 2) samples (the window's grid, with
@@ -365,15 +368,15 @@ class DynamicWindow(Controller):
 
     def rollouts(self, own: Own, targets: Targets) -> Rollouts:
         """Sample the window, roll every sample out and find its contacts."""
-        world, p, generator, kernels = self.world, self.params, self.generator, self.kernels
-        v, omega, fan = generator.sample(own, int(p["v_samples"]), int(p["omega_samples"]))
-        x, y = fan.x, fan.y  # (T, N)
-        contact, static_first, clearance, intrudes = kernels.contacts(
-            x, y, fan.radius, fan.u, self.times, float(own.x), float(own.y), _rows(targets.pos),
-            _rows(targets.vel), np.ascontiguousarray(targets.length, float), *self._checks
-        )  # fmt: skip
-        row, to_goal, near = kernels.closest(x, y, float(world.goal[0]), float(world.goal[1]))
-        reached = to_goal <= world.goal_tolerance**2
+        generator = self.generator
+        # the window, its fan (x, y: (T, N)), the contacts and the points closest to the goal,
+        # in one compiled call for the period window (rollout_kernels.period_sweep)
+        v, omega, x, y, contact, static_first, clearance, intrudes, row, to_goal, near = \
+            generator.sweep(own, self._n_v, self._n_omega,
+                            (_rows(targets.pos), _rows(targets.vel),
+                             np.ascontiguousarray(targets.length, float)),
+                            self._checks, self._goal)  # fmt: skip
+        reached = to_goal <= self._reach2
         return Rollouts(v, omega, contact, static_first, clearance, intrudes, x, y, reached,
                         to_goal, near, self.times[row], self._horizon, own,
                         generator)  # fmt: skip

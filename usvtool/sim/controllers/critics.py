@@ -18,6 +18,7 @@ the term's, and its scale the controller's parameter ``w_<name>``.
 
 from __future__ import annotations
 
+import functools
 from abc import ABC, abstractmethod
 
 import numpy as np
@@ -27,9 +28,17 @@ def heading_reward(off: np.ndarray, reached: np.ndarray) -> np.ndarray:
     """A heading critic's reward from the angle ``off`` (unwrapped) between the heading and the
     bearing: ``pi - |wrap_pi(off)|``, ``pi`` where the rollout reaches the goal; compiled
     (:func:`usvtool.sim.rollout_kernels.heading_reward`)."""
-    from usvtool.sim.rollout_kernels import heading_reward as compiled
+    return _kernels().heading_reward(np.ascontiguousarray(off, float), reached)
 
-    return compiled(np.ascontiguousarray(off, float), reached)
+
+@functools.cache
+def _kernels():
+    """:mod:`usvtool.sim.rollout_kernels`, imported at the first call (numba's import: a run's,
+    not the command line's) and then at the cost of a cached call, not an import's
+    microseconds, every step."""
+    from usvtool.sim import rollout_kernels
+
+    return rollout_kernels
 
 
 class Critic(ABC):
@@ -65,8 +74,10 @@ class Velocity(Critic):
         world = self.world
         if not self.weather or world.weather is None:
             return r.v
+        # the final positions as the rows of the rollouts (contiguous: the kernel takes them
+        # as they are), the values of r.end's parts
         return world.weather.attainable_speed(
-            r.v, r.psi_end, r.end.real, r.end.imag, world.vessel.deadweight
+            r.v, r.psi_end, r.x[-1], r.y[-1], world.vessel.deadweight
         )
 
 
@@ -84,9 +95,7 @@ class GoalHeading(Critic):
         self.goal = float(world.goal[0]), float(world.goal[1])
 
     def reward(self, own, r) -> np.ndarray:
-        from usvtool.sim.rollout_kernels import offsets
-
-        north, east = offsets(r.near, *self.goal)  # from the closest points to the goal
+        north, east = _kernels().offsets(r.near, *self.goal)  # from the closest points to the goal
         return heading_reward(np.arctan2(north, east) - r.psi_near, r.reached)  # the angle
 
 
@@ -176,12 +185,10 @@ class SubgoalPath(_SubgoalCritic):
     name = "path"
 
     def reward(self, own, r) -> np.ndarray:
-        from usvtool.sim.rollout_kernels import closest
-
         sub = self.progress.subgoal(own)
         if sub[0] == self.world.goal[0] and sub[1] == self.world.goal[1]:
             to_sub = r.to_goal  # the route done (or none): the goal's, worked out already
         else:
-            to_sub = closest(r.x, r.y, float(sub[0]), float(sub[1]))[1]
+            to_sub = _kernels().closest(r.x, r.y, float(sub[0]), float(sub[1]))[1]
         path = np.sqrt(to_sub)  # eq. 24
         return path.max() - path

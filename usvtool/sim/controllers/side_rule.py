@@ -12,9 +12,21 @@ from the preferred side.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from usvtool.sim import sides as side_rules
+
+
+@functools.cache
+def _kernels():
+    """:mod:`usvtool.sim.rollout_kernels`, imported at the first call (numba's import: a run's,
+    not the command line's) and then at the cost of a cached call, not an import's
+    microseconds, every step."""
+    from usvtool.sim import rollout_kernels
+
+    return rollout_kernels
 
 
 class SideRule:
@@ -42,12 +54,10 @@ class SideRule:
         """``score`` with the preferred side's bonus."""
         if side == side_rules.EITHER or not self.priority > 0:
             return score
-        from usvtool.sim.rollout_kernels import favour
-
         # the side's samples (with safe: only where no target or shore comes near) times
         # 1 + priority, compiled
-        return favour(score, r.omega, int(side), float(1 + self.priority), r.clearance,
-                      float(self.cap), bool(self.safe))  # fmt: skip
+        return _kernels().favour(score, r.omega, int(side), float(1 + self.priority),
+                                 r.clearance, float(self.cap), bool(self.safe))  # fmt: skip
 
     @staticmethod
     def overridden(side: int, horizon: float) -> dict:

@@ -17,9 +17,21 @@ period once a sample is chosen.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from usvtool.sim import vessel as vessel_model
+
+
+@functools.cache
+def _kernels():
+    """:mod:`usvtool.sim.rollout_kernels`, imported at the first call (numba's import: a run's,
+    not the command line's) and then at the cost of a cached call, not an import's
+    microseconds, every step."""
+    from usvtool.sim import rollout_kernels
+
+    return rollout_kernels
 
 
 class PeriodWindow:
@@ -41,11 +53,22 @@ class PeriodWindow:
         """The step's samples, the pairs ``(v, omega)`` of :meth:`axes` (the speed varying
         slowest), and their rollouts (:meth:`fan`): the window and its axes in one compiled
         call (:func:`usvtool.sim.rollout_kernels.window_axes`)."""
-        from usvtool.sim.rollout_kernels import window_axes
-
-        speeds, rates, v, omega = window_axes(float(own.v), float(own.omega), self.limits,
-                                              float(self.span), n_v, n_omega)  # fmt: skip
+        speeds, rates, v, omega = _kernels().window_axes(float(own.v), float(own.omega),
+                                                         self.limits, float(self.span), n_v,
+                                                         n_omega)  # fmt: skip
         return v, omega, self.fan(own, speeds, rates)
+
+    def sweep(self, own, n_v: int, n_omega: int, targets: tuple, checks: tuple,
+              goal: tuple[float, float]) -> tuple:  # fmt: skip
+        """The step's samples rolled out and checked (:meth:`sample`, then
+        :func:`usvtool.sim.rollout_kernels.sweep` of the fan with the ``targets``' positions,
+        velocities and lengths, the run's ``checks`` and the ``goal``), all in one compiled call
+        (:func:`usvtool.sim.rollout_kernels.period_sweep`): ``(v, omega, x, y, contact,
+        static_first, clearance, intrudes, row, to_goal, near)``."""
+        return _kernels().period_sweep(float(own.x), float(own.y), float(own.psi), float(own.v),
+                                       float(own.omega), self.limits, float(self.span), n_v,
+                                       n_omega, self.times, *targets, *checks,
+                                       *goal)  # fmt: skip
 
     def axes(self, own, n_v: int, n_omega: int) -> tuple[np.ndarray, np.ndarray]:
         """The window's grid (:func:`usvtool.sim.vessel.samples`) as its speeds and yaw rates."""
@@ -84,6 +107,15 @@ class HorizonWindow(PeriodWindow):
     def fan(self, own, speeds: np.ndarray, rates: np.ndarray) -> vessel_model.Fan:
         return vessel_model.ramps(own.x, own.y, own.psi, own.v, own.omega, speeds, rates,
                                   self.vessel, self._step(), self.times.size)  # fmt: skip
+
+    def sweep(self, own, n_v: int, n_omega: int, targets: tuple, checks: tuple,
+              goal: tuple[float, float]) -> tuple:  # fmt: skip
+        """:meth:`PeriodWindow.sweep` of the ramps: :meth:`sample`, then the checks in one
+        compiled call (:func:`usvtool.sim.rollout_kernels.sweep`)."""
+        v, omega, fan = self.sample(own, n_v, n_omega)
+        return (v, omega, fan.x, fan.y,
+                *_kernels().sweep(fan.x, fan.y, fan.radius, fan.u, self.times, float(own.x),
+                                  float(own.y), *targets, *checks, *goal))  # fmt: skip
 
     def heading(self, own, omega: np.ndarray, t) -> np.ndarray:
         """The heading turned while the yaw rate ramps toward the sample's."""
