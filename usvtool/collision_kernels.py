@@ -164,19 +164,22 @@ def traverse(a, b, d, want_inside, prefix, stride, below, bands) -> tuple[np.nda
 
 
 @njit(nt.Tuple((_B, _F))(_F[::1], _F[::1], _F, _F[::1], _I, _F, _F, _B, _F[::1], *_TABLES),
-      cache=True, nogil=True)  # fmt: skip
+      cache=True, nogil=True, inline="always")  # fmt: skip
 def segment(
     x, y, length, clear, samples, margin, d, want_inside, r, prefix, stride, below, bands
 ) -> tuple[bool, float]:
     """``(hit, inside)`` of one segment of :func:`check` from its ``samples`` sample points
     ``x``, ``y`` and its ``length`` (``r``: scratch, at least ``samples`` long)."""
     row = stride - 1
-    n_in = 0
+    outside = False  # first whether every sample is in the table, then the look-ups
     for j in range(samples):
         cell = int(y[j]) * row + int(x[j])  # truncation: coordinates >= 0
-        if not 0 <= cell < clear.size:  # no bounds checks in compiled code otherwise
-            raise ValueError("segments must lie inside the grid extent")
-        r[j] = clear[cell]
+        outside |= (cell < 0) | (cell >= clear.size)
+    if outside:  # no bounds checks in compiled code otherwise
+        raise ValueError("segments must lie inside the grid extent")
+    n_in = 0
+    for j in range(samples):
+        r[j] = clear[int(y[j]) * row + int(x[j])]
         n_in += r[j] < 0
     if n_in:
         return True, n_in * length / samples if want_inside else 0.0
