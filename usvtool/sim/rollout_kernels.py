@@ -219,9 +219,9 @@ _NEAREST = (_I[::1], _F[::1], _C[::1])  # closest's: the row, the squared distan
 
 @njit(nt.Tuple((_F[::1], *_NEAREST))(_F, _F, _ROWS, _TURNS, _ROWS, _ROWS, _F, _F), **_OPTIONS)
 def arc_points_closest(x0, y0, chord, summed, x, y, px, py):
-    """:func:`arc_points` and :func:`closest` to ``(px, py)`` of the points it writes, in one
-    pass over them (each point's distance taken as it is made, the rows in the same order):
-    ``(radius, row, to_point, point)``."""
+    """:func:`arc_points` and :func:`closest` to ``(px, py)`` of the points it writes, each
+    row's distances taken as soon as the row is made (while it is in cache; the rows in the
+    same order): ``(radius, row, to_point, point)``."""
     steps, rates = summed.shape
     speeds = chord.shape[0]
     n = speeds * rates
@@ -234,15 +234,17 @@ def arc_points_closest(x0, y0, chord, summed, x, y, px, py):
         for i in range(speeds):
             base = i * rates
             for k in range(rates):
-                px_ = chord[i, k] * sum_x[k] + x0
-                py_ = chord[i, k] * sum_y[k] + y0
-                x[t, base + k] = px_
-                y[t, base + k] = py_
-                dx, dy = px_ - px, py_ - py
-                d2 = dx * dx + dy * dy
-                closer = d2 < best[base + k]
-                best[base + k] = d2 if closer else best[base + k]
-                row[base + k] = t if closer else row[base + k]
+                x[t, base + k] = chord[i, k] * sum_x[k] + x0
+        for i in range(speeds):
+            base = i * rates
+            for k in range(rates):
+                y[t, base + k] = chord[i, k] * sum_y[k] + y0
+        for s in range(n):  # closest's, on the row just made (in cache)
+            dx, dy = x[t, s] - px, y[t, s] - py
+            d2 = dx * dx + dy * dy
+            closer = d2 < best[s]
+            best[s] = d2 if closer else best[s]
+            row[s] = t if closer else row[s]
     longest = np.zeros(rates)
     for i in range(speeds):
         for k in range(rates):

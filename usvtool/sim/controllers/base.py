@@ -330,7 +330,7 @@ class DynamicWindow(Controller):
         free, candidates = self.kernels.candidates(r.contact, removed, r.intrudes)
         if encounter is not None and encounter.cls == "crossing-give-way" and side:
             astern = ~self._crosses_ahead(own, r, targets, encounter.target)
-            if (candidates & astern).any():  # Rule 15: and pass astern of her when one can
+            if np.count_nonzero(candidates & astern):  # Rule 15: pass astern when one can
                 candidates &= astern
         events = []
         some = np.count_nonzero(candidates) > 0  # ndarray.any's wrapper costs more

@@ -207,10 +207,11 @@ class VelocityObstacle(Controller):
         free = ~grounded & (contact == np.inf)
         ok = free & ~wrong_side
         events = []
-        if not ok.any() and free.any():
+        # np.count_nonzero: ndarray.any's wrapper costs more on these few hundred
+        if not np.count_nonzero(ok) and np.count_nonzero(free):
             ok = free
             events.append({"kind": "colregs-dropped", "candidates": int(speed.size)})
-        if ok.any():
+        if np.count_nonzero(ok):
             best = int(np.argmin(np.where(ok, cost, np.inf)))
         else:
             with np.errstate(divide="ignore"):
@@ -272,7 +273,7 @@ class VelocityObstacle(Controller):
         contact = self.kernels.vo_contacts(vx, vy, px, py, vel, np.ascontiguousarray(
             radius, float), float(p["uncertainty"]), float(p["horizon"]))  # fmt: skip
         active = self.colregs(own, targets)
-        if not active.any():
+        if not np.count_nonzero(active):
             return contact, np.zeros(n, bool)
         px, py = px[active], py[active]
         wx = vx[:, None] - vel[active, 0]  # (N, K active)
@@ -296,7 +297,7 @@ class VelocityObstacle(Controller):
             own.v * math.cos(own.psi), own.v * math.sin(own.psi), float(p["colregs_time"]),
             float(p["colregs_distance"] * ship.length))  # fmt: skip
         cls = np.full(k, NONE, np.int8)
-        if near.any():  # the relative bearings of usvtool.encounter (compass degrees)
+        if np.count_nonzero(near):  # the relative bearings of usvtool.encounter (compass degrees)
             px, py = rel[near, 0], rel[near, 1]
             tx, ty = targets.vel[near, 0], targets.vel[near, 1]
             beta = np.degrees(own.psi - np.arctan2(py, px)) % 360.0
@@ -304,7 +305,7 @@ class VelocityObstacle(Controller):
             cls[near] = classify_angles(beta, alpha, True)
         entry = near & ((cls == HEAD_ON) | (cls == CROSSING_GIVE_WAY) | (cls == OVERTAKING))
         active = np.zeros(k, bool)
-        if not entry.any() and not self.modes:
+        if not np.count_nonzero(entry) and not self.modes:
             return active
         for j in range(k):  # per target (a handful), not per candidate
             if entry[j]:
