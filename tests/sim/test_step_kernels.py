@@ -484,3 +484,49 @@ def test_the_transformers_are_made_once_per_pair_and_give_a_fresh_ones_bits():
             assert same_bits(a, b)
         assert geodesy.lonlat_to_map(crs, 3.0, 0.5) == tuple(
             float(a) for a in fresh.transform(3.0, 0.5))
+
+
+def test_the_ramps_ufuncs_called_as_numpys_are_numbas_and_the_midpoints_the_expression():
+    """vessel.toward and travelled call the NumPy ufuncs under numba's frozen ones (no Python
+    wrapper): the same bits, broadcasting and casting as the numba call; ramps' cached period
+    middles are the expression it computed every step."""
+    rng = np.random.default_rng(6)
+    for _ in range(30):
+        now = float(rng.uniform(-1, 7))
+        target = rng.uniform(-1, 7, int(rng.integers(1, 30)))
+        target[rng.random(target.size) < 0.2] = now
+        t = rng.choice([0.05, 0.1, 0.2]) * (np.arange(int(rng.integers(1, 60))) + 0.5)[:, None]
+        down, up = (float(a) for a in rng.uniform(0.01, 3, 2))
+        assert same_bits(vessel_model.toward(now, target, down, up, t),
+                         kernels.toward(now, target, down, up, t))  # fmt: skip
+        assert same_bits(vessel_model.travelled(now, target, down, down, t),
+                         kernels.travelled(now, target, down, down, t))  # fmt: skip
+        assert same_bits(vessel_model.travelled(now, target[:, None], down, up, t[:, 0]),
+                         kernels.travelled(now, target[:, None], down, up, t[:, 0]))  # fmt: skip
+    assert same_bits(vessel_model.toward(2, np.array([7, 0]), 1, 2, 1), np.array([4.0, 1.0]))
+    for dt, steps in ((0.2, 50), (0.1, 30), (0.5, 1)):
+        assert same_bits(vessel_model._midpoints(dt, steps), dt * (np.arange(steps) + 0.5)[:, None])
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_crosses_ahead_is_numpys_change_of_side_ahead_of_the_bow(seed):
+    """The Rule 15 test's kernel against the NumPy expression it stands for, with zeros, signed
+    zeros and NaNs among the sides."""
+    rng = np.random.default_rng(seed)
+    for _ in range(40):
+        steps, n = int(rng.integers(1, 40)), int(rng.integers(1, 300))
+        x, y = rng.uniform(-50, 50, (2, steps, n))
+        x[rng.random((steps, n)) < 0.05] = np.nan
+        times = 0.2 * np.arange(1, steps + 1)
+        px, py, vx, vy = (float(a) for a in rng.uniform(-30, 30, 4))
+        if rng.random() < 0.3:  # on the course line: zero sides
+            x[:, : n // 2] = px + vx * times[:, None]
+            y[:, : n // 2] = py + vy * times[:, None]
+        speed = math.hypot(vx, vy)
+        hx, hy = vx / speed, vy / speed
+        now = float(rng.choice([1.5, -2.0, 0.0, -0.0, np.nan, float(rng.uniform(-5, 5))]))
+        tx, ty = px + vx * times[:, None], py + vy * times[:, None]
+        rx, ry = x - tx, y - ty
+        want = ((np.sign(hx * ry - hy * rx) != np.sign(now)) & (hx * rx + hy * ry > 0)).any(0)
+        got = kernels.crosses_ahead(x, y, times, px, py, vx, vy, hx, hy, now)
+        assert same_bits(got, want)

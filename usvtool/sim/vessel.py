@@ -267,7 +267,8 @@ def toward(now, target, down, up, t):
     compiled = _kernels()  # one compiled pass for the terms
     if isinstance(now, float) and isinstance(target, float) and isinstance(t, float):
         return compiled.toward_one(now, target, down, up, t)  # a ufunc's call costs 3 us
-    return compiled.toward(now, target, down, up, t)
+    # the NumPy ufunc under numba's (frozen: its one loop, the same) without its Python call
+    return compiled.toward.ufunc(now, target, down, up, t)
 
 
 def travelled(now, target, down, up, t):
@@ -277,7 +278,7 @@ def travelled(now, target, down, up, t):
     >>> travelled(3.0, np.array([7.0, 7.0]), 2.0, 2.0, np.array([1.0, 3.0])).tolist()  # 2 s ramp
     [4.0, 17.0]
     """
-    return _kernels().travelled(now, target, down, up, t)
+    return _kernels().travelled.ufunc(now, target, down, up, t)  # as toward's
 
 
 def ramps(x0, y0, psi0, v0, omega0, speeds, rates, vessel: Vessel, dt: float, steps: int) -> Fan:
@@ -296,13 +297,22 @@ def ramps(x0, y0, psi0, v0, omega0, speeds, rates, vessel: Vessel, dt: float, st
     [[1.75, 4.0, 6.75, 10.0, 13.5]]
     """
     speeds, rates = _grid_axes(speeds, rates)
-    t_mid = dt * (np.arange(steps) + 0.5)[:, None]
+    t_mid = _midpoints(dt, steps)
     chord = dt * toward(v0, speeds, vessel.max_decel, vessel.max_accel, t_mid)  # (steps, V)
     turned = travelled(omega0, rates, vessel.max_yaw_accel, vessel.max_yaw_accel, t_mid)
     u = np.exp(1j * (psi0 + turned))  # (steps, R)
     x, y = np.empty((2, steps, speeds.size * rates.size))
     radius = _kernels().ramp_points(float(x0), float(y0), chord, u, x, y)
     return Fan(x, y, u, radius)
+
+
+@functools.lru_cache(maxsize=16)
+def _midpoints(dt: float, steps: int) -> np.ndarray:
+    """The periods' middles ``(steps, 1)`` of :func:`ramps` (read-only: a run's every step
+    shares them)."""
+    t_mid = dt * (np.arange(steps) + 0.5)[:, None]
+    t_mid.flags.writeable = False
+    return t_mid
 
 
 def _grid_axes(speeds, rates) -> tuple[np.ndarray, np.ndarray]:
