@@ -209,3 +209,16 @@ def test_whole_plans_are_the_same_with_the_numpy_cost(plan_grid, encoding, monke
     if hasattr(GuidedProblem, "_cost_python"):
         monkeypatch.setattr(GuidedProblem, "cost", GuidedProblem._cost_python)
     assert plans() == compiled
+
+
+def test_the_warm_up_compiles_the_signatures_the_problems_call(plan_grid):
+    """cost_kernels.warm's arguments have the types of the problems' calls: after plans of
+    every kind each kernel has one compiled signature (a second would be compiled inside a
+    plan's timing, on its first call)."""
+    start, goal = (1.0, 1.0), (79.0, 79.0)
+    for algo, encoding in [("iwso", "waypoints"), ("issa", "columns"), ("iwso+g", "waypoints")]:
+        opts = PlanOptions(algo, 10, 5, seed=1, encoding=encoding, timing=False)
+        plan_route(plan_grid, start, goal, opts)
+    kernels = ("decode_waypoints", "decode_columns", "decode_guided", "route_terms", "combine")
+    for kernel in (getattr(cost_kernels, name) for name in kernels):
+        assert len(kernel.signatures) == 1, kernel.signatures

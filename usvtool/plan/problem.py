@@ -99,7 +99,9 @@ class PathProblem:
         if self.encoding == "waypoints" and self.waypoints < 1:
             raise ValueError("waypoints must be >= 1")
         self.checker = SegmentChecker(self.grid.blocked, pad=PAD)
-        from usvtool.plan import cost_kernels  # noqa: F401  (compiled or loaded now, untimed)
+        from usvtool.plan import cost_kernels
+
+        cost_kernels.warm(self.encoding)  # compiled or loaded now, not in a timed call
 
         self._ends = np.array(
             [self.grid.to_cell_coords(*self.start), self.grid.to_cell_coords(*self.goal)], float
