@@ -530,3 +530,20 @@ def test_crosses_ahead_is_numpys_change_of_side_ahead_of_the_bow(seed):
         want = ((np.sign(hx * ry - hy * rx) != np.sign(now)) & (hx * rx + hy * ry > 0)).any(0)
         got = kernels.crosses_ahead(x, y, times, px, py, vx, vy, hx, hy, now)
         assert same_bits(got, want)
+
+
+def test_heading_reward_at_the_modulos_borders():
+    """heading_reward's vectorised pass (no modulo inside (-2 pi, 2 pi)) and its modulo pass
+    meet where ``off + pi`` is 0 or +-2 pi: the bits of wrap_pi on either side of each border,
+    with every sample beyond them, none, or a few."""
+    borders = [-3 * np.pi, -np.pi, np.pi, 3 * np.pi, -5 * np.pi, 5 * np.pi]
+    near = [np.nextafter(b, d) for b in borders for d in (-np.inf, np.inf)] + borders
+    rng = np.random.default_rng(12)
+    for values in (np.array(near), rng.uniform(-3, 3, 300), rng.uniform(-9, 9, 300),
+                   np.concatenate([rng.uniform(-3, 3, 300), near])):  # fmt: skip
+        reached = rng.random(values.size) < 0.2
+        want = np.where(reached, np.pi, np.pi - np.abs(wrap_pi(values)))
+        assert same_bits(kernels.heading_reward(values, reached), want)
+    odd = np.array([np.nan, np.inf, -np.inf, 1.0])
+    got = kernels.heading_reward(odd, np.zeros(4, bool))
+    assert np.isnan(got[:3]).all() and got[3] == np.pi - 1.0

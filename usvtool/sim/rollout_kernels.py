@@ -565,11 +565,33 @@ def weighted_shares(shares, sums, scales) -> np.ndarray:
 def heading_reward(off, reached) -> np.ndarray:
     """A heading critic's reward from the unwrapped angle ``off`` between a heading and a
     bearing: ``np.where(reached, pi, pi - |wrap_pi(off)|)``, :func:`usvtool.angles.wrap_pi`'s
-    ``(a + pi) % 2 pi - pi`` (the floor modulo in both)."""
-    out = np.empty(off.size)
-    for s in range(off.size):
-        wrapped = (off[s] + np.pi) % (2 * np.pi) - np.pi
+    ``(a + pi) % 2 pi - pi`` (the floor modulo in both).
+
+    The modulo (``frem``, some 25 ns) is needed only outside ``(-2 pi, 2 pi)`` and at zero:
+    inside, the floor modulo is ``a`` itself for a positive ``a`` (``fmod`` is exact) and ``a
+    + 2 pi`` for a negative one (Python's and NumPy's adjustment of ``fmod``'s sign), which the
+    first loop computes, vectorised; the others are found and redone with the modulo apart (in
+    one loop with a branch LLVM would compute the modulo for every sample)."""
+    n = off.size
+    b = 2 * np.pi
+    out = np.empty(n)
+    rest = 0
+    for s in range(n):
+        a = off[s] + np.pi
+        wrapped = (a if a > 0.0 else a + b) - np.pi  # a % b, for -b < a < b and a != 0
         out[s] = np.pi if reached[s] else np.pi - abs(wrapped)
+        rest += not ((-b < a) & (a < b) & (a != 0.0))
+    if rest:
+        slow = np.empty(rest, np.int64)
+        i = 0
+        for s in range(n):
+            a = off[s] + np.pi
+            if not ((-b < a) & (a < b) & (a != 0.0)):
+                slow[i] = s
+                i += 1
+        for s in slow:
+            wrapped = (off[s] + np.pi) % b - np.pi
+            out[s] = np.pi if reached[s] else np.pi - abs(wrapped)
     return out
 
 
