@@ -547,3 +547,14 @@ def test_heading_reward_at_the_modulos_borders():
     odd = np.array([np.nan, np.inf, -np.inf, 1.0])
     got = kernels.heading_reward(odd, np.zeros(4, bool))
     assert np.isnan(got[:3]).all() and got[3] == np.pi - 1.0
+
+
+def test_wrap_angles_is_wrap_pi():
+    borders = [-3 * np.pi, -np.pi, np.pi, 3 * np.pi, -5 * np.pi, 5 * np.pi]
+    near = [np.nextafter(b, d) for b in borders for d in (-np.inf, np.inf)] + borders
+    rng = np.random.default_rng(13)
+    for values in (np.array(near + [0.0, -0.0, 1e-300, -1e-300]), rng.uniform(-3, 3, 300),
+                   rng.uniform(-9, 9, 300), rng.uniform(-1e3, 1e3, 300),
+                   np.concatenate([rng.uniform(-3, 3, 300), near])):  # fmt: skip
+        assert same_bits(kernels.wrap_angles(values), wrap_pi(values))
+    assert np.isnan(kernels.wrap_angles(np.array([np.nan, np.inf, -np.inf]))).all()

@@ -595,6 +595,31 @@ def heading_reward(off, reached) -> np.ndarray:
     return out
 
 
+@njit(_F[::1](_F[::1]), **_OPTIONS)
+def wrap_angles(a) -> np.ndarray:
+    """:func:`usvtool.angles.wrap_pi` of a vector, ``(a + pi) % 2 pi - pi``, with the floor
+    modulo only where it is needed, as :func:`heading_reward` takes it."""
+    n = a.size
+    b = 2 * np.pi
+    out = np.empty(n)
+    rest = 0
+    for s in range(n):
+        x = a[s] + np.pi
+        out[s] = (x if x > 0.0 else x + b) - np.pi  # x % b, for -b < x < b and x != 0
+        rest += not ((-b < x) & (x < b) & (x != 0.0))
+    if rest:
+        slow = np.empty(rest, np.int64)
+        i = 0
+        for s in range(n):
+            x = a[s] + np.pi
+            if not ((-b < x) & (x < b) & (x != 0.0)):
+                slow[i] = s
+                i += 1
+        for s in slow:
+            out[s] = (a[s] + np.pi) % b - np.pi
+    return out
+
+
 @njit(nt.Tuple((_B[::1], _B[::1]))(_F[::1], _B[::1], _B[::1]), **_OPTIONS)
 def candidates(contact, removed, intrudes) -> tuple[np.ndarray, np.ndarray]:
     """The first candidates of :meth:`usvtool.sim.controllers.base.DynamicWindow.decide`:

@@ -50,13 +50,13 @@ to port (:mod:`usvtool.sim.sides`).
 
 from __future__ import annotations
 
+import functools
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
 
-from usvtool.angles import wrap_pi
 from usvtool.encounter import domain_semi_axes
 from usvtool.errors import UsvError
 from usvtool.params import NON_NEGATIVE, POSITIVE, Param, Range, View, check, declared, defaults
@@ -166,8 +166,10 @@ class Rollouts:
 
     @cached_property
     def psi_end(self) -> np.ndarray:
-        """(N,) the predicted final headings (rad, in [-pi, pi))."""
-        return wrap_pi(self.heading(self.horizon))
+        """(N,) the predicted final headings (rad, in [-pi, pi)):
+        :func:`usvtool.angles.wrap_pi`'s, compiled
+        (:func:`usvtool.sim.rollout_kernels.wrap_angles`)."""
+        return _kernels().wrap_angles(np.ascontiguousarray(self.heading(self.horizon), float))
 
     @cached_property
     def psi_near(self) -> np.ndarray:
@@ -412,6 +414,15 @@ class DynamicWindow(Controller):
             "contact_s": round(float(r.contact[best]), 3),
         }
         return self._command(own, r, best, [event])
+
+
+@functools.cache
+def _kernels():
+    """:mod:`usvtool.sim.rollout_kernels`, imported at the first call (numba's import: a run's,
+    not the command line's) and then at the cost of a cached call, not an import's."""
+    from usvtool.sim import rollout_kernels
+
+    return rollout_kernels
 
 
 #: The clearance field of open water: none (the kernel looks nothing up in an empty field).
