@@ -163,8 +163,7 @@ def traverse(a, b, d, want_inside, prefix, stride, below, bands) -> tuple[np.nda
     return hit, inside
 
 
-@njit(nt.Tuple((_B, _F))(_F[::1], _F[::1], _F, _F[::1], _I, _F, _F, _B, _F[::1], *_TABLES),
-      cache=True, nogil=True, inline="always")  # fmt: skip
+@njit(inline="always")  # compiled only into its callers: nothing to load at import
 def segment(
     x, y, length, clear, samples, margin, d, want_inside, r, prefix, stride, below, bands
 ) -> tuple[bool, float]:

@@ -1,25 +1,29 @@
-"""Compiled kernels of the path problem's cost (:class:`usvtool.plan.problem.PathProblem`), with
-numba.
+"""Compiled kernels of the path problem's cost (:class:`usvtool.plan.problem.PathProblem`) and
+of the guided problem's decoder (:class:`usvtool.plan.guided.GuidedProblem`), with numba.
 
 The optimizers evaluate a population of 50-100 routes of a few segments each per iteration, and
 as NumPy array operations (segments, lengths, turn angles, the collision check's samples and
-glue, the sums) an evaluation spent 0.15-0.35 ms on some 40 calls' overheads. Here a population
-is decoded in one call (:func:`decode_waypoints`, :func:`decode_columns`) and its cost computed
-in two (:func:`route_terms`, :func:`combine`) around one NumPy call, ``arctan2`` of the turns:
-NumPy's SIMD ``arctan2`` (SVML on AVX-512 machines) need not give the C library's bits, so it
-stays NumPy's, called on the same values.
+glue, the sums) an evaluation spent 0.1-0.3 ms, much of it on some 40 calls' overheads. Here a
+population is decoded in one call (:func:`decode_waypoints`, :func:`decode_columns`,
+:func:`decode_guided`: the guided repair's checks made waypoint by waypoint as its choices need
+them) and its cost computed in two (:func:`route_terms`, :func:`combine`) around one NumPy call,
+``arctan2`` of the turns: NumPy's SIMD ``arctan2`` (SVML on AVX-512 machines) need not give the
+C library's bits (it did not, on 8 % of random turns), so it stays NumPy's, called on the same
+values. The kernels are compiled, or loaded from numba's cache, when a problem is made
+(:func:`warm`).
 
 Bit for bit. The kernels repeat the NumPy expressions they stand for operation by operation, so
 that every cost is the same float as before (the optimizers are chaotic: a last-bit change
 changes every route). Three of those expressions are not what they look like, measured on this
 project's NumPy (2.4, AVX-512):
 
-- ``np.abs`` of a complex segment is not the C library's ``hypot`` but NumPy's SIMD
-  ``larger · sqrt(fma(r, r, 1))``, ``r = smaller / larger`` (0 when both are 0): :func:`cabs`.
+- ``np.abs`` of a complex segment is not the C library's ``hypot`` (``np.hypot``, which it is)
+  but NumPy's SIMD ``larger · sqrt(fma(r, r, 1))``, ``r = smaller / larger`` (0 when both are
+  0): :func:`cabs`.
 - the complex product ``(a + bi)(c - di)`` of the turn angles is ``fma(a, c, b·d) + i fma(a,
   -d, b·c)`` (NumPy's SIMD ``muladdsub``): :func:`turn_product`.
 - the collision check's samples ``ends @ basis`` (a BLAS product of inner size 2) are
-  ``fma(b, t, a·(1 - t))``.
+  ``fma(b, t, a·(1 - t))`` (:func:`checked`).
 
 numba contracts no multiply-add by itself (no ``fastmath``), so the fused ones are written out
 (:func:`fma`, LLVM's ``llvm.fma``). The sums over a route are NumPy's ``sum(axis=-1)`` of a
@@ -31,15 +35,17 @@ the strips of :meth:`usvtool.collision.SegmentChecker.guide`). numba's cache key
 own file only: after changing :mod:`usvtool.collision_kernels`, remove
 ``usvtool/plan/__pycache__/cost_kernels.*.nb*`` (or touch this file).
 
-Speed (benchmarks/bench_cost.py, this shared 2-core machine, the least of 3 repeats; the
-populations a plan evaluates, recorded from the run): one evaluation, NumPy path → compiled,
-IWSO on env2 (100 routes of 4 segments) 104 → 48 µs, ISSA 136 → 90 µs, IWSO with 11 waypoints
-231 → 115 µs, ISSA ``columns`` on grid20 (100 routes of 21 segments) 629 → 432 µs. What is left
-is mostly the collision check's own work (its 4-24 samples per segment looked up in the
-clearance table, the strips near land), which was compiled before. Whole plans
-(``plan_route``, without the process start of about 0.9 s): wso 0.151 → 0.087 s, iwso 0.378 →
-0.244 s, ssa 0.291 → 0.187 s, issa 0.155 → 0.123 s, pso 0.093 → 0.069 s, mrfo 0.263 → 0.182 s,
-ssa ``columns`` 0.575 → 0.373 s, issa ``columns`` 0.769 → 0.448 s.
+Speed (benchmarks/bench_cost.py: CPU time, the least of 5 repeats, on this shared 2-core
+machine; the populations a plan evaluates, recorded from the run). One evaluation, NumPy path →
+compiled: IWSO on env2 (100 routes of 4 segments) 103 → 52 µs, ISSA (50 routes) 135 → 87 µs,
+IWSO with 11 waypoints 206 → 119 µs, IWSO+g (decode and cost) 315 → 58 µs, ISSA ``columns`` on
+grid20 (100 routes of 21 segments) 626 → 483 µs. What is left is mostly the collision check's
+own work (its 4-24 samples per segment looked up in the clearance table, the strips near
+land), compiled before. Whole plans (``plan_route``, without the process start): wso 0.079 →
+0.063 s, iwso 0.205 → 0.133 s, ssa 0.158 → 0.104 s, issa 0.103 → 0.081 s, pso 0.107 → 0.074 s,
+gwo 0.120 → 0.089 s, mrfo 0.154 → 0.104 s, iwso+g 0.640 → 0.280 s, ssa ``columns`` 0.550 →
+0.396 s, issa ``columns`` 0.377 → 0.323 s. A ``usvtool plan`` process also loads these kernels
+from the cache: 0.02-0.035 s of CPU.
 """
 
 from __future__ import annotations

@@ -46,8 +46,11 @@ Feasibility by the decoder (repair)
     (repaired) waypoint and on to the next station ``s_{k+1}`` touch no blocked cell (exact
     check), else it is put back on its station ``s_k``, which is always free: the previous
     waypoint sees ``s_k`` (it was kept only if it did), and ``s_k`` sees ``s_{k+1}`` on the
-    station route. All the checks a population needs are made in two vectorised calls
-    (:meth:`GuidedProblem.decode`), the choices then being boolean operations. So every route
+    station route. The checks a population needs are made in one compiled call
+    (:meth:`GuidedProblem.decode`, :func:`usvtool.plan.cost_kernels.decode_guided`), waypoint
+    by waypoint as the choices need them (the NumPy decoder it replaced, kept as
+    ``GuidedProblem._decode_python``, made them all in two vectorised calls and then chose by
+    boolean operations: the same routes, bit for bit). So every route
     the optimizer is scored on, and the one it returns, is collision-free: a decoder in the
     sense of the constrained evolutionary-computation literature (Michalewicz & Schoenauer
     1996, "Evolutionary algorithms for constrained parameter optimization problems"), the
