@@ -558,3 +558,14 @@ def test_wrap_angles_is_wrap_pi():
                    np.concatenate([rng.uniform(-3, 3, 300), near])):  # fmt: skip
         assert same_bits(kernels.wrap_angles(values), wrap_pi(values))
     assert np.isnan(kernels.wrap_angles(np.array([np.nan, np.inf, -np.inf]))).all()
+
+
+def test_the_weathers_off_bow_is_numpys_at_the_modulos_borders():
+    from usvtool.sim import weather_kernels
+    from usvtool.sim.weather import off_bow
+
+    borders = [-3 * np.pi, -np.pi, np.pi, 3 * np.pi, -5 * np.pi, 5 * np.pi]
+    near = [np.nextafter(b, d) for b in borders for d in (-np.inf, np.inf)] + borders
+    rng = np.random.default_rng(14)
+    for delta in [*near, 0.0, -0.0, 1e-300, *rng.uniform(-20, 20, 400)]:
+        assert same_bits(weather_kernels._off_bow(float(delta)), off_bow(float(delta), 0.0))

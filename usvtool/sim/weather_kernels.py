@@ -28,8 +28,18 @@ _OPTIONS = {"cache": True, "nogil": True}
 @njit(_F(_F), inline="always", **_OPTIONS)
 def _off_bow(delta) -> float:
     """:func:`usvtool.sim.weather.off_bow` of ``from - heading``: ``|wrap_pi(delta)|``, as
-    :func:`usvtool.angles.wrap_pi` computes it (Python's and NumPy's float ``%`` agree)."""
-    return abs((delta + np.pi) % (2 * np.pi) - np.pi)
+    :func:`usvtool.angles.wrap_pi` computes it (Python's and NumPy's float ``%`` agree), the
+    floor modulo only outside ``(-2 pi, 2 pi)`` and at zero: inside it is ``a`` for a positive
+    ``a`` and ``a + 2 pi`` for a negative one, exactly (``fmod`` is exact there)."""
+    a = delta + np.pi
+    b = 2 * np.pi
+    if 0.0 < a < b:
+        wrapped = a
+    elif -b < a < 0.0:
+        wrapped = a + b
+    else:
+        wrapped = a % b
+    return abs(wrapped - np.pi)
 
 
 _FIELD = (_F[:, :, ::1], _F[::1])  # the layers and the inverse transform's coefficients
