@@ -13,30 +13,37 @@ Minimum over repeats (the machine is shared: the minimum is the least disturbed 
 
 Usage: python benchmarks/bench_cost.py [--repeats 5] [--evals 300] [--no-plans]
 
-Measured (2026-12-06, this 2-core machine, NumPy 2.4, numba 0.68, 3 repeats), PathProblem
-compiled, GuidedProblem not yet:
+Measured (2026-12-06, this shared 2-core machine, NumPy 2.4, numba 0.68; CPU time, the least
+of 5 repeats):
 
     evaluation of a population              numpy µs  compiled µs  speed-up
-    iwso, 100 routes                           103.5         47.6      2.2x
-    issa, 50 routes                            136.0         90.0      1.5x
-    iwso+g, 100 routes                         311.6        300.6      1.0x
-    issa columns, 100 routes                   629.3        431.8      1.5x
-    iwso K=11, 100 routes                      231.4        115.4      2.0x
+    iwso, 100 routes                           103.4         51.8      2.0x
+    issa, 50 routes                            134.5         87.3      1.5x
+    iwso+g, 100 routes                         315.4         57.9      5.4x
+    issa columns, 100 routes                   626.2        483.0      1.3x
+    iwso K=11, 100 routes                      205.6        119.1      1.7x
 
     whole plan (s, plan_route)                 numpy     compiled  speed-up
-    wso                                        0.151        0.087      1.7x
-    iwso                                       0.378        0.244      1.5x
-    ssa                                        0.291        0.187      1.6x
-    issa                                       0.155        0.123      1.3x
-    pso                                        0.093        0.069      1.3x
-    gwo                                        0.108        0.082      1.3x
-    woa                                        0.129        0.096      1.3x
-    mrfo                                       0.263        0.182      1.4x
-    boa                                        0.133        0.101      1.3x
-    iwso+g                                     0.619        0.616      1.0x
-    ssa columns                                0.575        0.373      1.5x
-    issa columns                               0.769        0.448      1.7x
-    iwso K=11                                  0.500        0.292      1.7x
+    wso                                        0.079        0.063      1.3x
+    iwso                                       0.205        0.133      1.5x
+    ssa                                        0.158        0.104      1.5x
+    issa                                       0.103        0.081      1.3x
+    pso                                        0.107        0.074      1.5x
+    gwo                                        0.120        0.089      1.3x
+    woa                                        0.130        0.097      1.3x
+    mrfo                                       0.154        0.104      1.5x
+    boa                                        0.073        0.056      1.3x
+    iwso+g                                     0.640        0.280      2.3x
+    ssa columns                                0.550        0.396      1.4x
+    issa columns                               0.377        0.323      1.2x
+    iwso K=11                                  0.311        0.207      1.5x
+
+Whole ``usvtool plan`` processes (user + sys CPU, the identity jobs on the report's env2 and
+grid20 grids, 8 alternations of the package before and after): iwso 1.17 → 1.19 s (the least;
+medians 1.27, 1.35: the plan's 0.07 s is within this machine's noise, and a process now loads
+the cost kernels from numba's cache, 0.02-0.035 s), issa ``columns`` 1.42 → 1.37 s, iwso+g
+1.65 → 1.37 s (medians 2.01 → 1.56 s). The process start (imports, the grid, the checker's
+tables) is about 1 s of every job.
 """
 
 from __future__ import annotations
