@@ -569,3 +569,36 @@ def test_the_weathers_off_bow_is_numpys_at_the_modulos_borders():
     rng = np.random.default_rng(14)
     for delta in [*near, 0.0, -0.0, 1e-300, *rng.uniform(-20, 20, 400)]:
         assert same_bits(weather_kernels._off_bow(float(delta)), off_bow(float(delta), 0.0))
+
+
+def test_the_runs_grid_collision_is_the_grids_own_test():
+    """run._collision's grid test in floats (the bounds taken once) against Grid.contains and
+    Grid.cell_of, on points inside, outside and on the cells' edges."""
+    from types import SimpleNamespace
+
+    from affine import Affine
+
+    from usvtool.grid import OBSTACLE, Grid
+    from usvtool.sim import run as sim_run
+
+    rng = np.random.default_rng(15)
+    for _ in range(20):
+        size = float(rng.choice([1.0, 2.5, 4.0, 0.3]))
+        cells = (rng.random((30, 40)) < 0.2).astype(np.uint8) * OBSTACLE
+        left, top = (float(a) for a in rng.uniform(-500, 500, 2))
+        grid = Grid(cells, Affine(size, 0, left, 0, -size, top))
+        g_left, bottom, right, g_top = grid.bounds
+        setup = SimpleNamespace(grid=grid, box=(*grid.bounds, grid.cell_size, grid.cells,
+                                                OBSTACLE))  # fmt: skip
+        xs = [*rng.uniform(g_left - 20, right + 20, 300), g_left, right,
+              *(g_left + size * np.arange(40))]  # fmt: skip
+        ys = [*rng.uniform(bottom - 20, g_top + 20, 300), bottom, g_top,
+              *(g_top - size * np.arange(40))]  # fmt: skip
+        for x, y in zip(xs, rng.permutation(ys), strict=True):
+            x, y = float(x), float(y)
+            if not grid.contains(x, y):
+                want = -1
+            else:
+                row, col = grid.cell_of(x, y)
+                want = -1 if grid.cells[row, col] == OBSTACLE else None
+            assert sim_run._collision(setup, x, y, np.zeros((0, 2)), np.zeros(0)) == want

@@ -35,6 +35,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import logging
+import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -295,6 +296,10 @@ class _Setup:
                 self.grid = read_grid(scenario.map, check_map)
             self.clearance = Clearance(self.grid)
             crs = self.grid.crs
+            from usvtool.grid import OBSTACLE
+
+            #: the grid's bounds, cell size, cells and obstacle code, as _collision takes them
+            self.box = (*self.grid.bounds, self.grid.cell_size, self.grid.cells, OBSTACLE)
         self.crs = crs
         self.start = self.point(scenario.own.start, "own.start")
         self.goal = np.array(self.point(scenario.own.goal, "own.goal"))
@@ -391,13 +396,12 @@ def _collision(setup: _Setup, x: float, y: float, ahead: np.ndarray,
         if touching >= 0:
             return touching
     if setup.grid is not None:
-        from usvtool.grid import OBSTACLE
-
-        grid = setup.grid
-        if not grid.contains(x, y):
+        # Grid.contains and Grid.cell_of in floats, the grid's bounds taken once (_Setup.box):
+        # the same comparisons and quotients, without their NumPy scalars and properties
+        left, bottom, right, top, size, cells, obstacle = setup.box
+        if not (left <= x < right and bottom < y <= top):
             return -1
-        row, col = grid.cell_of(x, y)
-        if grid.cells[row, col] == OBSTACLE:
+        if cells[math.floor((top - y) / size), math.floor((x - left) / size)] == obstacle:
             return -1
     return None
 
