@@ -22,8 +22,9 @@
   (paired) or from each side (independent, n each), drawn from
   ``numpy.random.default_rng(seed)`` in batches of at most 2 million values (the same seed at
   every n: common random numbers), each tested by the normal approximation with the tie and
-  continuity corrections (vectorised over the samples: ranks by
-  ``scipy.stats.rankdata(axis=1)``). The search starts at Noether's approximation
+  continuity corrections (vectorised over the samples: ranks by counting the observed values'
+  levels in each sample, :class:`_Coded`; the same floats as ``scipy.stats.rankdata(axis=1)``
+  of the drawn values gives). The search starts at Noether's approximation
   (:func:`noether`), halves or doubles n until the power is bracketed, then bisects between
   the last n that fell short and the first that did not, to within 5 % (or 1): a handful of
   simulations at about the n sought. Above ``cap`` it gives up: ``n`` None, and ``reason``
@@ -119,6 +120,8 @@ def sample_size(method: Sequence[float], rival: Sequence[float], *, paired: bool
     observed = _signed_rank_z(d[None, :]) if paired else _rank_sum_z(a[None, :], b[None, :])
     direction = float(np.sign(observed[0]))
 
+    coded = _Coded(d) if paired else _Coded(a, b)
+
     def power_at(n: int) -> float:
         rng = np.random.default_rng(seed)
         rows = max(1, _CHUNK // (n if paired else 2 * n))
@@ -126,11 +129,10 @@ def sample_size(method: Sequence[float], rival: Sequence[float], *, paired: bool
         for done in range(0, simulations, rows):  # batches of samples, each vectorised
             k = min(rows, simulations - done)
             if paired:
-                z = _signed_rank_z(d[rng.integers(0, d.size, size=(k, n))])
+                z = coded.signed_rank_z(rng.integers(0, d.size, size=(k, n)))
             else:
-                x = a[rng.integers(0, a.size, size=(k, n))]
-                y = b[rng.integers(0, b.size, size=(k, n))]
-                z = _rank_sum_z(x, y)
+                z = coded.rank_sum_z(rng.integers(0, a.size, size=(k, n)),
+                                     rng.integers(0, b.size, size=(k, n)))  # fmt: skip
             rejected += int(np.count_nonzero(ndtr(-direction * z) < alpha / 2))
         return rejected / simulations
 
@@ -213,6 +215,68 @@ def _rank_sum_z(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     total = m + n
     var = m * n / (total * (total - 1)) * ((ranks - (total + 1) / 2) ** 2).sum(axis=1)
     return _z(r, m * (total + 1) / 2, var)
+
+
+class _Coded:
+    """The rank statistics of samples drawn from observed values, ranked by counting: each
+    observed value is coded by its place among the distinct ones (``levels``), a sample's ranks
+    are its rows' counts of each level, cumulated (a level's average rank is the count below it
+    plus (its count + 1) / 2), with no sort of the samples. The same floats as
+    :func:`_signed_rank_z` and :func:`_rank_sum_z` on the drawn values: ranks are multiples of
+    1/2, so every sum of them (and of their squared offsets, multiples of 1/4) is exact in
+    any order. Given ``d`` (paired) or ``a, b``; the samples as indices into them."""
+
+    def __init__(self, first: np.ndarray, second: np.ndarray | None = None):
+        if second is None:
+            size = np.abs(first)
+            self.levels = np.unique(size)
+            self.code = np.searchsorted(self.levels, size)
+            self.positive = first > 0
+        else:
+            self.levels = np.unique(np.concatenate([first, second]))
+            self.code = np.searchsorted(self.levels, first)
+            self.code_second = np.searchsorted(self.levels, second)
+
+    def _counts(self, codes: np.ndarray) -> np.ndarray:
+        """(k, levels): how many of each row's entries hold each level (``codes`` (k, n), or
+        a masked selection given as (rows, codes) of equal length)."""
+        u = self.levels.size
+        k = codes.shape[0]
+        flat = codes + u * np.arange(k)[:, None]
+        return np.bincount(flat.ravel(), minlength=k * u).reshape(k, u)
+
+    @staticmethod
+    def _ranks(counts: np.ndarray) -> np.ndarray:
+        """Each level's average rank (1-based) in its row."""
+        return (np.cumsum(counts, axis=1) - counts) + (counts + 1) / 2
+
+    def signed_rank_z(self, drawn: np.ndarray) -> np.ndarray:
+        """:func:`_signed_rank_z` of ``d[drawn]``."""
+        codes = self.code[drawn]
+        counts = self._counts(codes)
+        u, k = self.levels.size, drawn.shape[0]
+        zero = self.levels[0] == 0
+        zeros = counts[:, :1] if zero else np.zeros((k, 1), counts.dtype)
+        ranks = self._ranks(counts) - zeros
+        if zero:
+            counts = counts.copy()
+            counts[:, 0] = 0  # zero differences are dropped
+        flat = (codes + u * np.arange(k)[:, None])[self.positive[drawn]]
+        ahead = np.bincount(flat, minlength=k * u).reshape(k, u)
+        t = (ahead * ranks).sum(axis=1)
+        mean, var = (counts * ranks).sum(axis=1) / 2, (counts * ranks**2).sum(axis=1) / 4
+        return _z(t, mean, var)
+
+    def rank_sum_z(self, drawn_first: np.ndarray, drawn_second: np.ndarray) -> np.ndarray:
+        """:func:`_rank_sum_z` of ``a[drawn_first]`` against ``b[drawn_second]``."""
+        m, n = drawn_first.shape[1], drawn_second.shape[1]
+        first = self._counts(self.code[drawn_first])
+        counts = first + self._counts(self.code_second[drawn_second])
+        ranks = self._ranks(counts)
+        r = (first * ranks).sum(axis=1)
+        total = m + n
+        var = m * n / (total * (total - 1)) * (counts * (ranks - (total + 1) / 2) ** 2).sum(axis=1)
+        return _z(r, m * (total + 1) / 2, var)
 
 
 def _z(t: np.ndarray, mean, var: np.ndarray) -> np.ndarray:
