@@ -32,6 +32,40 @@ start-up, and the wall time of the bundled scenarios.
    decisions alone, best of ``--runs`` runs; with ``--base-tree DIR`` beside another checkout's
    (``git worktree add DIR REV``), run by run alternately in processes of its own.
 
+Figures of item 6 for the step's glue work (commits 25abfc7..71e1a55: the period window's step
+in one compiled call, the wind field's fast paths, no imports in the step, heading_reward and
+wrap_pi without the modulo inside (-2 pi, 2 pi), the ramps' ufuncs without numba's wrapper, the
+grid collision test in floats), before (52810c2) and after, each in fresh processes of its own
+(``--period-run``), the two trees alternately, best of 3-5 runs on the shared 2-core machine
+(two other busy processes: +-8 % between runs), seed 1; ms per period of the loop (deciding),
+x the loop's ratio:
+
+scene                 controller         before          after     x
+imazu 13              dwa        0.117 (0.103) 0.093 (0.081)  1.26
+imazu 13              gdwa       0.210 (0.185) 0.161 (0.139)  1.30
+imazu 13              ccdwa      0.128 (0.111) 0.098 (0.085)  1.31
+imazu 13              udwa       0.128 (0.111) 0.099 (0.085)  1.29
+imazu 13              udwa+      0.194 (0.177) 0.165 (0.150)  1.18
+imazu 13              vo         0.082 (0.068) 0.079 (0.065)  1.04
+imazu 13              sbmpc      0.070 (0.055) 0.064 (0.052)  1.09
+emergency crossing 0  dwa        0.122 (0.106) 0.091 (0.079)  1.34
+emergency crossing 0  gdwa       0.148 (0.132) 0.111 (0.098)  1.33
+emergency crossing 0  ccdwa      0.135 (0.120) 0.108 (0.095)  1.25
+emergency crossing 0  udwa       0.176 (0.159) 0.149 (0.135)  1.18
+emergency crossing 0  udwa+      0.198 (0.182) 0.161 (0.148)  1.23
+emergency crossing 0  vo         0.086 (0.074) 0.080 (0.069)  1.07
+emergency crossing 0  sbmpc      0.083 (0.070) 0.082 (0.071)  1.01
+wind halves 0         dwa        0.120 (0.094) 0.085 (0.072)  1.41
+wind halves 0         udwa       0.192 (0.166) 0.142 (0.127)  1.35
+wind halves 0         udwa+      0.273 (0.246) 0.214 (0.198)  1.28
+
+The DWA controllers' periods 1.18-1.41 times faster, vo and sbmpc within the noise (their own
+code unchanged). Whole jobs as a batch worker runs them (in one process, usvtool.cli in turn:
+the scene, the run, the verdicts, the files; the Transformer made once per pair of CRSs),
+7 scenes x 8 controllers (with udwa-calm), best of 3: 23.1 s before, 17.0 s after (1.36 x).
+With this revision ``--periods`` times "now" in this process after the others' runs, which
+penalised vo and sbmpc (0.6-0.9 x); fresh processes for both trees are the fair comparison.
+
 Usage: python benchmarks/bench_simulate.py [--runs 7] [--base REV] [--no-steps] [--targets]
        [--startup] [--ships] [--scenarios] [--periods [--base-tree DIR]]
 """
