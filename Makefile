@@ -12,11 +12,14 @@ BUILD := build
 .DELETE_ON_ERROR:
 
 # installed with uv (from PyPI into the venv): the same packages and versions as pip resolves, in
-# about 20 s from an empty cache rather than pip's 60 (it downloads and unpacks in parallel)
+# about 20 s from an empty cache rather than pip's 60 (it downloads and unpacks in parallel); by
+# pip when uv cannot (uv reads no pip.conf: an index only pip is configured for)
+EXTRAS := .[test,gym,trafficgen]
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --disable-pip-version-check uv
-	$(BIN)/python -m uv pip install --quiet --python $(BIN)/python -e '.[test,gym,trafficgen]'
+	{ $(BIN)/python -m pip install --quiet --disable-pip-version-check uv \
+		&& $(BIN)/python -m uv pip install --quiet --python $(BIN)/python -e '$(EXTRAS)'; } \
+		|| $(BIN)/python -m pip install --quiet -e '$(EXTRAS)'
 	touch $(STAMP)
 
 # Debian packages the tests use: Chromium (the report's browser test), Pango (WeasyPrint's PDF) and
