@@ -286,7 +286,7 @@ def test_a_rotated_field_is_refused(tmp_path):
     import rasterio
 
     with rasterio.open(path, "r+") as ds:
-        ds.transform = TRANSFORM * Affine.rotation(30)
+        ds.transform = TRANSFORM @ Affine.rotation(30)
     with pytest.raises(UsvError, match=r"r\.tif: a rotated or sheared geotransform; warp"):
         read_weather(path)
 
