@@ -25,19 +25,23 @@ library's in both) give NumPy's bits (tests/sim/test_step_kernels.py); ``arctan2
 Layout: positions ``x``, ``y`` are ``(T, N)``, time-major, sample ``n = i·R + k`` the speed ``i``
 and the yaw rate ``k`` of the window's grid (:class:`usvtool.sim.vessel.Fan`).
 
-Signatures are given, so that importing this module compiles the kernels or loads them from
-numba's cache in ``__pycache__`` (docs/controllers.md, "Speed", gives what that costs), not at
-a first call inside a timing. Imported lazily, by :mod:`usvtool.sim.vessel` when it rolls a fan
-out, so that reading a scenario or building the command line does not import numba.
+Each kernel has its signature (:func:`declared`), compiled, or loaded from numba's cache in
+``__pycache__``, at the kernel's first call, not at import: a run loads the kernels it calls and
+no others (loading all 37 of these modules' at import cost some 0.55 s of CPU a process). The
+ufuncs :func:`toward` and :func:`travelled` are made at their first use (the module's
+``__getattr__``). Imported lazily, by :mod:`usvtool.sim.vessel` when it rolls a fan out, so that
+reading a scenario or building the command line does not import numba.
 """
 
 from __future__ import annotations
 
 import math
+import sys
 
 import numpy as np
 from numba import njit, vectorize
 from numba import types as nt
+from numba.core.dispatcher import Dispatcher
 
 from usvtool.encounter import VEL_EPS
 from usvtool.sim.vessel import SINC_ZERO, ZERO_TOLERANCE
@@ -47,12 +51,54 @@ _ROWS = _F[:, ::1]  # a C-ordered 2-D array: (T, N), (V, R), (T, V), (k, 2)
 _TURNS = _C[:, ::1]  # (T, R) complex: a direction or a sum of them per time and yaw rate
 _OPTIONS = {"cache": True, "nogil": True}
 
+
+def declared(sig, **options):
+    """``njit(sig, **options)``, the signature compiled (or loaded from numba's cache) at the
+    kernel's first call, from Python or while a calling kernel is typed, rather than at the
+    decoration: then, as ``njit`` with a signature does, compilation is disabled, so that every
+    call uses that one specialisation (converting the arguments as numba does: an ``int`` for a
+    float), the same machine code as with the signature given at the decoration. A kernel
+    inlined (``inline="always"``) is typed in its callers and never compiled by itself unless
+    called from Python."""
+
+    def decorate(func):
+        dispatcher = njit(**options)(func)
+
+        def compile_declared(_types):  # numba's compile for a call's types: the signature's
+            del dispatcher.compile  # the method again
+            entry = dispatcher.compile(sig)
+            dispatcher.disable_compile()
+            return entry
+
+        dispatcher.compile = compile_declared
+        return dispatcher
+
+    return decorate
+
+
+def load(*names: str, module=None) -> None:
+    """Compile the named kernels of ``module`` (this one by default), or load them from numba's
+    cache, now unless done: when a controller or a tracker is made, so that the kernels its
+    steps call are not loaded inside the first step's timing (``step_time_ms``)."""
+    namespace = sys.modules[__name__] if module is None else module
+    for name in names:
+        kernel = getattr(namespace, name)  # the ufuncs: made
+        if isinstance(kernel, Dispatcher) and not kernel.signatures:
+            kernel.compile(None)  # declared's: the signature
+
+
+def loaded(module) -> dict[str, int]:
+    """The kernels of ``module`` with a specialisation loaded, and how many (one each)."""
+    return {name: len(k.signatures) for name, k in vars(module).items()
+            if isinstance(k, Dispatcher) and k.signatures}  # fmt: skip
+
+
 #: Relative margin of the distance bounds that skip work: a bound within it of its limit is not
 #: trusted and the work is done (the round-off in a bound is some 1e-15 of it).
 MARGIN = 1e-6
 
 
-@njit(_F[::1](_F, _F, _I, _F[::1], _F), **_OPTIONS)
+@declared(_F[::1](_F, _F, _I, _F[::1], _F), **_OPTIONS)
 def axis(lo, hi, n, extra, tolerance) -> np.ndarray:
     """:func:`usvtool.sim.vessel._axis` (its definition): ``n`` values from ``lo`` to ``hi`` as
     ``np.linspace`` makes them (``i`` times the step plus ``lo``, ``i / (n - 1)`` times the
@@ -84,7 +130,7 @@ def axis(lo, hi, n, extra, tolerance) -> np.ndarray:
 _AXES = nt.Tuple((_F[::1], _F[::1], _F[::1], _F[::1]))
 
 
-@njit(_AXES(_F, _F, _F[::1], _F, _I, _I), **_OPTIONS)
+@declared(_AXES(_F, _F, _F[::1], _F, _I, _I), **_OPTIONS)
 def window_axes(v, omega, limits, span, n_v, n_omega):
     """The samples of a step: :func:`usvtool.sim.vessel.window` of the velocity ``(v, omega)``
     over ``span`` (eqs. 18-19; ``limits``: the vessel's ``min_speed``, ``max_speed``,
@@ -110,20 +156,18 @@ def window_axes(v, omega, limits, span, n_v, n_omega):
     return speeds, rates, pair_v, pair_omega
 
 
-@njit(_F(_F, _F, _F, _F, _F), **_OPTIONS)
+@declared(_F(_F, _F, _F, _F, _F), **_OPTIONS)
 def toward_one(now, target, down, up, t) -> float:
     """:func:`usvtool.sim.vessel.toward` (its definition) of one value."""
     return now + min(max(target - now, -down * t), up * t)
 
 
-@vectorize([_F(_F, _F, _F, _F, _F)], cache=True)
 def toward(now, target, down, up, t):
     """:func:`toward_one` as a ufunc: one compiled pass where the NumPy expression made five
     arrays."""
     return toward_one(now, target, down, up, t)
 
 
-@vectorize([_F(_F, _F, _F, _F, _F)], cache=True)
 def travelled(now, target, down, up, t):
     """:func:`usvtool.sim.vessel.travelled` (its definition), a ufunc."""
     change = target - now
@@ -132,7 +176,21 @@ def travelled(now, target, down, up, t):
     return now * t + change * (t - ramp) + math.copysign(rate / 2 * ramp * ramp, change)
 
 
-@njit(_F[::1](_F, _F, _ROWS, _TURNS, _ROWS, _ROWS), **_OPTIONS)
+#: The ufuncs' Python functions, made ufuncs (``vectorize`` of their one signature: compiled
+#: there) at their first use by :func:`__getattr__`.
+_UFUNCS = {f.__name__: f for f in (toward, travelled)}
+del toward, travelled
+
+
+def __getattr__(name: str):
+    """:func:`toward` or :func:`travelled`, made at the first use."""
+    if name not in _UFUNCS:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    ufunc = globals()[name] = vectorize([_F(_F, _F, _F, _F, _F)], cache=True)(_UFUNCS[name])
+    return ufunc
+
+
+@declared(_F[::1](_F, _F, _ROWS, _TURNS, _ROWS, _ROWS), **_OPTIONS)
 def arc_points(x0, y0, chord, summed, x, y) -> np.ndarray:
     """The arcs' positions (:func:`usvtool.sim.vessel.arcs`): ``x[t, i·R + k] = chord[i, k] ·
     summed[t, k].real + x0`` (and ``y`` with the imaginary part), ``chord`` ``(V, R)`` the chord
@@ -166,7 +224,7 @@ def arc_points(x0, y0, chord, summed, x, y) -> np.ndarray:
     return radius
 
 
-@njit(nt.Tuple((_ROWS, _TURNS))(_F, _F[::1], _F[::1], _F, _TURNS), **_OPTIONS)
+@declared(nt.Tuple((_ROWS, _TURNS))(_F, _F[::1], _F[::1], _F, _TURNS), **_OPTIONS)
 def arc_chords(psi0, speeds, rates, dt, u) -> tuple[np.ndarray, np.ndarray]:
     """The first part of :func:`arc_fan` (its definition): the directions ``u`` (written), the
     chords ``(V, R)`` and the summed unit chords ``(T, R)``, what :func:`arc_points` takes."""
@@ -196,7 +254,7 @@ def arc_chords(psi0, speeds, rates, dt, u) -> tuple[np.ndarray, np.ndarray]:
     return chord, summed
 
 
-@njit(_F[::1](_F, _F, _F, _F[::1], _F[::1], _F, _TURNS, _ROWS, _ROWS), **_OPTIONS)
+@declared(_F[::1](_F, _F, _F, _F[::1], _F[::1], _F, _TURNS, _ROWS, _ROWS), **_OPTIONS)
 def arc_fan(x0, y0, psi0, speeds, rates, dt, u, x, y) -> np.ndarray:
     """The whole of :func:`usvtool.sim.vessel.arcs`: each yaw rate's unit chord directions
     ``u[t, k]`` (written: ``exp(i (psi0 + turn / 2))``, then each period's times ``exp(i
@@ -217,7 +275,7 @@ def arc_fan(x0, y0, psi0, speeds, rates, dt, u, x, y) -> np.ndarray:
 _NEAREST = (_I[::1], _F[::1], _C[::1])  # closest's: the row, the squared distance, the point
 
 
-@njit(nt.Tuple((_F[::1], *_NEAREST))(_F, _F, _ROWS, _TURNS, _ROWS, _ROWS, _F, _F), **_OPTIONS)
+@declared(nt.Tuple((_F[::1], *_NEAREST))(_F, _F, _ROWS, _TURNS, _ROWS, _ROWS, _F, _F), **_OPTIONS)
 def arc_points_closest(x0, y0, chord, summed, x, y, px, py):
     """:func:`arc_points` and :func:`closest` to ``(px, py)`` of the points it writes, each
     row's distances taken as soon as the row is made (while it is in cache; the rows in the
@@ -261,7 +319,7 @@ def arc_points_closest(x0, y0, chord, summed, x, y, px, py):
     return radius, row, best, point
 
 
-@njit(_F[::1](_F, _F, _ROWS, _TURNS, _ROWS, _ROWS), **_OPTIONS)
+@declared(_F[::1](_F, _F, _ROWS, _TURNS, _ROWS, _ROWS), **_OPTIONS)
 def ramp_points(x0, y0, chord, u, x, y) -> np.ndarray:
     """The ramps' positions (:func:`usvtool.sim.vessel.ramps`): the running sums over the periods
     of ``chord[t, i] · u[t, k].real`` (and the imaginary part) plus the start, ``chord`` ``(T,
@@ -298,7 +356,7 @@ def ramp_points(x0, y0, chord, u, x, y) -> np.ndarray:
     return radius
 
 
-@njit(_I(_F, _F, _I, _I, _F, _F, _F), inline="always", **_OPTIONS)
+@declared(_I(_F, _F, _I, _I, _F, _F, _F), inline="always", **_OPTIONS)
 def _cell_index(x, y, width, height, left, top, scale) -> int:
     """The index of the point's cell in :attr:`usvtool.clearance.Clearance.padded`, the field of
     ``width`` x ``height`` cells with a zero border (:meth:`usvtool.clearance.Clearance.at`)."""
@@ -310,7 +368,7 @@ def _cell_index(x, y, width, height, left, top, scale) -> int:
 _ROW = (_F[::1], _F[::1], _F, _F, _F[::1], _F[::1], _F, _F, _B[::1])
 
 
-@njit(_B(*_ROW), inline="always", **_OPTIONS)
+@declared(_B(*_ROW), inline="always", **_OPTIONS)
 def _domain_fast(x, y, tx, ty, u_x, u_y, along, across, intrudes) -> bool:
     """The domain test of one row (:func:`usvtool.encounter.domain_ellipse`, into ``intrudes``)
     with the divisions by the semi-axes as multiplications by their reciprocals, which vectorise:
@@ -332,7 +390,7 @@ def _domain_fast(x, y, tx, ty, u_x, u_y, along, across, intrudes) -> bool:
     return unsure > 0
 
 
-@njit(nt.void(*_ROW), inline="always", **_OPTIONS)
+@declared(nt.void(*_ROW), inline="always", **_OPTIONS)
 def _domain_exact(x, y, tx, ty, u_x, u_y, along, across, intrudes) -> None:
     """The domain test of one row as :func:`usvtool.encounter.domain_ellipse` computes it."""
     rates = u_x.shape[0]
@@ -345,7 +403,7 @@ def _domain_exact(x, y, tx, ty, u_x, u_y, along, across, intrudes) -> None:
             intrudes[base + k] |= a * a + c * c <= 1
 
 
-@njit(_F(_F, _F, _F, _F, _F, _F, _F, _F), inline="always", **_OPTIONS)
+@declared(_F(_F, _F, _F, _F, _F, _F, _F, _F), inline="always", **_OPTIONS)
 def _segment_distance(px, py, vx, vy, t0, t1, x0, y0) -> float:
     """The distance from ``(x0, y0)`` to the track ``(px, py) + (vx, vy) · t``, ``t0 <= t <=
     t1``."""
@@ -359,7 +417,7 @@ def _segment_distance(px, py, vx, vy, t0, t1, x0, y0) -> float:
 _CONTACTS = nt.Tuple((_F[::1], _B[::1], _F[::1], _B[::1]))
 
 
-@njit(_CONTACTS(_ROWS, _ROWS, _F[::1], _TURNS, _F[::1], _F, _F,  # the fan, times, start
+@declared(_CONTACTS(_ROWS, _ROWS, _F[::1], _TURNS, _F[::1], _F, _F,  # the fan, times, start
                 _ROWS, _ROWS, _F[::1],  # the targets: positions, velocities, lengths
                 _F[::1], _I, _F, _F, _F, _F,  # the padded field, its width, left, top, scale, cell
                 _F, _I, _F, _F, _F, _F),  # own length, the domain's rows, axes, reach; the cap
@@ -459,7 +517,7 @@ def contacts(x, y, radius, u, times, x0, y0, pos, vel, length, padded, width, le
     return contact, static_first, clearance, intrudes
 
 
-@njit(nt.Tuple((_I[::1], _F[::1], _C[::1]))(_ROWS, _ROWS, _F, _F), **_OPTIONS)
+@declared(nt.Tuple((_I[::1], _F[::1], _C[::1]))(_ROWS, _ROWS, _F, _F), **_OPTIONS)
 def closest(x, y, px, py) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Each rollout's point closest to ``(px, py)``: its row (the first of equals), its squared
     distance and the point ``x + iy``, ``(N,)`` each."""
@@ -486,7 +544,7 @@ _CHECKS = (_F[::1], _I, _F, _F, _F, _F, _F, _I, _F, _F, _F, _F)
 _FOUND = (_F[::1], _B[::1], _F[::1], _B[::1], _I[::1], _F[::1], _C[::1])
 
 
-@njit(nt.Tuple(_FOUND)(_ROWS, _ROWS, _F[::1], _TURNS, _F[::1], _F, _F, _ROWS, _ROWS, _F[::1],
+@declared(nt.Tuple(_FOUND)(_ROWS, _ROWS, _F[::1], _TURNS, _F[::1], _F, _F, _ROWS, _ROWS, _F[::1],
                        *_CHECKS, _F, _F), **_OPTIONS)  # fmt: skip
 def sweep(x, y, radius, u, times, x0, y0, pos, vel, length, padded, width, left, top, scale,
           cell, own_length, every, along, across, trigger, cap, gx, gy):  # fmt: skip
@@ -500,7 +558,7 @@ def sweep(x, y, radius, u, times, x0, y0, pos, vel, length, padded, width, left,
     return contact, static_first, clearance, intrudes, row, to_goal, near
 
 
-@njit(nt.Tuple((_F[::1], _F[::1], _ROWS, _ROWS, *_FOUND))(
+@declared(nt.Tuple((_F[::1], _F[::1], _ROWS, _ROWS, *_FOUND))(
     _F, _F, _F, _F, _F, _F[::1], _F, _I, _I, _F[::1],  # the own ship, the window, the times
     _ROWS, _ROWS, _F[::1], *_CHECKS, _F, _F), **_OPTIONS)  # fmt: skip
 def period_sweep(x0, y0, psi0, v0, omega0, limits, span, n_v, n_omega, times, pos, vel, length,
@@ -524,7 +582,7 @@ def period_sweep(x0, y0, psi0, v0, omega0, limits, span, n_v, n_omega, times, po
     return v, omega, x, y, contact, static_first, clearance, intrudes, row, to_goal, near
 
 
-@njit(_B[::1](_ROWS, _ROWS, _F[::1], _F, _F, _F, _F, _F, _F, _F), **_OPTIONS)
+@declared(_B[::1](_ROWS, _ROWS, _F[::1], _F, _F, _F, _F, _F, _F, _F), **_OPTIONS)
 def crosses_ahead(x, y, times, px, py, vx, vy, hx, hy, now) -> np.ndarray:
     """Whether each rollout crosses the course line of a target at ``(px, py)`` moving at
     ``(vx, vy)`` (unit direction ``(hx, hy)``) ahead of her: at some time the side of her line
@@ -541,7 +599,7 @@ def crosses_ahead(x, y, times, px, py, vx, vy, hx, hy, now) -> np.ndarray:
     return out
 
 
-@njit(_F[::1](_ROWS, _F[::1], _F[::1]), **_OPTIONS)
+@declared(_F[::1](_ROWS, _F[::1], _F[::1]), **_OPTIONS)
 def weighted_shares(shares, sums, scales) -> np.ndarray:
     """The score of :meth:`usvtool.sim.controllers.base.DynamicWindow.score`: over the critics
     ``c`` in order, from zero, ``total += scales[c] * normalise(...)``, where ``shares[c]`` is
@@ -561,7 +619,7 @@ def weighted_shares(shares, sums, scales) -> np.ndarray:
     return total
 
 
-@njit(_F[::1](_F[::1], _B[::1]), **_OPTIONS)
+@declared(_F[::1](_F[::1], _B[::1]), **_OPTIONS)
 def heading_reward(off, reached) -> np.ndarray:
     """A heading critic's reward from the unwrapped angle ``off`` between a heading and a
     bearing: ``np.where(reached, pi, pi - |wrap_pi(off)|)``, :func:`usvtool.angles.wrap_pi`'s
@@ -595,7 +653,7 @@ def heading_reward(off, reached) -> np.ndarray:
     return out
 
 
-@njit(_F[::1](_F[::1]), **_OPTIONS)
+@declared(_F[::1](_F[::1]), **_OPTIONS)
 def wrap_angles(a) -> np.ndarray:
     """:func:`usvtool.angles.wrap_pi` of a vector, ``(a + pi) % 2 pi - pi``, with the floor
     modulo only where it is needed, as :func:`heading_reward` takes it."""
@@ -620,7 +678,7 @@ def wrap_angles(a) -> np.ndarray:
     return out
 
 
-@njit(nt.Tuple((_B[::1], _B[::1]))(_F[::1], _B[::1], _B[::1]), **_OPTIONS)
+@declared(nt.Tuple((_B[::1], _B[::1]))(_F[::1], _B[::1], _B[::1]), **_OPTIONS)
 def candidates(contact, removed, intrudes) -> tuple[np.ndarray, np.ndarray]:
     """The first candidates of :meth:`usvtool.sim.controllers.base.DynamicWindow.decide`:
     ``(free, candidates)``, ``free`` the samples with no contact (``~np.isfinite(contact)``),
@@ -645,7 +703,7 @@ def candidates(contact, removed, intrudes) -> tuple[np.ndarray, np.ndarray]:
 _VO_GRID = nt.Tuple((_F[::1], _F[::1], _I[::1], _F[::1]))
 
 
-@njit(_VO_GRID(_F, _F, _F[::1], _F, _B, _F, _F, _I), **_OPTIONS)
+@declared(_VO_GRID(_F, _F, _F[::1], _F, _B, _F, _F, _I), **_OPTIONS)
 def vo_candidates(psi, v, offsets, off, with_off, lo, hi, n):
     """:meth:`usvtool.sim.controllers.vo.VelocityObstacle.candidates`: ``(speed, heads, index,
     course)``, the ``n`` speeds of ``np.linspace(lo, hi, n)`` (:func:`axis`'s values, without
@@ -673,7 +731,7 @@ def vo_candidates(psi, v, offsets, off, with_off, lo, hi, n):
     return speed, heads, index, course
 
 
-@njit(_F[::1](_F[::1], _F[::1], _F[::1], _F[::1], _ROWS, _F[::1], _F, _F), **_OPTIONS)
+@declared(_F[::1](_F[::1], _F[::1], _F[::1], _F[::1], _ROWS, _F[::1], _F, _F), **_OPTIONS)
 def vo_contacts(vx, vy, px, py, vel, radius, spread, horizon) -> np.ndarray:
     """The first contact of each candidate velocity ``(vx, vy)`` over the targets (at ``(px,
     py)`` from the own ship, moving at ``vel``): :func:`usvtool.sim.controllers.vo.
@@ -700,7 +758,7 @@ def vo_contacts(vx, vy, px, py, vel, radius, spread, horizon) -> np.ndarray:
     return out
 
 
-@njit(_B[::1](_ROWS, _ROWS, _F, _F, _F, _F, _F, _F), **_OPTIONS)
+@declared(_B[::1](_ROWS, _ROWS, _F, _F, _F, _F, _F, _F), **_OPTIONS)
 def vo_near(pos, vel, x, y, own_vx, own_vy, time, distance) -> np.ndarray:
     """The CPA entry test of :meth:`usvtool.sim.controllers.vo.VelocityObstacle.colregs` for
     each target at ``pos`` moving at ``vel`` (``(k, 2)``), the own ship at ``(x, y)`` moving at
@@ -719,7 +777,7 @@ def vo_near(pos, vel, x, y, own_vx, own_vy, time, distance) -> np.ndarray:
     return near
 
 
-@njit(_F[::1](_F[::1], _F[::1], _I, _F, _F[::1], _F, _B), **_OPTIONS)
+@declared(_F[::1](_F[::1], _F[::1], _I, _F, _F[::1], _F, _B), **_OPTIONS)
 def favour(score, omega, side, factor, clearance, cap, safe) -> np.ndarray:
     """:meth:`usvtool.sim.controllers.side_rule.SideRule.favour` with a side: ``score`` times
     ``factor`` (``1 + priority``) where the yaw rate turns to ``side`` (``np.sign(omega) ==
@@ -733,7 +791,7 @@ def favour(score, omega, side, factor, clearance, cap, safe) -> np.ndarray:
     return out
 
 
-@njit(nt.Tuple((_F[::1], _F[::1]))(_C[::1], _F, _F), **_OPTIONS)
+@declared(nt.Tuple((_F[::1], _F[::1]))(_C[::1], _F, _F), **_OPTIONS)
 def offsets(points, px, py) -> tuple[np.ndarray, np.ndarray]:
     """``(py - points.imag, px - points.real)``: the offsets from the points ``x + iy`` to
     ``(px, py)``, north and east (the arguments of ``np.arctan2``), in one pass."""

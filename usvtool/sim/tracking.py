@@ -54,8 +54,10 @@ class EncounterTracker:
         release_distance=np.inf,
     ):
         from usvtool.sim import tracking_kernels  # numba's import: a run's, not the CLI's
+        from usvtool.sim.rollout_kernels import load
 
         self._kernels = tracking_kernels
+        load("track_urgent", "first_touching", module=tracking_kernels)  # a run's step's
         self.risk_distance = np.asarray(risk_distance, float)
         self.horizon_s = float(horizon_s)
         self.clear_distance = (

@@ -14,20 +14,18 @@ latching rule of :mod:`usvtool.sim.tracking`'s docstring (its one definition: th
 contracts none without ``fastmath``). So classes, bearings, ranges and CPA are the same bits
 (tests/sim/test_tracking_kernels.py compares them on random and border geometries).
 
-Signatures are given, so that importing this module compiles the kernels or loads them from
-numba's cache; imported lazily, by :class:`usvtool.sim.tracking.EncounterTracker` when it is
-made, so that reading a scenario or building the command line does not import numba. numba's
-cache keys a kernel on this file only: the thresholds imported from :mod:`usvtool.encounter`
-are compiled in as constants, so after changing one there, remove
-``usvtool/sim/__pycache__/tracking_kernels.*.nb*`` (or touch this file).
-"""
+Each kernel's signature is compiled, or loaded from numba's cache, at its first call
+(:func:`usvtool.sim.rollout_kernels.declared`), not at import; imported lazily, by
+:class:`usvtool.sim.tracking.EncounterTracker` when it is made, so that reading a scenario or
+building the command line does not import numba. numba's cache keys a kernel on this file only: the
+thresholds imported from :mod:`usvtool.encounter` are compiled in as constants, so after changing
+one there, remove ``usvtool/sim/__pycache__/tracking_kernels.*.nb*`` (or touch this file)."""
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
-from numba import njit
 from numba import types as nt
 
 from usvtool.encounter import (
@@ -41,6 +39,7 @@ from usvtool.encounter import (
     STERN_SECTOR_DEG,
     VEL_EPS,
 )
+from usvtool.sim.rollout_kernels import declared
 
 _F, _I, _K = nt.float64, nt.int64, nt.int8
 _OPTIONS = {"cache": True, "nogil": True}
@@ -48,20 +47,20 @@ _LO, _HI = STERN_SECTOR_DEG
 _RADIANS, _DEGREES = math.pi / 180.0, 180.0 / math.pi  # np.radians's and np.degrees's factors
 
 
-@njit(_F(_F), inline="always", **_OPTIONS)
+@declared(_F(_F), inline="always", **_OPTIONS)
 def _wrap360(deg) -> float:
     """:func:`usvtool.angles.wrap360` of one angle."""
     a = deg % 360.0
     return a - 360.0 if a >= 360.0 else a
 
 
-@njit(_F(_F, _F, _F), inline="always", **_OPTIONS)
+@declared(_F(_F, _F, _F), inline="always", **_OPTIONS)
 def _relative_bearing(dx, dy, heading) -> float:
     """:func:`usvtool.encounter.relative_bearing` of the offset ``(dx, dy)`` (to minus from)."""
     return _wrap360(_wrap360(math.atan2(dx, dy) * _DEGREES) - heading)
 
 
-@njit(_K(_F, _F, nt.boolean), inline="always", **_OPTIONS)
+@declared(_K(_F, _F, nt.boolean), inline="always", **_OPTIONS)
 def classify_angles(beta, alpha, closing) -> int:
     """:func:`usvtool.encounter.classify_angles` of one target."""
     beta, alpha = _wrap360(beta), _wrap360(alpha)
@@ -77,7 +76,8 @@ def classify_angles(beta, alpha, closing) -> int:
     return CROSSING_GIVE_WAY if beta < _LO else CROSSING_STAND_ON
 
 
-@njit(nt.void(_F, _F, _F, _F, _F[:, ::1], _F[::1], _F[::1], _K[::1], _F[:, ::1]), **_OPTIONS)
+@declared(nt.void(_F, _F, _F, _F, _F[:, ::1], _F[::1], _F[::1], _K[::1], _F[:, ::1]),
+          **_OPTIONS)
 def assess(own_x, own_y, own_heading, own_speed, target_xy, target_heading, target_speed, cls,
            out) -> None:  # fmt: skip
     """:func:`usvtool.encounter.assess` of ``k`` targets (``target_xy`` ``(k, 2)``, headings
@@ -106,7 +106,7 @@ def assess(own_x, own_y, own_heading, own_speed, target_xy, target_heading, targ
 _ARRAY = _F[::1]
 
 
-@njit(nt.void(_F, _K[::1], _ARRAY, _ARRAY, _ARRAY, _ARRAY, _ARRAY, _ARRAY, _F,  # the step
+@declared(nt.void(_F, _K[::1], _ARRAY, _ARRAY, _ARRAY, _ARRAY, _ARRAY, _ARRAY, _F,  # the step
               _K[::1], _ARRAY, _ARRAY, _ARRAY),  # the tracker's state, updated
       **_OPTIONS)  # fmt: skip
 def latch(t, cls, dcpa, tcpa, rng, risk, clear, release, horizon, latched, onset_t, last_tcpa,
@@ -134,7 +134,7 @@ _TARGETS = (_F[:, ::1], _ARRAY, _ARRAY)
 _STATE = (_K[::1], _ARRAY, _ARRAY, _ARRAY)
 
 
-@njit(nt.void(_F, _F, _F, _F, _F, *_TARGETS, _ARRAY, _ARRAY, _ARRAY, _F, *_STATE, _K[::1],
+@declared(nt.void(_F, _F, _F, _F, _F, *_TARGETS, _ARRAY, _ARRAY, _ARRAY, _F, *_STATE, _K[::1],
               _F[:, ::1]), **_OPTIONS)  # fmt: skip
 def track(t, own_x, own_y, own_heading, own_speed, target_xy, target_heading, target_speed, risk,
           clear, release, horizon, latched, onset_t, last_tcpa, prev_range, cls,
@@ -147,7 +147,7 @@ def track(t, own_x, own_y, own_heading, own_speed, target_xy, target_heading, ta
           last_tcpa, prev_range)  # fmt: skip
 
 
-@njit(_I(_K[::1], _ARRAY), **_OPTIONS)
+@declared(_I(_K[::1], _ARRAY), **_OPTIONS)
 def most_urgent(latched, tcpa) -> int:
     """The index of the latched target with the smallest positive ``tcpa``, the first of equals
     (``np.argmin`` of those ``tcpa``, ``inf`` elsewhere); -1 if none is latched with a positive
@@ -161,7 +161,7 @@ def most_urgent(latched, tcpa) -> int:
     return at if urgent else -1
 
 
-@njit(_I(_F, _F, _F, _F, _F, *_TARGETS, _ARRAY, _ARRAY, _ARRAY, _F, *_STATE, _K[::1],
+@declared(_I(_F, _F, _F, _F, _F, *_TARGETS, _ARRAY, _ARRAY, _ARRAY, _F, *_STATE, _K[::1],
          _F[:, ::1]), **_OPTIONS)  # fmt: skip
 def track_urgent(t, own_x, own_y, own_heading, own_speed, target_xy, target_heading,
                  target_speed, risk, clear, release, horizon, latched, onset_t, last_tcpa,
@@ -173,7 +173,7 @@ def track_urgent(t, own_x, own_y, own_heading, own_speed, target_xy, target_head
     return most_urgent(latched, last_tcpa)
 
 
-@njit(_I(_F[:, ::1], _F, _F, _ARRAY), **_OPTIONS)
+@declared(_I(_F[:, ::1], _F, _F, _ARRAY), **_OPTIONS)
 def first_touching(target_xy, x, y, reach) -> int:
     """The first target whose centre lies closer than ``reach`` to the own ship's ``(x, y)``
     (the run's collision test: ``np.hypot`` of the offsets below ``reach``, ``hypot`` the C

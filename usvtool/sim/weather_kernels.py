@@ -8,24 +8,25 @@ and libm calls in the same order, no fused multiply-add: numba contracts none wi
 ``fastmath``), so its speeds are the same bits as NumPy's (tests/sim/test_weather_kernels.py
 compares them), in the style of :mod:`usvtool.sim.rollout_kernels`.
 
-Signatures are given, so that importing this module compiles the kernel or loads it from
-numba's cache in ``__pycache__``. Imported lazily, by :class:`usvtool.sim.weather.FieldWeather`
-when it is first asked for speeds, so that reading a scenario does not import numba.
-"""
+Each kernel's signature is compiled, or loaded from numba's cache in ``__pycache__``, at its first
+call (:func:`usvtool.sim.rollout_kernels.declared`), not at import. Imported lazily, by
+:class:`usvtool.sim.weather.FieldWeather` when it is first asked for speeds, so that reading a
+scenario does not import numba."""
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
-from numba import njit
 from numba import types as nt
+
+from usvtool.sim.rollout_kernels import declared
 
 _F = nt.float64
 _OPTIONS = {"cache": True, "nogil": True}
 
 
-@njit(_F(_F), inline="always", **_OPTIONS)
+@declared(_F(_F), inline="always", **_OPTIONS)
 def _off_bow(delta) -> float:
     """:func:`usvtool.sim.weather.off_bow` of ``from - heading``: ``|wrap_pi(delta)|``, as
     :func:`usvtool.angles.wrap_pi` computes it (Python's and NumPy's float ``%`` agree), the
@@ -47,7 +48,7 @@ _POINT = (_F, _F, _F, _F)  # x, y, v, heading
 _REST = (nt.boolean, nt.boolean, nt.boolean, _F[::1], _F[::1], _F, _F)  # flags, tables, dwt, knot
 
 
-@njit(_F(*_FIELD, *_POINT, *_REST, _F[::1]), inline="always", **_OPTIONS)
+@declared(_F(*_FIELD, *_POINT, *_REST, _F[::1]), inline="always", **_OPTIONS)
 def _speed_at(layers, inverse, x, y, v, heading, calm, has_wave_height, has_wave_from, edges,
               heights, dwt, knot, values) -> float:  # fmt: skip
     """:func:`field_attainable_speed` of one point (``values``: scratch of one value per
@@ -92,7 +93,7 @@ def _speed_at(layers, inverse, x, y, v, heading, calm, has_wave_height, has_wave
     return ((made if made >= 0.0 else 0.0) if knots > 0 else 0.0) * knot  # np.maximum
 
 
-@njit(_F[::1](*_FIELD, _F[::1], _F[::1], _F[::1], _F[::1], *_REST), **_OPTIONS)
+@declared(_F[::1](*_FIELD, _F[::1], _F[::1], _F[::1], _F[::1], *_REST), **_OPTIONS)
 def field_attainable_speed(layers, inverse, x, y, v, heading, calm, has_wave_height,
                            has_wave_from, edges, heights, dwt, knot) -> np.ndarray:  # fmt: skip
     """:meth:`usvtool.sim.weather.FieldWeather.attainable_speed` at points ``(x, y)``: the
@@ -108,7 +109,7 @@ def field_attainable_speed(layers, inverse, x, y, v, heading, calm, has_wave_hei
     return out
 
 
-@njit(_F(*_FIELD, *_POINT, *_REST), **_OPTIONS)
+@declared(_F(*_FIELD, *_POINT, *_REST), **_OPTIONS)
 def field_attainable_speed_one(layers, inverse, x, y, v, heading, calm, has_wave_height,
                                has_wave_from, edges, heights, dwt, knot) -> float:  # fmt: skip
     """:func:`field_attainable_speed` of one point, in floats (the own ship's step of a run:

@@ -287,6 +287,7 @@ class DynamicWindow(Controller):
         self._horizon = float(self.times[-1])
         self._scales = np.array([critic.scale for critic in self.objective], float)
         self.generator = WINDOWS[self.params["window"]](world, self.times)
+        rollout_kernels.load(*self.generator.kernels, *_STEP_KERNELS)
         for critic in self.objective:
             critic.reset(world)
         p, length = self.params, float(world.vessel.length)
@@ -414,6 +415,12 @@ class DynamicWindow(Controller):
             "contact_s": round(float(r.contact[best]), 3),
         }
         return self._command(own, r, best, [event])
+
+
+#: The kernels of a step besides the window's, loaded at a reset (the critics', the side rule's
+#: and gdwa's included: a few ms each).
+_STEP_KERNELS = ("candidates", "weighted_shares", "heading_reward", "offsets", "favour",
+                 "wrap_angles")  # fmt: skip
 
 
 @functools.cache

@@ -166,6 +166,7 @@ class VelocityObstacle(Controller):
 
         super().reset(world)
         self.kernels = rollout_kernels
+        rollout_kernels.load("vo_candidates", "vo_contacts", "vo_near")
         p, ship = self.params, world.vessel
         self.progress = RouteProgress(None, float(p["reach"]))
         self.progress.reset(world)

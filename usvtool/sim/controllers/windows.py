@@ -38,6 +38,8 @@ class PeriodWindow:
     """The dynamic window of one control period (see the module docstring)."""
 
     name = "period"
+    #: the kernels of a step (:mod:`usvtool.sim.rollout_kernels`), loaded at the controller's reset
+    kernels = ("period_sweep",)
 
     def __init__(self, world, times: np.ndarray):
         self.vessel, self.period, self.times = world.vessel, world.period, times
@@ -99,6 +101,7 @@ class HorizonWindow(PeriodWindow):
     """The trajectory-rollout window of the horizon (see the module docstring)."""
 
     name = "horizon"
+    kernels = ("window_axes", "ramp_points", "sweep", "toward_one", "toward", "travelled")
 
     def __init__(self, world, times: np.ndarray):
         super().__init__(world, times)
