@@ -190,6 +190,22 @@ def __getattr__(name: str):
     return ufunc
 
 
+@njit(inline="always")
+def _arc_row(t, x0, y0, chord, summed, x, y, sum_x, sum_y) -> None:
+    """Row ``t`` of :func:`arc_points`' ``x`` and ``y`` (``sum_x``, ``sum_y``: its scratch)."""
+    speeds, rates = chord.shape
+    for k in range(rates):
+        sum_x[k], sum_y[k] = summed[t, k].real, summed[t, k].imag
+    for i in range(speeds):
+        base = i * rates
+        for k in range(rates):
+            x[t, base + k] = chord[i, k] * sum_x[k] + x0
+    for i in range(speeds):
+        base = i * rates
+        for k in range(rates):
+            y[t, base + k] = chord[i, k] * sum_y[k] + y0
+
+
 @declared(_F[::1](_F, _F, _ROWS, _TURNS, _ROWS, _ROWS), **_OPTIONS)
 def arc_points(x0, y0, chord, summed, x, y) -> np.ndarray:
     """The arcs' positions (:func:`usvtool.sim.vessel.arcs`): ``x[t, i·R + k] = chord[i, k] ·
@@ -201,16 +217,7 @@ def arc_points(x0, y0, chord, summed, x, y) -> np.ndarray:
     speeds = chord.shape[0]
     sum_x, sum_y = np.empty(rates), np.empty(rates)
     for t in range(steps):
-        for k in range(rates):
-            sum_x[k], sum_y[k] = summed[t, k].real, summed[t, k].imag
-        for i in range(speeds):
-            base = i * rates
-            for k in range(rates):
-                x[t, base + k] = chord[i, k] * sum_x[k] + x0
-        for i in range(speeds):
-            base = i * rates
-            for k in range(rates):
-                y[t, base + k] = chord[i, k] * sum_y[k] + y0
+        _arc_row(t, x0, y0, chord, summed, x, y, sum_x, sum_y)
     longest = np.zeros(rates)
     for i in range(speeds):
         for k in range(rates):
@@ -287,16 +294,7 @@ def arc_points_closest(x0, y0, chord, summed, x, y, px, py):
     row = np.zeros(n, np.int64)
     best = np.full(n, np.inf)
     for t in range(steps):
-        for k in range(rates):
-            sum_x[k], sum_y[k] = summed[t, k].real, summed[t, k].imag
-        for i in range(speeds):
-            base = i * rates
-            for k in range(rates):
-                x[t, base + k] = chord[i, k] * sum_x[k] + x0
-        for i in range(speeds):
-            base = i * rates
-            for k in range(rates):
-                y[t, base + k] = chord[i, k] * sum_y[k] + y0
+        _arc_row(t, x0, y0, chord, summed, x, y, sum_x, sum_y)
         for s in range(n):  # closest's, on the row just made (in cache)
             dx, dy = x[t, s] - px, y[t, s] - py
             d2 = dx * dx + dy * dy
