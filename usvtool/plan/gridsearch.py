@@ -131,8 +131,21 @@ def _octile(dx, dy) -> float:
 def _queue():
     """An empty bucket queue: ``head[b]`` the top entry of bucket ``b`` (-1: empty), and per
     entry its ``node``, ``cost`` (g) and the entry ``below`` it in its bucket's stack."""
-    return (np.full(1 << 14, -1, np.int64), np.empty(1 << 16, np.int64), np.empty(1 << 16),
-            np.empty(1 << 16, np.int64))  # fmt: skip
+    return (_heads(np.empty(0, np.int64), 1 << 14), np.empty(1 << 16, np.int64),
+            np.empty(1 << 16), np.empty(1 << 16, np.int64))  # fmt: skip
+
+
+@njit(cache=True, nogil=True)
+def _heads(head: np.ndarray, size: int) -> np.ndarray:
+    """``head`` extended to ``size`` buckets, the new ones empty (-1). Loops, not ``np.full``
+    and a slice assignment: those compile their dtype-generic and shape-checking (error
+    message formatting) code, seconds of a cold cache's compile."""
+    out = np.empty(size, np.int64)
+    for i in range(head.size):
+        out[i] = head[i]
+    for i in range(head.size, size):
+        out[i] = -1
+    return out
 
 
 @njit(cache=True, nogil=True, inline="always")
@@ -159,12 +172,10 @@ def _push(head, node, cost, below, entries: int, k: int, v: int, gv: float):
     """Push ``(v, gv)`` onto bucket ``k`` (growing the arrays as needed): the queue's arrays and
     its new entry count."""
     if k >= head.size:
-        grown = np.full(max(2 * head.size, k + 1), -1, np.int64)
-        grown[: head.size] = head
-        head = grown
+        head = _heads(head, max(2 * head.size, k + 1))
     if entries == node.size:
         size = 2 * entries
-        node, cost, below = _grow(node, size), _grow(cost, size), _grow(below, size)
+        node, cost, below = _grow_int(node, size), _grow(cost, size), _grow_int(below, size)
     node[entries], cost[entries], below[entries] = v, gv, head[k]
     head[k] = entries
     return head, node, cost, below, entries + 1
@@ -172,8 +183,20 @@ def _push(head, node, cost, below, entries: int, k: int, v: int, gv: float):
 
 @njit(cache=True, nogil=True)
 def _grow(a: np.ndarray, size: int) -> np.ndarray:
-    out = np.empty(size, a.dtype)
-    out[: a.size] = a
+    """The float64 array ``a`` copied into a new one of ``size`` (one type per helper and a
+    loop, not ``out[: a.size] = a``: see :func:`_heads`)."""
+    out = np.empty(size)
+    for i in range(a.size):
+        out[i] = a[i]
+    return out
+
+
+@njit(cache=True, nogil=True)
+def _grow_int(a: np.ndarray, size: int) -> np.ndarray:
+    """:func:`_grow` of an int64 array."""
+    out = np.empty(size, np.int64)
+    for i in range(a.size):
+        out[i] = a[i]
     return out
 
 
@@ -332,7 +355,7 @@ def visibility_path(
                 room = min(gv, bound) - gu
             if size == cap:
                 cap *= 2
-                hf, hv = _grow(hf, cap), _grow(hv, cap)
+                hf, hv = _grow(hf, cap), _grow_int(hv, cap)
             fv = gv + h[v]
             i = size
             size += 1
