@@ -318,12 +318,15 @@ def decode_guided(
             x0, x1 = X[i, 2 * j], X[i, 2 * j + 1]
             wx = station[j + 1, 0] + (x0 * frame[j, 0, 0] + x1 * frame[j, 1, 0]) / cell
             wy = station[j + 1, 1] + (x0 * frame[j, 0, 1] + x1 * frame[j, 1, 1]) / cell
-            keep = free(wx, wy, station[j + 2, 0], station[j + 2, 1], blocked, basis, xs, ys, r,
-                        clear, samples, margin, d, prefix, stride, below, bands)  # fmt: skip
-            if keep:  # from the previous waypoint: w_j-1 where kept, else s_j-1
-                px, py = routes[i, j, 0], routes[i, j, 1]
-                keep = free(px, py, wx, wy, blocked, basis, xs, ys, r, clear, samples, margin,
-                            d, prefix, stride, below, bands)  # fmt: skip
+            # w_j → s_j+1, then (if free) from the previous waypoint (w_j-1 where kept, else
+            # s_j-1) → w_j: one call of the inlined check in a loop, not two copies to compile
+            ax, ay, bx, by = wx, wy, station[j + 2, 0], station[j + 2, 1]
+            for _ in range(2):
+                keep = free(ax, ay, bx, by, blocked, basis, xs, ys, r, clear, samples, margin, d,
+                            prefix, stride, below, bands)  # fmt: skip
+                if not keep:
+                    break
+                ax, ay, bx, by = routes[i, j, 0], routes[i, j, 1], wx, wy
             if keep:
                 routes[i, j + 1, 0], routes[i, j + 1, 1] = wx, wy
             else:
