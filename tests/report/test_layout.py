@@ -48,6 +48,14 @@ def test_every_section_builder_is_a_module_of_the_sections_package():
     assert built == set(names)
 
 
+def test_the_parallel_build_builds_every_section_once():
+    """build.sections on several processes builds :data:`sections.TASKS`: each section in
+    exactly one task, so none is left out nor built twice."""
+    tasked = [m for task in sections.TASKS for m in task]
+    assert sorted(m.__name__ for m in tasked) == sorted(m.__name__ for m in sections.SECTIONS)
+    assert len(set(tasked)) == len(tasked)
+
+
 def test_the_regression_report_is_a_package_using_only_the_shared_pieces():
     assert compare.__module__ == "usvtool.report.regression.compare"
     for path in modules("regression"):

@@ -24,7 +24,7 @@ from usvtool.report.document import Section
 from usvtool.report.figures import styles
 from usvtool.report.output import write_together
 from usvtool.report.page import PdfUnavailable, html, pdf
-from usvtool.report.sections import builders, claims, your_claims
+from usvtool.report.sections import SECTIONS, TASKS, builders, claims, your_claims
 
 TITLE = "usvtool: path planning and collision avoidance, compared with the papers"
 
@@ -79,20 +79,36 @@ class ReportResult:
 
 def sections(results, workers: int = 1) -> list[Section]:
     """The report's sections, in reading order (:data:`usvtool.report.sections.SECTIONS`; a
-    section without data is left out). With
-    ``workers`` > 1 the sections are built in that many forked processes (their figures are
-    most of the report's time); each figure's bytes do not depend on where it is drawn."""
+    section without data is left out). With ``workers`` > 1 they are built in that many forked
+    processes, by the tasks of :data:`usvtool.report.sections.TASKS` (their figures are most of
+    the report's time); each figure's bytes do not depend on where it is drawn."""
     import multiprocessing
 
     if workers > 1 and "fork" in multiprocessing.get_all_start_methods():
         from concurrent.futures import ProcessPoolExecutor
 
-        context = multiprocessing.get_context("fork")
-        with ProcessPoolExecutor(workers, mp_context=context) as pool:
-            built = [f.result() for f in [pool.submit(b, results) for b in builders()]]
+        _FORKED[:] = [results]  # the workers inherit it: not pickled to each task
+        try:
+            context = multiprocessing.get_context("fork")
+            with ProcessPoolExecutor(workers, mp_context=context) as pool:
+                done = [f.result() for f in [pool.submit(_task, i) for i in range(len(TASKS))]]
+        finally:
+            _FORKED.clear()
+        by_module = {m: s for task, built in zip(TASKS, done, strict=True)
+                     for m, s in zip(task, built, strict=True)}
+        built = [by_module[m] for m in SECTIONS]
     else:
         built = [b(results) for b in builders()]
     return [s for s in built if s is not None]
+
+
+#: The results the forked workers of :func:`sections` build from.
+_FORKED: list = []
+
+
+def _task(i: int) -> list[Section | None]:
+    """The sections of task ``i`` of :data:`~usvtool.report.sections.TASKS`, in a forked worker."""
+    return [m.section(_FORKED[0]) for m in TASKS[i]]
 
 
 def outputs(out: Path, page: str, document: bytes | None,
