@@ -1,7 +1,8 @@
 """Write the report's document as one self-contained HTML page and as a PDF.
 
 The page embeds everything it shows: figures as ``data:image/png`` URIs, each figure's data as
-a ``data:text/csv`` download link, the stylesheet inline, and the runs' players (their data, and
+a ``data:text/csv`` download link (on the screen page: the print page, whose PDF could not
+offer it, leaves out its 3 MB), the stylesheet inline, and the runs' players (their data, and
 their styles and script once, on the screen only), so it references no file or
 address outside itself (the same CSVs are also written beside it). The PDF is the page written
 for print (``medium="print"``: what is placed ``html`` left out, the figures at their own
