@@ -296,9 +296,11 @@ def visibility_path(
     vertex is reopened when its ``g`` improves, so it need not be consistent. Returns the vertex
     indices 0 … 1 of the shortest route if it is shorter than ``bound``, else an empty array."""
     n = pos.shape[0]
-    px, py, cx, cy = pos[:, 0].copy(), pos[:, 1].copy(), at[:, 0].copy(), at[:, 1].copy()
-    g = np.full(n, np.inf)
-    parent = np.full(n, -1, np.int64)
+    px, py, cx, cy, g = np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    parent = np.empty(n, np.int64)
+    for v in range(n):  # a loop, not column copies and np.full: less to compile (_heads)
+        px[v], py[v], cx[v], cy[v] = pos[v, 0], pos[v, 1], at[v, 0], at[v, 1]
+        g[v], parent[v] = np.inf, -1
     g[0] = 0.0
     cap = 1 << 10
     hf = np.empty(cap)
