@@ -1,6 +1,7 @@
 """The order jobs start in (usvtool/batch/engine.py, ``_Run.take``): a kind's first job runs
 alone, the other kinds' ready jobs starting meanwhile; once it has finished, failed or not, its
-kind's jobs start as the priorities give them."""
+kind's jobs start as the priorities give them, the first of each method of the kind again
+before the others of its method."""
 
 from __future__ import annotations
 
@@ -11,8 +12,8 @@ from usvtool.batch.jobs import Job
 from usvtool.batch.progress import Lines
 
 
-def job(kind: str, n: int, needs: str | None = None) -> Job:
-    return Job(kind, f"{kind}{n}", f"case{n}", "m", n, ("x",), needs)
+def job(kind: str, n: int, needs: str | None = None, method: str = "m") -> Job:
+    return Job(kind, f"{kind}{n}", f"case{n}", method, n, ("x",), needs)
 
 
 def started(run: _Run) -> list[str]:
@@ -47,3 +48,17 @@ def test_a_route_made_ready_by_its_grid_waits_for_the_first_route():
     assert started(run) == ["routes0"]
     run.finish(todo[1], "failed too")  # a failed first job primes its kind as well
     assert started(run) == ["routes1", "routes2"]
+
+
+def test_a_methods_first_job_runs_before_the_others_of_its_method():
+    methods = ["dwa", "vo", "dwa", "vo", "sbmpc", "dwa"]
+    todo = [job("runs", i, method=m) for i, m in enumerate(methods)]
+    run = _Run(todo, set(), Lines(len(todo), 0, "test", io.StringIO()))
+    assert started(run) == ["runs0"]  # the kind's first (and dwa's)
+    run.finish(todo[0], None)
+    assert started(run) == ["runs1", "runs2", "runs4", "runs5"]  # vo's first, dwa's, sbmpc's
+    run.finish(todo[4], None)
+    assert started(run) == []  # runs3 waits for vo's first
+    run.finish(todo[1], "failed")
+    assert started(run) == ["runs3"]
+    assert run.priming == set() and run.firsts == {}

@@ -198,10 +198,12 @@ class _Run:
         self.stopped: str | None = None  # why no job starts any more
         self.not_run = 0
         self.stage_time: dict[str, float] = defaultdict(float)
-        #: The kinds whose first job is running (their other jobs wait for it), and the kinds
-        #: one job of which has finished (:meth:`take`).
-        self.priming: set[str] = set()
-        self.primed: set[str] = set()
+        #: The groups (:func:`_groups`) whose first job is running (their other jobs wait for
+        #: it), the groups one job of which has finished (:meth:`take`), and the groups each
+        #: running job is the first of.
+        self.priming: set = set()
+        self.primed: set = set()
+        self.firsts: dict[str, tuple] = {}
         for i, job in enumerate(todo):
             if job.needs is None or job.needs in done_grids:
                 heapq.heappush(self.ready, (PRIORITY[job.kind], i, job))
@@ -210,30 +212,34 @@ class _Run:
         self.count = len(todo)
 
     def take(self) -> Job | None:
-        """The next ready job to start, or None when every ready job waits. A kind's first job
-        runs alone: it compiles the stage's numba kernels into numba's cache on disk, which
-        the kind's other jobs then load (0.5-1.5 s a process) rather than compile in every
-        worker at once (15 s for the simulator's on a fresh clone); meanwhile the other
-        workers take the ready jobs of other kinds."""
+        """The next ready job to start, or None when every ready job waits. A job waits while
+        the first job of its kind, or of its kind and method, runs: that one compiles the numba
+        kernels of the stage (of the method) into numba's cache on disk, which the others then
+        load (0.5-1.5 s a process) rather than compile in every worker at once (15 s for the
+        simulator's common kernels on a fresh clone, 12 s for a guided planner's own);
+        meanwhile the other workers take the ready jobs of other kinds and methods."""
         held = []
         job = None
         while self.ready:
             entry = heapq.heappop(self.ready)
-            if entry[2].kind in self.priming:
+            groups = _groups(entry[2])
+            if not self.priming.isdisjoint(groups):
                 held.append(entry)
                 continue
             job = entry[2]
-            if job.kind not in self.primed:
-                self.priming.add(job.kind)
+            firsts = tuple(g for g in groups if g not in self.primed)
+            if firsts:
+                self.priming.update(firsts)
+                self.firsts[job.key] = firsts
             break
         for entry in held:
             heapq.heappush(self.ready, entry)
         return job
 
     def finish(self, job: Job, error: str | None, wall: float = 0.0) -> None:
-        if job.kind in self.priming:
-            self.priming.discard(job.kind)
-            self.primed.add(job.kind)
+        firsts = self.firsts.pop(job.key, ())
+        self.priming.difference_update(firsts)
+        self.primed.update(firsts)
         self.stage_time[job.kind] += wall
         if error is not None:
             self.failed.append(job)
@@ -253,6 +259,12 @@ class _Run:
         self.not_run += len(self.ready) + sum(map(len, self.waiting.values()))
         self.ready.clear()
         self.waiting.clear()
+
+
+def _groups(job: Job) -> tuple:
+    """The groups a job primes when it is their first (:meth:`_Run.take`): its kind, and its
+    kind and method."""
+    return job.kind, (job.kind, job.method)
 
 
 def _run_jobs(executor, run: _Run, out: Path, command: Command) -> None:
