@@ -209,13 +209,14 @@ def route_terms(
     n, m = routes.shape[0], routes.shape[1]
     s = m - 1
     length = np.empty(n)
-    inside = np.zeros(n)
-    hits = np.zeros(n, np.int64)
+    inside = np.empty(n)  # np.empty and set below: np.zeros is more to compile
+    hits = np.empty(n, np.int64)
     turn = np.empty((n, max(m - 2, 0)), np.complex128)
     seg_len = np.empty(s)
-    seg_in = np.zeros(s)
+    seg_in = np.empty(s)  # set before read (check)
     xs, ys, r = np.empty(samples), np.empty(samples), np.empty(samples)
     for i in range(n):
+        hits[i] = 0
         last = -1  # the last non-degenerate segment so far
         lx = ly = 0.0
         for j in range(s):
@@ -238,8 +239,7 @@ def route_terms(
             if real:
                 last, lx, ly = j, dx, dy
         length[i] = row_sum(seg_len, 0, s)
-        if check:
-            inside[i] = row_sum(seg_in, 0, s)
+        inside[i] = row_sum(seg_in, 0, s) if check else 0.0
     return length, inside, hits, turn
 
 

@@ -20,7 +20,7 @@ cell's eight neighbours are at fixed index offsets and need no bounds test.
     every entry left has ``f ≥`` that edge, so no path through it is shorter. The result is the
     optimum, as with a heap, at O(1) per queue operation (a binary heap of a few 10⁵ entries is
     about 3 times slower here). Memory: a float64 ``g``, an int32 parent and a uint8 state per
-    cell, allocated untouched (``np.empty``, ``np.zeros``), so only the explored rows cost pages.
+    cell, the first two allocated untouched (``np.empty``), so only the explored rows cost pages.
 Any-angle route (:func:`point_bounds`, :func:`visibility_path`)
     The heuristic's grid-point search and the lazy visibility-graph A* (its exact line of sight
     is :func:`usvtool.collision_kernels.touches`), for :func:`usvtool.plan.exact.any_angle`
@@ -49,8 +49,12 @@ def cell_path(free: np.ndarray, width: int, source: int, target: int) -> np.ndar
     w = width
     g = np.empty(n)
     parent = np.empty(n, np.int32)
-    state = np.zeros(n, np.uint8)  # 0 unseen (g undefined), 1 queued, 2 expanded
-    offsets = np.array([-w - 1, -w, -w + 1, -1, 1, w - 1, w, w + 1], np.int64)
+    state = np.empty(n, np.uint8)  # 0 unseen (g undefined), 1 queued, 2 expanded
+    for i in range(n):  # zeroed by a loop (a memset to LLVM): np.zeros is more to compile
+        state[i] = 0
+    offsets = np.empty(8, np.int64)
+    offsets[0], offsets[1], offsets[2], offsets[3] = -w - 1, -w, -w + 1, -1
+    offsets[4], offsets[5], offsets[6], offsets[7] = 1, w - 1, w, w + 1
     tr = target // w
     tc = target - tr * w
     sr = source // w
@@ -131,8 +135,10 @@ def _octile(dx, dy) -> float:
 def _queue():
     """An empty bucket queue: ``head[b]`` the top entry of bucket ``b`` (-1: empty), and per
     entry its ``node``, ``cost`` (g) and the entry ``below`` it in its bucket's stack."""
-    return (_heads(np.empty(0, np.int64), 1 << 14), np.empty(1 << 16, np.int64),
-            np.empty(1 << 16), np.empty(1 << 16, np.int64))  # fmt: skip
+    head = np.empty(1 << 14, np.int64)
+    for b in range(head.size):  # not _heads(…, 1 << 14): compiled again for the literal size
+        head[b] = -1
+    return head, np.empty(1 << 16, np.int64), np.empty(1 << 16), np.empty(1 << 16, np.int64)
 
 
 @njit(cache=True, nogil=True)
@@ -219,8 +225,12 @@ def point_bounds(
     n = free.size
     w = width
     g = np.empty(n)
-    state = np.zeros(n, np.uint8)
-    offsets = np.array([1, -1, -w, w, -w + 1, -w - 1, w + 1, w - 1], np.int64)
+    state = np.empty(n, np.uint8)
+    for i in range(n):  # as in cell_path
+        state[i] = 0
+    offsets = np.empty(8, np.int64)
+    offsets[0], offsets[1], offsets[2], offsets[3] = 1, -1, -w, w
+    offsets[4], offsets[5], offsets[6], offsets[7] = -w + 1, -w - 1, w + 1, w - 1
     tx, ty = target % w, target // w
     head, node, cost, below = _queue()
     f0 = np.inf
