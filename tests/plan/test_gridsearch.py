@@ -64,3 +64,16 @@ def test_any_angle_heuristic_sees_round_a_wall():
     assert np.hypot(*(pos[at] - goal)) < 6
     # between the ends' cells: up 17 edges (from y 19 or 20 to y 3), 1 across, down 16-17
     assert 33 <= apart <= 37
+
+
+def test_the_cell_search_grows_its_queue():
+    """A detour round a wall of 298 cells (the ends 2 apart, the path 598 long): the search spans
+    more buckets (its ``f`` 596 over the start's: 38 000 of 1/64) and queues more entries (the
+    90 000 cells) than its queue starts with (2¹⁴, 2¹⁶), and still finds the shortest path."""
+    blocked = np.zeros((300, 300), bool)
+    blocked[:298, 150] = True
+    path = exact._cell_path(~blocked, (0, 149), (0, 151))
+    steps = np.diff(path, axis=0)
+    assert path[0].tolist() == [0, 149] and path[-1].tolist() == [0, 151]
+    assert np.all(np.abs(steps).max(axis=1) == 1) and not blocked[tuple(path.T)].any()
+    assert np.hypot(*steps.T).sum() == 598.0
