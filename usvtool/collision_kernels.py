@@ -152,8 +152,8 @@ def touches(prefix: np.ndarray, stride: int, x0: float, y0: float, x1: float, y1
 def traverse(a, b, d, want_inside, prefix, stride, below, bands) -> tuple[np.ndarray, ...]:
     """:func:`strips` of each segment ``a[i] → b[i]`` (``(k, 2)`` arrays)."""
     k = a.shape[0]
-    hit = np.empty(k, np.bool_)  # every element set below (np.zeros: more to compile)
-    inside = np.empty(k)
+    hit = np.zeros(k, np.bool_)
+    inside = np.zeros(k)
     for i in range(k):
         touch, within = strips(
             a[i, 0], a[i, 1], b[i, 0], b[i, 1], d, want_inside, prefix, stride, below, bands
@@ -211,8 +211,8 @@ def check(
     the share of samples in blocked cells times the length for a segment with such a sample,
     else the sum over its intervals."""
     k = x.shape[0]
-    hit = np.empty(k, np.bool_)  # every element set below (np.zeros: more to compile)
-    inside = np.empty(k)
+    hit = np.zeros(k, np.bool_)
+    inside = np.zeros(k)
     r = np.empty(samples)
     for i in range(k):
         hit[i], inside[i] = segment(x[i], y[i], length[i], clear, samples, margin, d,
