@@ -159,13 +159,16 @@ def test_the_pdf_main_body_then_the_appendix_and_the_html_only_parts_left_out(re
 
 def test_without_weasyprint_the_same_html_and_pngs_are_written_and_a_line_says_what_to_install(
         batch, report, tmp_path, monkeypatch):  # fmt: skip
-    """In-process, with WeasyPrint "missing": the page and figures are those of the fixture's
-    run (same results, same bytes), and no PDF."""
+    """In-process, with WeasyPrint "missing" and the sections built in this one process: the
+    page and figures are those of the fixture's run, whose sections were built on several
+    (same results, same bytes: build.sections' tasks), and no PDF."""
     def missing(page):
         raise build.PdfUnavailable("report.pdf not written (OSError: cannot load library "
                                    "'pango'): " + PDF_HINT)  # fmt: skip
 
     monkeypatch.setattr(build, "pdf", missing)
+    one_process = build.sections
+    monkeypatch.setattr(build, "sections", lambda results, workers: one_process(results, 1))
     from click.testing import CliRunner
 
     from usvtool.cli import cli
@@ -181,24 +184,6 @@ def test_without_weasyprint_the_same_html_and_pngs_are_written_and_a_line_says_w
     assert (tmp_path / "r" / "index.html").read_bytes() == (out / "index.html").read_bytes()
     for p in (out / "figures").glob("*.png"):
         assert (tmp_path / "r" / "figures" / p.name).read_bytes() == p.read_bytes(), p.name
-
-
-def test_the_sections_built_on_two_processes_are_those_built_on_one(batch):
-    """build.sections by the tasks of sections.TASKS in forked workers gives the sections, in
-    reading order, with the page's bytes and every figure's, that one process builds."""
-    from usvtool.cli.report import stage_methods
-    from usvtool.report.data import load
-    from usvtool.report.figures import styles
-    from usvtool.report.page import html
-
-    results = load((str(batch),), stage_methods())
-    styles.assign(stage_methods())
-    one, two = build.sections(results, 1), build.sections(results, 2)
-    assert [s.id for s in two] == [s.id for s in one] and len(one) > 5
-    assert html("t", "s", two) == html("t", "s", one)
-    figures = [[(f.file, f.png, f.data) for f in s.figures()] for s in one]
-    assert [[(f.file, f.png, f.data) for f in s.figures()] for s in two] == figures
-    assert sum(map(len, figures)) > 10
 
 
 #: Put first in a page's <head>: records every uncaught error and console error or warning.
