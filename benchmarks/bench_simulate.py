@@ -67,7 +67,7 @@ With this revision ``--periods`` times "now" in this process after the others' r
 penalised vo and sbmpc (0.6-0.9 x); fresh processes for both trees are the fair comparison.
 
 Start-up (item 3), the kernels loaded at their first calls rather than at import
-(rollout_kernels.declared; c0802a3 before): the CPU of a ``usvtool simulate`` process on
+(usvtool.lazy_kernels.declared; c0802a3 before): the CPU of a ``usvtool simulate`` process on
 emergency head-on scene 0, seed 1, best of 5 in fresh processes, the two trees alternately on
 the shared 2-core machine (busy: +-15 %), before -> after: udwa 1.28 -> 1.07 s, dwa 1.13 ->
 0.86, vo 1.12 -> 0.84, gdwa 1.32 -> 0.96, sbmpc 0.84-1.10 -> 1.02-1.05 (it loaded only the

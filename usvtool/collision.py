@@ -95,7 +95,10 @@ class SegmentChecker:
     def __init__(self, blocked: np.ndarray, samples: int | None = None, pad: float = 0.0):
         if not (pad == 0.0 or EPS < pad < 0.5):
             raise ValueError("pad must be 0 or in (1e-9, 0.5)")
-        from usvtool import collision_kernels  # noqa: F401  (loaded here, before any timing)
+        from usvtool import collision_kernels
+        from usvtool.lazy_kernels import load
+
+        load(collision_kernels, "check", "traverse")  # here, before any timing
 
         self.pad = float(pad)
         blocked = np.asarray(blocked, bool)

@@ -30,9 +30,13 @@ import numpy as np
 from numba import njit
 from numba import types as nt
 
+from usvtool.lazy_kernels import declared
+
 EPS = 1e-9  # usvtool.collision.EPS (not imported: that module imports this one lazily)
-# Signatures given, so that importing this module compiles the kernels or loads them from
-# numba's cache (about 0.3 s after numba's own import), not a first call inside a timing.
+# Signatures given (:func:`usvtool.lazy_kernels.declared`): each compiled, or loaded from
+# numba's cache, at its first call, or by the checker when it is made (before any timing): a
+# plan loads the one or two it calls, not all four at import (0.18 s of CPU a process).
+_OPTIONS = {"cache": True, "nogil": True}
 _B, _F, _I = nt.boolean, nt.float64, nt.int64
 _TABLES = (nt.int32[::1], _I, _F[::1], _F[:, ::1])  # prefix, stride, below, bands
 _RESULTS = nt.Tuple((_B[::1], _F[::1]))
@@ -87,7 +91,7 @@ def _touched(x0, y0, x1, y1, dx, slope, g, prefix, stride) -> bool:
     return False
 
 
-@njit(nt.Tuple((_B, _F))(_F, _F, _F, _F, _F, _B, *_TABLES), cache=True, nogil=True)
+@declared(nt.Tuple((_B, _F))(_F, _F, _F, _F, _F, _B, *_TABLES), **_OPTIONS)
 def strips(x0, y0, x1, y1, d, want_inside, prefix, stride, below, bands) -> tuple[bool, float]:
     """``(touches, inside)`` of one segment, column strip by column strip.
 
@@ -140,7 +144,7 @@ def strips(x0, y0, x1, y1, d, want_inside, prefix, stride, below, bands) -> tupl
     return True, total
 
 
-@njit(_B(_TABLES[0], _I, _F, _F, _F, _F), cache=True, nogil=True)
+@declared(_B(_TABLES[0], _I, _F, _F, _F, _F), **_OPTIONS)
 def touches(prefix: np.ndarray, stride: int, x0: float, y0: float, x1: float, y1: float) -> bool:
     """Whether the segment touches a blocked square enlarged by ``EPS``, stopping at the first
     touched column (the exact planners' line of sight)."""
@@ -148,7 +152,7 @@ def touches(prefix: np.ndarray, stride: int, x0: float, y0: float, x1: float, y1
     return _touched(x0, y0, x1, y1, dx, slope, EPS, prefix, stride)
 
 
-@njit(_RESULTS(_F[:, ::1], _F[:, ::1], _F, _B, *_TABLES), cache=True, nogil=True)
+@declared(_RESULTS(_F[:, ::1], _F[:, ::1], _F, _B, *_TABLES), **_OPTIONS)
 def traverse(a, b, d, want_inside, prefix, stride, below, bands) -> tuple[np.ndarray, ...]:
     """:func:`strips` of each segment ``a[i] → b[i]`` (``(k, 2)`` arrays)."""
     k = a.shape[0]
@@ -163,7 +167,7 @@ def traverse(a, b, d, want_inside, prefix, stride, below, bands) -> tuple[np.nda
     return hit, inside
 
 
-@njit(inline="always")  # compiled only into its callers: nothing to load at import
+@njit(inline="always")  # compiled only into its callers
 def segment(
     x, y, length, clear, samples, margin, d, want_inside, r, prefix, stride, below, bands
 ) -> tuple[bool, float]:
@@ -197,8 +201,8 @@ def segment(
     return hit, total
 
 
-@njit(_RESULTS(_F[:, ::1], _F[:, ::1], _F[::1], _F[::1], _I, _F, _F, _B, *_TABLES),
-      cache=True, nogil=True)  # fmt: skip
+@declared(_RESULTS(_F[:, ::1], _F[:, ::1], _F[::1], _F[::1], _I, _F, _F, _B, *_TABLES),
+          **_OPTIONS)  # fmt: skip
 def check(
     x, y, length, clear, samples, margin, d, want_inside, prefix, stride, below, bands
 ) -> tuple[np.ndarray, np.ndarray]:

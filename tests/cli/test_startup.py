@@ -49,10 +49,12 @@ KERNELS = """
 import atexit, json, sys
 
 def report():  # after main(): which kernels the run loaded, and how many specialisations
-    from usvtool.sim import rollout_kernels
-    names = ("rollout_kernels", "tracking_kernels", "weather_kernels")
-    mods = {n: sys.modules["usvtool.sim." + n] for n in names if "usvtool.sim." + n in sys.modules}
-    print(json.dumps({n: rollout_kernels.loaded(m) for n, m in mods.items()}))
+    from usvtool.lazy_kernels import loaded
+    names = ("sim.rollout_kernels", "sim.tracking_kernels", "sim.weather_kernels",
+             "collision_kernels")
+    mods = {n.split(".")[-1]: sys.modules["usvtool." + n] for n in names
+            if "usvtool." + n in sys.modules}
+    print(json.dumps({n: loaded(m) for n, m in mods.items()}))
 
 atexit.register(report)
 sys.argv = ["usvtool", "-q", *sys.argv[1:]]
@@ -68,9 +70,9 @@ main()
      ("sbmpc", set())],
 )  # fmt: skip
 def test_a_run_loads_only_the_kernels_it_calls(charts, tmp_path, controller, rollouts):
-    """The kernels' signatures are loaded at their first calls (rollout_kernels.declared), not at
-    import: a DWA run loads its step's few, not the period sweep's callees (compiled into it) nor
-    vo's; one specialisation each."""
+    """The kernels' signatures are loaded at their first calls (usvtool.lazy_kernels.declared),
+    not at import: a DWA run loads its step's few, not the period sweep's callees (compiled into
+    it) nor vo's; one specialisation each."""
     scenario = yaml.safe_load((charts / "scenarios" / "emergency-head-on.yaml").read_text())
     scenario["sim"]["duration"] = 1.0
     path = tmp_path / "short.yaml"
@@ -80,7 +82,22 @@ def test_a_run_loads_only_the_kernels_it_calls(charts, tmp_path, controller, rol
                          text=True, check=True, cwd=tmp_path)  # fmt: skip
     loaded = yaml.safe_load(out.stdout.strip().splitlines()[-1])
     assert loaded["tracking_kernels"] == {"track_urgent": 1, "first_touching": 1}
-    assert set(loaded["rollout_kernels"]) >= rollouts
-    assert set(loaded["rollout_kernels"]) <= rollouts | {"favour", "offsets", "wrap_angles"}
-    assert set(loaded["rollout_kernels"].values()) <= {1}
+    mine = loaded.get("rollout_kernels", {})  # sbmpc's run imports none of them
+    assert set(mine) >= rollouts
+    assert set(mine) <= rollouts | {"favour", "offsets", "wrap_angles"}
+    assert set(mine.values()) <= {1}
     assert not loaded.get("weather_kernels")
+
+
+def test_a_plan_loads_the_collision_check_it_calls_not_every_kernel(charts, tmp_path):
+    """The collision kernels are declared too (usvtool.lazy_kernels): a plan's checker loads
+    the check and the traversal, not the strips (compiled into them) nor the line of sight of
+    the exact planners."""
+    out = subprocess.run([sys.executable, "-c", KERNELS, "plan", str(charts / "grid20.tif"),
+                          "--start", "0.5", "0.5", "--goal", "19.5", "19.5", "--algo", "pso",
+                          "--pop", "10", "--iters", "5", "--allow-collision", "-o",
+                          str(tmp_path / "r.geojson")],
+                         capture_output=True, text=True, check=True, cwd=tmp_path)  # fmt: skip
+    loaded = yaml.safe_load(out.stdout.strip().splitlines()[-1])
+    assert loaded["collision_kernels"] == {"check": 1, "traverse": 1}
+    assert "rollout_kernels" not in loaded

@@ -25,9 +25,10 @@ library's in both) give NumPy's bits (tests/sim/test_step_kernels.py); ``arctan2
 Layout: positions ``x``, ``y`` are ``(T, N)``, time-major, sample ``n = i·R + k`` the speed ``i``
 and the yaw rate ``k`` of the window's grid (:class:`usvtool.sim.vessel.Fan`).
 
-Each kernel has its signature (:func:`declared`), compiled, or loaded from numba's cache in
-``__pycache__``, at the kernel's first call, not at import: a run loads the kernels it calls and
-no others (loading all 37 of these modules' at import cost some 0.55 s of CPU a process). The
+Each kernel has its signature (:func:`usvtool.lazy_kernels.declared`), compiled, or loaded
+from numba's cache in ``__pycache__``, at the kernel's first call, not at import: a run loads
+the kernels it calls and no others (loading all 37 of these modules' at import cost some 0.55 s
+of CPU a process). The
 ufuncs :func:`toward` and :func:`travelled` are made at their first use (the module's
 ``__getattr__``). Imported lazily, by :mod:`usvtool.sim.vessel` when it rolls a fan out, so that
 reading a scenario or building the command line does not import numba.
@@ -36,61 +37,19 @@ reading a scenario or building the command line does not import numba.
 from __future__ import annotations
 
 import math
-import sys
 
 import numpy as np
 from numba import njit, vectorize
 from numba import types as nt
-from numba.core.dispatcher import Dispatcher
 
 from usvtool.encounter import VEL_EPS
+from usvtool.lazy_kernels import declared
 from usvtool.sim.vessel import SINC_ZERO, ZERO_TOLERANCE
 
 _B, _F, _I, _C = nt.boolean, nt.float64, nt.int64, nt.complex128
 _ROWS = _F[:, ::1]  # a C-ordered 2-D array: (T, N), (V, R), (T, V), (k, 2)
 _TURNS = _C[:, ::1]  # (T, R) complex: a direction or a sum of them per time and yaw rate
 _OPTIONS = {"cache": True, "nogil": True}
-
-
-def declared(sig, **options):
-    """``njit(sig, **options)``, the signature compiled (or loaded from numba's cache) at the
-    kernel's first call, from Python or while a calling kernel is typed, rather than at the
-    decoration: then, as ``njit`` with a signature does, compilation is disabled, so that every
-    call uses that one specialisation (converting the arguments as numba does: an ``int`` for a
-    float), the same machine code as with the signature given at the decoration. A kernel
-    inlined (``inline="always"``) is typed in its callers and never compiled by itself unless
-    called from Python."""
-
-    def decorate(func):
-        dispatcher = njit(**options)(func)
-
-        def compile_declared(_types):  # numba's compile for a call's types: the signature's
-            del dispatcher.compile  # the method again
-            entry = dispatcher.compile(sig)
-            dispatcher.disable_compile()
-            return entry
-
-        dispatcher.compile = compile_declared
-        return dispatcher
-
-    return decorate
-
-
-def load(*names: str, module=None) -> None:
-    """Compile the named kernels of ``module`` (this one by default), or load them from numba's
-    cache, now unless done: when a controller or a tracker is made, so that the kernels its
-    steps call are not loaded inside the first step's timing (``step_time_ms``)."""
-    namespace = sys.modules[__name__] if module is None else module
-    for name in names:
-        kernel = getattr(namespace, name)  # the ufuncs: made
-        if isinstance(kernel, Dispatcher) and not kernel.signatures:
-            kernel.compile(None)  # declared's: the signature
-
-
-def loaded(module) -> dict[str, int]:
-    """The kernels of ``module`` with a specialisation loaded, and how many (one each)."""
-    return {name: len(k.signatures) for name, k in vars(module).items()
-            if isinstance(k, Dispatcher) and k.signatures}  # fmt: skip
 
 
 #: Relative margin of the distance bounds that skip work: a bound within it of its limit is not

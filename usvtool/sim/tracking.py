@@ -53,11 +53,11 @@ class EncounterTracker:
         clear_distance=None,
         release_distance=np.inf,
     ):
+        from usvtool.lazy_kernels import load
         from usvtool.sim import tracking_kernels  # numba's import: a run's, not the CLI's
-        from usvtool.sim.rollout_kernels import load
 
         self._kernels = tracking_kernels
-        load("track_urgent", "first_touching", module=tracking_kernels)  # a run's step's
+        load(tracking_kernels, "track_urgent", "first_touching")  # a run's step's
         self.risk_distance = np.asarray(risk_distance, float)
         self.horizon_s = float(horizon_s)
         self.clear_distance = (

@@ -15,7 +15,7 @@ contracts none without ``fastmath``). So classes, bearings, ranges and CPA are t
 (tests/sim/test_tracking_kernels.py compares them on random and border geometries).
 
 Each kernel's signature is compiled, or loaded from numba's cache, at its first call
-(:func:`usvtool.sim.rollout_kernels.declared`), not at import; imported lazily, by
+(:func:`usvtool.lazy_kernels.declared`), not at import; imported lazily, by
 :class:`usvtool.sim.tracking.EncounterTracker` when it is made, so that reading a scenario or
 building the command line does not import numba. numba's cache keys a kernel on this file only: the
 thresholds imported from :mod:`usvtool.encounter` are compiled in as constants, so after changing
@@ -39,7 +39,7 @@ from usvtool.encounter import (
     STERN_SECTOR_DEG,
     VEL_EPS,
 )
-from usvtool.sim.rollout_kernels import declared
+from usvtool.lazy_kernels import declared
 
 _F, _I, _K = nt.float64, nt.int64, nt.int8
 _OPTIONS = {"cache": True, "nogil": True}

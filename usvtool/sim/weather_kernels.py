@@ -9,7 +9,7 @@ and libm calls in the same order, no fused multiply-add: numba contracts none wi
 compares them), in the style of :mod:`usvtool.sim.rollout_kernels`.
 
 Each kernel's signature is compiled, or loaded from numba's cache in ``__pycache__``, at its first
-call (:func:`usvtool.sim.rollout_kernels.declared`), not at import. Imported lazily, by
+call (:func:`usvtool.lazy_kernels.declared`), not at import. Imported lazily, by
 :class:`usvtool.sim.weather.FieldWeather` when it is first asked for speeds, so that reading a
 scenario does not import numba."""
 
@@ -20,7 +20,7 @@ import math
 import numpy as np
 from numba import types as nt
 
-from usvtool.sim.rollout_kernels import declared
+from usvtool.lazy_kernels import declared
 
 _F = nt.float64
 _OPTIONS = {"cache": True, "nogil": True}

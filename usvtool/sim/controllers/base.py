@@ -280,6 +280,7 @@ class DynamicWindow(Controller):
     def reset(self, world: World) -> None:
         """Start a run in ``world`` (and load the compiled kernels, numba's start-up, here rather
         than in the run's first step)."""
+        from usvtool.lazy_kernels import load
         from usvtool.sim import rollout_kernels
 
         super().reset(world)
@@ -287,7 +288,7 @@ class DynamicWindow(Controller):
         self._horizon = float(self.times[-1])
         self._scales = np.array([critic.scale for critic in self.objective], float)
         self.generator = WINDOWS[self.params["window"]](world, self.times)
-        rollout_kernels.load(*self.generator.kernels, *_STEP_KERNELS)
+        load(rollout_kernels, *self.generator.kernels, *_STEP_KERNELS)
         for critic in self.objective:
             critic.reset(world)
         p, length = self.params, float(world.vessel.length)

@@ -162,11 +162,12 @@ class VelocityObstacle(Controller):
     }  # fmt: skip
 
     def reset(self, world: World) -> None:
+        from usvtool.lazy_kernels import load
         from usvtool.sim import rollout_kernels  # numba's start-up: here, not in the first step
 
         super().reset(world)
         self.kernels = rollout_kernels
-        rollout_kernels.load("vo_candidates", "vo_contacts", "vo_near")
+        load(rollout_kernels, "vo_candidates", "vo_contacts", "vo_near")
         p, ship = self.params, world.vessel
         self.progress = RouteProgress(None, float(p["reach"]))
         self.progress.reset(world)
