@@ -3,8 +3,9 @@
 One control step rolls some 460 velocity samples out over 30-50 horizon points and checks every
 point against the grid's clearance field and every target: those loops over (horizon point,
 sample) run here, with no (horizon, samples) temporaries, and so does the whole of a period
-window's fan (:func:`arc_fan`: its directions, running sums and chords), while the ramps' work
-per yaw rate or per speed stays in NumPy (:mod:`usvtool.sim.vessel`). Each kernel
+window's fan (:func:`arc_fan`: its directions, running sums and chords) and of a horizon
+window's ramps (:func:`horizon_sweep`; :func:`usvtool.sim.vessel.ramps` is their NumPy
+definition). Each kernel
 repeats the NumPy expressions it stands for operation by operation (the same products, sums and
 comparisons in the same order, and no fused multiply-add: numba contracts none without
 ``fastmath``), so positions, contacts and clearances are the same bits as NumPy's
@@ -137,12 +138,18 @@ def toward(now, target, down, up, t):
     return toward_one(now, target, down, up, t)
 
 
-def travelled(now, target, down, up, t):
-    """:func:`usvtool.sim.vessel.travelled` (its definition), a ufunc."""
+@declared(_F(_F, _F, _F, _F, _F), **_OPTIONS)
+def travelled_one(now, target, down, up, t) -> float:
+    """:func:`usvtool.sim.vessel.travelled` (its definition) of one value."""
     change = target - now
     rate = up if up == down or change > 0 else down
     ramp = min(t, abs(change) / rate)
     return now * t + change * (t - ramp) + math.copysign(rate / 2 * ramp * ramp, change)
+
+
+def travelled(now, target, down, up, t):
+    """:func:`travelled_one` as a ufunc."""
+    return travelled_one(now, target, down, up, t)
 
 
 #: The ufuncs' Python functions, made ufuncs (``vectorize`` of their one signature: compiled
@@ -546,6 +553,40 @@ def period_sweep(x0, y0, psi0, v0, omega0, limits, span, n_v, n_omega, times, po
     contact, static_first, clearance, intrudes = contacts(
         x, y, radius, u, times, x0, y0, pos, vel, length, padded, width, left, top, scale, cell,
         own_length, every, along, across, trigger, cap)  # fmt: skip
+    return v, omega, x, y, contact, static_first, clearance, intrudes, row, to_goal, near
+
+
+@declared(nt.Tuple((_F[::1], _F[::1], _ROWS, _ROWS, *_FOUND))(
+    _F, _F, _F, _F, _F, _F[::1], _F, _I, _I, _F[::1],  # the own ship, the window, the times
+    _ROWS, _ROWS, _F[::1], *_CHECKS, _F, _F), **_OPTIONS)  # fmt: skip
+def horizon_sweep(x0, y0, psi0, v0, omega0, limits, span, n_v, n_omega, times, pos, vel, length,
+                  padded, width, left, top, scale, cell, own_length, every, along, across,
+                  trigger, cap, gx, gy):  # fmt: skip
+    """A horizon window's whole step of rollouts in one call
+    (:meth:`usvtool.sim.controllers.windows.HorizonWindow.sweep`), :func:`period_sweep`'s
+    arguments and results: :func:`window_axes`, the ramps of
+    :func:`usvtool.sim.vessel.ramps` from ``(x0, y0, psi0)`` at the ``times`` (each period's
+    chord ``dt · toward`` per speed and direction ``exp(i (psi0 + travelled))`` per yaw rate at
+    its middle ``dt (j + 1/2)``, ``dt`` the first time; the exponential's ``cos`` and ``sin``,
+    as NumPy's ``exp`` of an imaginary number gives them, :func:`arc_fan`), their points
+    (:func:`ramp_points`) and :func:`sweep` of them."""
+    speeds, rates, v, omega = window_axes(v0, omega0, limits, span, n_v, n_omega)
+    decel, accel, yaw = limits[2], limits[3], limits[5]
+    steps, dt = times.size, times[0]
+    chord = np.empty((steps, speeds.size))
+    u = np.empty((steps, rates.size), np.complex128)
+    for t in range(steps):
+        mid = dt * (t + 0.5)
+        for i in range(speeds.size):
+            chord[t, i] = dt * toward_one(v0, speeds[i], decel, accel, mid)
+        for k in range(rates.size):
+            heading = psi0 + travelled_one(omega0, rates[k], yaw, yaw, mid)
+            u[t, k] = complex(math.cos(heading), math.sin(heading))
+    x, y = np.empty((steps, v.size)), np.empty((steps, v.size))
+    radius = ramp_points(x0, y0, chord, u, x, y)
+    contact, static_first, clearance, intrudes, row, to_goal, near = sweep(
+        x, y, radius, u, times, x0, y0, pos, vel, length, padded, width, left, top, scale, cell,
+        own_length, every, along, across, trigger, cap, gx, gy)  # fmt: skip
     return v, omega, x, y, contact, static_first, clearance, intrudes, row, to_goal, near
 
 

@@ -101,7 +101,7 @@ class HorizonWindow(PeriodWindow):
     """The trajectory-rollout window of the horizon (see the module docstring)."""
 
     name = "horizon"
-    kernels = ("window_axes", "ramp_points", "sweep", "toward_one", "toward", "travelled")
+    kernels = ("horizon_sweep", "toward_one", "travelled")
 
     def __init__(self, world, times: np.ndarray):
         super().__init__(world, times)
@@ -113,12 +113,12 @@ class HorizonWindow(PeriodWindow):
 
     def sweep(self, own, n_v: int, n_omega: int, targets: tuple, checks: tuple,
               goal: tuple[float, float]) -> tuple:  # fmt: skip
-        """:meth:`PeriodWindow.sweep` of the ramps: :meth:`sample`, then the checks in one
-        compiled call (:func:`usvtool.sim.rollout_kernels.sweep`)."""
-        v, omega, fan = self.sample(own, n_v, n_omega)
-        return (v, omega, fan.x, fan.y,
-                *_kernels().sweep(fan.x, fan.y, fan.radius, fan.u, self.times, float(own.x),
-                                  float(own.y), *targets, *checks, *goal))  # fmt: skip
+        """:meth:`PeriodWindow.sweep` of the ramps (:meth:`sample` and the checks), in one
+        compiled call (:func:`usvtool.sim.rollout_kernels.horizon_sweep`)."""
+        return _kernels().horizon_sweep(float(own.x), float(own.y), float(own.psi), float(own.v),
+                                        float(own.omega), self.limits, float(self.span), n_v,
+                                        n_omega, self.times, *targets, *checks,
+                                        *goal)  # fmt: skip
 
     def heading(self, own, omega: np.ndarray, t) -> np.ndarray:
         """The heading turned while the yaw rate ramps toward the sample's."""
