@@ -16,7 +16,7 @@ rows ``< r``; ``below`` and ``bands`` (1.0 or 0.0) the grown squares' tables
 
 numba's cache keys a compiled function on its own file only: the cached kernels of
 :mod:`usvtool.plan.gridsearch` (and of benchmarks/bench_fewest_links.py) that call
-:func:`touches`, and those of :mod:`usvtool.plan.cost_kernels` that call :func:`segment`, keep
+:func:`touches`, and those of :mod:`usvtool.plan.cost_kernels` that call :func:`segments`, keep
 the old version after an edit of this file alone. After changing it, remove
 ``usvtool/plan/__pycache__/gridsearch.*.nb*`` and ``cost_kernels.*.nb*`` (or touch those
 files); a fresh checkout or install compiles everything anew.
@@ -168,37 +168,46 @@ def traverse(a, b, d, want_inside, prefix, stride, below, bands) -> tuple[np.nda
 
 
 @njit(inline="always")  # compiled only into its callers
-def segment(
-    x, y, length, clear, samples, margin, d, want_inside, r, prefix, stride, below, bands
-) -> tuple[bool, float]:
-    """``(hit, inside)`` of one segment of :func:`check` from its ``samples`` sample points
-    ``x``, ``y`` and its ``length`` (``r``: scratch, at least ``samples`` long)."""
+def segments(
+    x, y, length, count, clear, samples, margin, d, want_inside, r, prefix, stride, below, bands,
+    hit, inside,
+) -> None:  # fmt: skip
+    """``hit`` and ``inside`` (written) of the first ``count`` segments of :func:`check` from
+    their ``samples`` sample points ``x[i]``, ``y[i]`` and their ``length[i]`` (``r``: scratch,
+    at least ``samples`` long).
+
+    The loop over the segments is here, not in the callers: an inlined function's array
+    arguments are reference-counted at each call (numba's atomic increments and decrements,
+    which its pruning left in the callers' loops), some 45 ns a call with these tables, more
+    than the check of a segment the filter passes; so the tables are bound once a batch."""
     row = stride - 1
-    outside = False  # first whether every sample is in the table, then the look-ups
-    for j in range(samples):
-        cell = int(y[j]) * row + int(x[j])  # truncation: coordinates >= 0
-        outside |= (cell < 0) | (cell >= clear.size)
-    if outside:  # no bounds checks in compiled code otherwise
-        raise ValueError("segments must lie inside the grid extent")
-    n_in = 0
-    for j in range(samples):
-        r[j] = clear[int(y[j]) * row + int(x[j])]
-        n_in += r[j] < 0
-    if n_in:
-        return True, n_in * length / samples if want_inside else 0.0
-    spacing = length / (samples - 1) + margin
-    hit = False
-    total = 0.0
-    for j in range(samples - 1):
-        if r[j] + r[j + 1] <= spacing:
-            touch, within = strips(x[j], y[j], x[j + 1], y[j + 1], d,
-                                   want_inside, prefix, stride, below, bands)  # fmt: skip
-            if touch:
-                hit = True
-                if not want_inside:
-                    break
-                total += within
-    return hit, total
+    for i in range(count):
+        outside = False  # first whether every sample is in the table, then the look-ups
+        for j in range(samples):
+            cell = int(y[i, j]) * row + int(x[i, j])  # truncation: coordinates >= 0
+            outside |= (cell < 0) | (cell >= clear.size)
+        if outside:  # no bounds checks in compiled code otherwise
+            raise ValueError("segments must lie inside the grid extent")
+        n_in = 0
+        for j in range(samples):
+            r[j] = clear[int(y[i, j]) * row + int(x[i, j])]
+            n_in += r[j] < 0
+        if n_in:
+            hit[i], inside[i] = True, n_in * length[i] / samples if want_inside else 0.0
+            continue
+        spacing = length[i] / (samples - 1) + margin
+        touched = False
+        total = 0.0
+        for j in range(samples - 1):
+            if r[j] + r[j + 1] <= spacing:
+                touch, within = strips(x[i, j], y[i, j], x[i, j + 1], y[i, j + 1], d,
+                                       want_inside, prefix, stride, below, bands)  # fmt: skip
+                if touch:
+                    touched = True
+                    if not want_inside:
+                        break
+                    total += within
+        hit[i], inside[i] = touched, total
 
 
 @declared(_RESULTS(_F[:, ::1], _F[:, ::1], _F[::1], _F[::1], _I, _F, _F, _B, *_TABLES),
@@ -207,7 +216,7 @@ def check(
     x, y, length, clear, samples, margin, d, want_inside, prefix, stride, below, bands
 ) -> tuple[np.ndarray, np.ndarray]:
     """The filter, then :func:`strips` of the intervals it leaves (``SegmentChecker._check``),
-    segment by segment (:func:`segment`).
+    segment by segment (:func:`segments`).
 
     ``x``, ``y``: ``(k, samples)`` sample points of k segments of lengths ``length``; ``clear``:
     the filter's table (rows of width + 1, -1 on blocked cells); ``margin`` the extra clearance
@@ -217,8 +226,6 @@ def check(
     k = x.shape[0]
     hit = np.zeros(k, np.bool_)
     inside = np.zeros(k)
-    r = np.empty(samples)
-    for i in range(k):
-        hit[i], inside[i] = segment(x[i], y[i], length[i], clear, samples, margin, d,
-                                    want_inside, r, prefix, stride, below, bands)  # fmt: skip
+    segments(x, y, length, k, clear, samples, margin, d, want_inside, np.empty(samples), prefix,
+             stride, below, bands, hit, inside)  # fmt: skip
     return hit, inside

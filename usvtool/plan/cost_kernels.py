@@ -23,15 +23,16 @@ project's NumPy (2.4, AVX-512):
 - the complex product ``(a + bi)(c - di)`` of the turn angles is ``fma(a, c, b·d) + i fma(a,
   -d, b·c)`` (NumPy's SIMD ``muladdsub``): :func:`turn_product`.
 - the collision check's samples ``ends @ basis`` (a BLAS product of inner size 2) are
-  ``fma(b, t, a·(1 - t))`` (:func:`checked`).
+  ``fma(b, t, a·(1 - t))`` (:func:`sample`).
 
 numba contracts no multiply-add by itself (no ``fastmath``), so the fused ones are written out
 (:func:`fma`, LLVM's ``llvm.fma``). The sums over a route are NumPy's ``sum(axis=-1)`` of a
 contiguous row: its pairwise summation (:func:`pairwise_sum`). tests/plan/test_cost_kernels.py
 compares everything with the NumPy path (``PathProblem._cost_python``), bit for bit.
 
-The collision check per segment is :func:`usvtool.collision_kernels.segment` (the filter and
-the strips of :meth:`usvtool.collision.SegmentChecker.guide`). numba's cache keys a kernel on its
+The collision check is :func:`usvtool.collision_kernels.segments` (the filter and the strips of
+:meth:`usvtool.collision.SegmentChecker.guide`), of a route's segments at once (the tables
+reference-counted once a route, not once a segment: see there). numba's cache keys a kernel on its
 own file only: after changing :mod:`usvtool.collision_kernels`, remove
 ``usvtool/plan/__pycache__/cost_kernels.*.nb*`` (or touch this file).
 
@@ -45,7 +46,11 @@ land), compiled before. Whole plans (``plan_route``, without the process start):
 0.063 s, iwso 0.205 → 0.133 s, ssa 0.158 → 0.104 s, issa 0.103 → 0.081 s, pso 0.107 → 0.074 s,
 gwo 0.120 → 0.089 s, mrfo 0.154 → 0.104 s, iwso+g 0.640 → 0.280 s, ssa ``columns`` 0.550 →
 0.396 s, issa ``columns`` 0.377 → 0.323 s. A ``usvtool plan`` process also loads these kernels
-from the cache: 0.02-0.035 s of CPU.
+from the cache: 0.02-0.035 s of CPU. Then a route's segments checked at once rather than one
+call each (2026-12-06; a profile of the batch of ``make report`` had put a tenth of its CPU in
+numba's reference counts, most of it here): the evaluations of a grid20 ``columns`` plan (184,
+100 routes of 21 segments) 35.7 → 17.7 ms, of an env1 WSO plan (124) 15.8 → 14.2 ms, the two
+versions interleaved in one process (least of 15), the same bits.
 """
 
 from __future__ import annotations
@@ -57,7 +62,7 @@ from numba import njit
 from numba import types as nt
 from numba.extending import intrinsic
 
-from usvtool.collision_kernels import segment
+from usvtool.collision_kernels import segments
 from usvtool.measures import RIGHT_ANGLE_COST
 
 _F, _I = nt.float64, nt.int64
@@ -132,35 +137,11 @@ def row_sum(a, start, n) -> float:
 
 
 @njit(inline="always")
-def checked(
-    ax,
-    ay,
-    bx,
-    by,
-    length,
-    want_inside,
-    basis,
-    xs,
-    ys,
-    r,
-    clear,
-    samples,
-    margin,
-    d,
-    prefix,
-    stride,
-    below,
-    bands,
-) -> tuple[bool, float]:
-    """:meth:`usvtool.collision.SegmentChecker.guide` of the segment ``a → b`` of length
-    ``length`` (``want_inside``; else ``collides``, the inside length 0): its samples ``(1 - t) a
-    + t b`` as ``_check``'s BLAS product gives them (into ``xs``, ``ys``), then
-    :func:`usvtool.collision_kernels.segment`."""
-    for q in range(samples):
-        xs[q] = fma(bx, basis[1, q], ax * basis[0, q])
-        ys[q] = fma(by, basis[1, q], ay * basis[0, q])
-    return segment(xs, ys, length, clear, samples, margin, d, want_inside, r, prefix, stride,
-                   below, bands)  # fmt: skip
+def sample(a, b, t0, t1) -> float:
+    """One coordinate of the sample ``(1 - t) a + t b`` of a segment ``a → b`` as
+    ``SegmentChecker._check``'s BLAS product ``ends @ basis`` gives it, ``t0 = 1 - t`` and ``t1
+    = t`` its basis column: ``fma(b, t1, a · t0)``."""
+    return fma(b, t1, a * t0)
 
 
 @njit(**_OPTIONS)
@@ -203,9 +184,11 @@ def route_terms(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Per route of ``routes`` ``(n, m, 2)``: its length (the sum of ``np.abs`` of its
     segments), the length inside the squares grown by ``d`` and the number of segments touching
-    them (:meth:`usvtool.collision.SegmentChecker.guide`, skipped unless ``check``: zeros), and
-    the complex products whose angles are its turn angles (``(n, m - 2)``; ``1`` where
-    :func:`usvtool.measures.turn_angles` gives 0: a degenerate segment, or none before it)."""
+    them (:meth:`usvtool.collision.SegmentChecker.guide`: the samples of every segment
+    (:func:`sample`), then :func:`usvtool.collision_kernels.segments` of the route's; skipped
+    unless ``check``: zeros), and the complex products whose angles are its turn angles (``(n,
+    m - 2)``; ``1`` where :func:`usvtool.measures.turn_angles` gives 0: a degenerate segment, or
+    none before it)."""
     n, m = routes.shape[0], routes.shape[1]
     s = m - 1
     length = np.empty(n)
@@ -214,9 +197,9 @@ def route_terms(
     turn = np.empty((n, max(m - 2, 0)), np.complex128)
     seg_len = np.empty(s)
     seg_in = np.empty(s)  # set before read (check)
-    xs, ys, r = np.empty(samples), np.empty(samples), np.empty(samples)
+    seg_hit = np.empty(s, np.bool_)
+    xs, ys, r = np.empty((s, samples)), np.empty((s, samples)), np.empty(samples)
     for i in range(n):
-        hits[i] = 0
         last = -1  # the last non-degenerate segment so far
         lx = ly = 0.0
         for j in range(s):
@@ -225,10 +208,9 @@ def route_terms(
             dx, dy = bx - ax, by - ay
             seg_len[j] = cabs(dx, dy)
             if check:
-                hit, seg_in[j] = checked(ax, ay, bx, by, seg_len[j], True, basis, xs, ys, r,
-                                         clear, samples, margin, d, prefix, stride, below,
-                                         bands)  # fmt: skip
-                hits[i] += hit
+                for q in range(samples):
+                    xs[j, q] = sample(ax, bx, basis[0, q], basis[1, q])
+                    ys[j, q] = sample(ay, by, basis[0, q], basis[1, q])
             real = dx != 0.0 or dy != 0.0
             if j > 0:
                 if real and last >= 0:
@@ -238,6 +220,12 @@ def route_terms(
                     turn[i, j - 1] = 1.0
             if real:
                 last, lx, ly = j, dx, dy
+        hits[i] = 0
+        if check:
+            segments(xs, ys, seg_len, s, clear, samples, margin, d, True, r, prefix, stride,
+                     below, bands, seg_hit, seg_in)  # fmt: skip
+            for j in range(s):
+                hits[i] += seg_hit[j]
         length[i] = row_sum(seg_len, 0, s)
         inside[i] = row_sum(seg_in, 0, s) if check else 0.0
     return length, inside, hits, turn
@@ -279,10 +267,15 @@ def free(
     stride,
     below,
     bands,
+    one,
+    hit,
+    within,
 ) -> bool:
     """``GuidedProblem._free`` of one segment: in the grid, neither end in a blocked cell (the
-    one holding it), and touching no blocked square grown by ``d`` (its length ``np.hypot``'s:
-    the C library's ``hypot``)."""
+    one holding it), and touching no blocked square grown by ``d``
+    (:func:`usvtool.collision_kernels.segments` of its samples, :func:`sample`, in the first
+    rows of ``xs``, ``ys``; its length ``np.hypot``'s, the C library's ``hypot``, in ``one``;
+    ``hit`` and ``within`` scratch)."""
     h, w = blocked.shape
     if not (0.0 <= ax <= w and 0.0 <= ay <= h and 0.0 <= bx <= w and 0.0 <= by <= h):
         return False
@@ -290,10 +283,13 @@ def free(
         return False
     if blocked[min(int(by), h - 1), min(int(bx), w - 1)]:
         return False
-    length = math.hypot(bx - ax, by - ay)
-    hit, _ = checked(ax, ay, bx, by, length, False, basis, xs, ys, r, clear, samples, margin, d,
-                     prefix, stride, below, bands)  # fmt: skip
-    return not hit
+    one[0] = math.hypot(bx - ax, by - ay)
+    for q in range(samples):
+        xs[0, q] = sample(ax, bx, basis[0, q], basis[1, q])
+        ys[0, q] = sample(ay, by, basis[0, q], basis[1, q])
+    segments(xs, ys, one, 1, clear, samples, margin, d, False, r, prefix, stride, below, bands,
+             hit, within)  # fmt: skip
+    return not hit[0]
 
 
 @njit(**_OPTIONS)
@@ -310,7 +306,8 @@ def decode_guided(
     n = X.shape[0]
     k = station.shape[0] - 2
     routes = np.empty((n, k + 2, 2))
-    xs, ys, r = np.empty(samples), np.empty(samples), np.empty(samples)
+    xs, ys, r = np.empty((1, samples)), np.empty((1, samples)), np.empty(samples)
+    one, hit, within = np.empty(1), np.empty(1, np.bool_), np.empty(1)
     for i in range(n):
         routes[i, 0, 0], routes[i, 0, 1] = station[0, 0], station[0, 1]
         routes[i, k + 1, 0], routes[i, k + 1, 1] = station[k + 1, 0], station[k + 1, 1]
@@ -323,7 +320,7 @@ def decode_guided(
             ax, ay, bx, by = wx, wy, station[j + 2, 0], station[j + 2, 1]
             for _ in range(2):
                 keep = free(ax, ay, bx, by, blocked, basis, xs, ys, r, clear, samples, margin, d,
-                            prefix, stride, below, bands)  # fmt: skip
+                            prefix, stride, below, bands, one, hit, within)  # fmt: skip
                 if not keep:
                     break
                 ax, ay, bx, by = routes[i, j, 0], routes[i, j, 1], wx, wy
