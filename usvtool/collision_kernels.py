@@ -30,6 +30,7 @@ import numpy as np
 from numba import njit
 from numba import types as nt
 
+from usvtool.kernel_views import borrowed
 from usvtool.lazy_kernels import declared
 
 EPS = 1e-9  # usvtool.collision.EPS (not imported: that module imports this one lazily)
@@ -158,6 +159,7 @@ def traverse(a, b, d, want_inside, prefix, stride, below, bands) -> tuple[np.nda
     k = a.shape[0]
     hit = np.zeros(k, np.bool_)
     inside = np.zeros(k)
+    prefix, below, bands = borrowed(prefix), borrowed(below), borrowed(bands)  # not counted
     for i in range(k):
         touch, within = strips(
             a[i, 0], a[i, 1], b[i, 0], b[i, 1], d, want_inside, prefix, stride, below, bands
@@ -179,7 +181,9 @@ def segments(
     The loop over the segments is here, not in the callers: an inlined function's array
     arguments are reference-counted at each call (numba's atomic increments and decrements,
     which its pruning left in the callers' loops), some 45 ns a call with these tables, more
-    than the check of a segment the filter passes; so the tables are bound once a batch."""
+    than the check of a segment the filter passes; so the tables are bound once a batch. The
+    callers pass the tables borrowed (:func:`usvtool.kernel_views.borrowed`), so that
+    :func:`strips`' calls do not count them either."""
     row = stride - 1
     for i in range(count):
         outside = False  # first whether every sample is in the table, then the look-ups
@@ -226,6 +230,7 @@ def check(
     k = x.shape[0]
     hit = np.zeros(k, np.bool_)
     inside = np.zeros(k)
-    segments(x, y, length, k, clear, samples, margin, d, want_inside, np.empty(samples), prefix,
-             stride, below, bands, hit, inside)  # fmt: skip
+    # the tables borrowed (usvtool.kernel_views): strips' calls do not count their references
+    segments(x, y, length, k, borrowed(clear), samples, margin, d, want_inside, np.empty(samples),
+             borrowed(prefix), stride, borrowed(below), borrowed(bands), hit, inside)  # fmt: skip
     return hit, inside
