@@ -224,3 +224,23 @@ def test_the_filter_clearance_is_a_lower_bound_on_the_distance_to_blocked_square
     assert np.all(clear[blocked] == -1)
     euclid = np.maximum(distance_transform_edt(~blocked) - math.sqrt(2), 0)
     assert np.all(clear[~blocked] >= euclid[~blocked] / math.sqrt(2) - 1e-12)
+
+
+def test_checkers_of_the_same_cells_share_their_table_and_others_do_not(monkeypatch):
+    """The filter's table is kept per process for the next checker of the same cells (a batch
+    worker's many plans on one grid): the same object for the same cells, its own for cells that
+    differ in one cell (equal to the table computed afresh), none kept past the size limit."""
+    from usvtool import collision
+
+    rng = np.random.default_rng(5)
+    cells = rng.random((40, 50)) < 0.2
+    first, again = SegmentChecker(cells), SegmentChecker(cells.copy(), pad=0.2)
+    assert again._clear is first._clear
+    changed = cells.copy()
+    changed[7, 9] = not changed[7, 9]
+    other = SegmentChecker(changed)
+    assert other._clear is not first._clear
+    np.testing.assert_array_equal(other._clear, collision._clearance(changed))
+    np.testing.assert_array_equal(first._clear, collision._clearance(cells))
+    monkeypatch.setattr(collision, "_RECENT_CELLS", cells.size - 1)
+    assert SegmentChecker(cells)._clear is not first._clear  # over the limit: computed anew
