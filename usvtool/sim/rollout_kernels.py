@@ -532,9 +532,14 @@ def sweep(x, y, radius, u, times, x0, y0, pos, vel, length, padded, width, left,
     return contact, static_first, clearance, intrudes, row, to_goal, near
 
 
-@declared(nt.Tuple((_F[::1], _F[::1], _ROWS, _ROWS, *_FOUND))(
-    _F, _F, _F, _F, _F, _F[::1], _F, _I, _I, _F[::1],  # the own ship, the window, the times
-    _ROWS, _ROWS, _F[::1], *_CHECKS, _F, _F), **_OPTIONS)  # fmt: skip
+#: A window's whole step (:func:`period_sweep`, :func:`horizon_sweep`): the own ship, the
+#: window, the times, the targets, the checks and the goal; the samples, their points and what
+#: :func:`sweep` finds.
+_STEP = nt.Tuple((_F[::1], _F[::1], _ROWS, _ROWS, *_FOUND))(
+    _F, _F, _F, _F, _F, _F[::1], _F, _I, _I, _F[::1], _ROWS, _ROWS, _F[::1], *_CHECKS, _F, _F)
+
+
+@declared(_STEP, **_OPTIONS)
 def period_sweep(x0, y0, psi0, v0, omega0, limits, span, n_v, n_omega, times, pos, vel, length,
                  padded, width, left, top, scale, cell, own_length, every, along, across,
                  trigger, cap, gx, gy):  # fmt: skip
@@ -556,9 +561,7 @@ def period_sweep(x0, y0, psi0, v0, omega0, limits, span, n_v, n_omega, times, po
     return v, omega, x, y, contact, static_first, clearance, intrudes, row, to_goal, near
 
 
-@declared(nt.Tuple((_F[::1], _F[::1], _ROWS, _ROWS, *_FOUND))(
-    _F, _F, _F, _F, _F, _F[::1], _F, _I, _I, _F[::1],  # the own ship, the window, the times
-    _ROWS, _ROWS, _F[::1], *_CHECKS, _F, _F), **_OPTIONS)  # fmt: skip
+@declared(_STEP, **_OPTIONS)
 def horizon_sweep(x0, y0, psi0, v0, omega0, limits, span, n_v, n_omega, times, pos, vel, length,
                   padded, width, left, top, scale, cell, own_length, every, along, across,
                   trigger, cap, gx, gy):  # fmt: skip
